@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The exact mesh model every morphex library shares.
+//
+// A Mesh is an indexed triangle mesh whose vertex coordinates are exact (CGAL::Epeck: lazy exact
+// rationals). Nothing in morphex ever rounds a coordinate of a Mesh; rounding happens only when a
+// caller explicitly asks for a DoubleMesh or writes a plain (non-exact) file format.
+//
+// Two vertices may have the same coordinates: that is how a closed 2-manifold represents a solid
+// whose boundary touches itself along an edge or at a vertex (the non-manifold feature is
+// separated into distinct vertices).
+#pragma once
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace morphex {
+
+using Kernel = CGAL::Epeck;
+using FT = Kernel::FT;
+using Point = Kernel::Point_3;
+using VertexIndex = std::uint32_t;
+using Triangle = std::array<VertexIndex, 3>;  // counter-clockwise seen from outside
+
+struct Mesh {
+  std::vector<Point> points;
+  std::vector<Triangle> triangles;
+
+  std::size_t num_vertices() const { return points.size(); }
+  std::size_t num_triangles() const { return triangles.size(); }
+  bool empty() const { return triangles.empty(); }
+};
+
+// A mesh with double coordinates, for interchange with floating-point code and plain file formats.
+struct DoubleMesh {
+  std::vector<std::array<double, 3>> points;
+  std::vector<Triangle> triangles;
+};
+
+// Rounds every coordinate to the nearest double.
+DoubleMesh to_double(const Mesh& mesh);
+// Exact: every double is a dyadic rational, so the conversion loses nothing.
+Mesh from_double(const DoubleMesh& mesh);
+
+// Replaces each coordinate's construction history by its exact value, so that chains of
+// operations do not keep growing lazy-evaluation graphs.
+void make_exact(Mesh& mesh);
+
+// An exact rational number in lowest terms, "num/den" or "num" when the denominator is 1.
+std::string to_rational_string(const FT& value);
+// Parses "num/den", "num" or a decimal/scientific literal (read as the nearest double).
+// Throws std::invalid_argument on malformed text.
+FT parse_exact_number(const std::string& text);
+
+// Exact signed volume of a closed mesh (positive when outward oriented), summed pairwise so the
+// rational sizes stay balanced.
+FT signed_volume(const Mesh& mesh);
+
+// Error thrown for unusable input. `where` names the file; the message says the problem and the
+// position (line, vertex, face, JSON path).
+class InputError : public std::runtime_error {
+ public:
+  InputError(std::string where, const std::string& problem)
+      : std::runtime_error(where.empty() ? problem : where + ": " + problem),
+        where_(std::move(where)) {}
+  const std::string& where() const { return where_; }
+
+ private:
+  std::string where_;
+};
+
+}  // namespace morphex

@@ -1,0 +1,98 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "morphex/mesh.h"
+
+#include <gmpxx.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <type_traits>
+
+namespace morphex {
+
+using ExactFT = std::decay_t<decltype(CGAL::exact(std::declval<FT>()))>;
+
+DoubleMesh to_double(const Mesh& mesh) {
+  DoubleMesh out;
+  out.points.reserve(mesh.points.size());
+  for (const Point& p : mesh.points)
+    out.points.push_back({CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
+  out.triangles = mesh.triangles;
+  return out;
+}
+
+Mesh from_double(const DoubleMesh& mesh) {
+  Mesh out;
+  out.points.reserve(mesh.points.size());
+  for (const auto& p : mesh.points) out.points.emplace_back(p[0], p[1], p[2]);
+  out.triangles = mesh.triangles;
+  return out;
+}
+
+void make_exact(Mesh& mesh) {
+  for (Point& p : mesh.points) {
+    // exact() evaluates and prunes the lazy DAG; rebuilding from exact values drops the history.
+    const auto& e = CGAL::exact(p);
+    p = Point(FT(e.x()), FT(e.y()), FT(e.z()));
+  }
+}
+
+std::string to_rational_string(const FT& value) {
+  // The exact type keeps lowest terms; normalise "n/1" in case a backend prints it.
+  std::ostringstream out;
+  out << CGAL::exact(value);
+  std::string text = out.str();
+  if (text.size() > 2 && text.compare(text.size() - 2, 2, "/1") == 0) text.resize(text.size() - 2);
+  return text;
+}
+
+FT parse_exact_number(const std::string& text) {
+  if (text.empty()) throw std::invalid_argument("empty number");
+  // Integers and fractions are exact; decimal literals mean the nearest double, as in any
+  // mesh file written by floating-point software.
+  if (text.find_first_of(".eEnNiI") == std::string::npos) {
+    mpq_class q;
+    const std::string digits = text[0] == '+' ? text.substr(1) : text;  // GMP rejects '+'
+    if (digits.empty() || digits[0] == '+' || q.set_str(digits, 10) != 0 || q.get_den() == 0)
+      throw std::invalid_argument("malformed number '" + text + "'");
+    q.canonicalize();
+    return FT(ExactFT(q.get_str()));
+  }
+  char* end = nullptr;
+  const double d = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != '\0') throw std::invalid_argument("malformed number '" + text + "'");
+  if (!std::isfinite(d)) throw std::invalid_argument("non-finite number '" + text + "'");
+  return FT(d);
+}
+
+namespace {
+using Exact = ExactFT;
+
+Exact sum_balanced(std::vector<Exact>& terms) {
+  if (terms.empty()) return Exact(0);
+  while (terms.size() > 1) {
+    std::size_t half = (terms.size() + 1) / 2;
+    for (std::size_t i = 0; i + half < terms.size(); ++i) terms[i] += terms[i + half];
+    terms.resize(half);
+  }
+  return terms[0];
+}
+}  // namespace
+
+FT signed_volume(const Mesh& mesh) {
+  std::vector<Exact> terms;
+  terms.reserve(mesh.triangles.size());
+  for (const Triangle& t : mesh.triangles) {
+    const auto& a = CGAL::exact(mesh.points[t[0]]);
+    const auto& b = CGAL::exact(mesh.points[t[1]]);
+    const auto& c = CGAL::exact(mesh.points[t[2]]);
+    // a . (b x c)
+    Exact cx = b.y() * c.z() - b.z() * c.y();
+    Exact cy = b.z() * c.x() - b.x() * c.z();
+    Exact cz = b.x() * c.y() - b.y() * c.x();
+    terms.push_back(a.x() * cx + a.y() * cy + a.z() * cz);
+  }
+  return FT(sum_balanced(terms) / Exact(6));
+}
+
+}  // namespace morphex

@@ -1,0 +1,54 @@
+# Command-line contract tests: exit codes and messages of ../shared/conventions.md.
+set(data ${CMAKE_CURRENT_SOURCE_DIR}/data)
+function(morphex_cli_test name code regex)
+  add_test(NAME cli.${name} COMMAND ${CMAKE_COMMAND}
+    "-DCOMMAND=$<TARGET_FILE:morphex>;${ARGN}" -DEXPECT_CODE=${code} "-DEXPECT_REGEX=${regex}"
+    -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/expect.cmake)
+endfunction()
+
+morphex_cli_test(version 0 "morphex ${PROJECT_VERSION}" --version)
+morphex_cli_test(help 0 "check" --help)
+morphex_cli_test(check_help 0 "--json" check --help)
+morphex_cli_test(no_subcommand 2 "subcommand" )
+morphex_cli_test(unknown_option 2 "bogus" check --bogus ${data}/unit_cube.off)
+morphex_cli_test(check_cube 0 "\"volume\":\"1\"" check --json ${data}/unit_cube.off)
+morphex_cli_test(check_cube_text 0 "valid closed solid" check ${data}/unit_cube.off)
+morphex_cli_test(check_exact_third 0 "\"volume\":\"1/27\"" check --json ${data}/third_cube_exact.off)
+morphex_cli_test(check_open 1 "open_cube.off: mesh is not closed: 4 border edges, first at vertex"
+  check ${data}/open_cube.off)
+morphex_cli_test(check_open_json 1 "\"border_edges\":4" check --json ${data}/open_cube.off)
+morphex_cli_test(check_inward 1 "\"outward\":false" check --json ${data}/inward_cube.off)
+morphex_cli_test(check_self_intersecting 1 "\"self_intersecting\":true"
+  check --json ${data}/crossing_cubes.off)
+morphex_cli_test(check_missing_file 2 "does_not_exist.off" check ${data}/does_not_exist.off)
+morphex_cli_test(check_truncated 2 "truncated.off" check ${data}/truncated.off)
+morphex_cli_test(threads_option 0 "volume" --threads 1 check --json ${data}/unit_cube.off)
+morphex_cli_test(threads_invalid 2 "threads" --threads 0 check ${data}/unit_cube.off)
+
+# CGAL's demo meshes, extracted from Debian's libcgal-demo by scripts/fetch-cgal-demo-meshes.
+set(MORPHEX_CGAL_DEMO_DIR "$ENV{HOME}/.cache/morphex/cgal-demo" CACHE PATH "CGAL demo meshes")
+foreach(mesh star cross eight elephant)
+  add_test(NAME cli.check_demo_${mesh} COMMAND morphex check --json
+           ${MORPHEX_CGAL_DEMO_DIR}/${mesh}.off)
+  set_tests_properties(cli.check_demo_${mesh} PROPERTIES
+    PASS_REGULAR_EXPRESSION "\"valid\":true" SKIP_RETURN_CODE 77)
+endforeach()
+
+# A separate CMake project links morphex::bool through find_package(morphex) against an
+# installed tree: the packaging contract of the README.
+add_test(NAME package.install COMMAND ${CMAKE_COMMAND} --install ${PROJECT_BINARY_DIR}
+         --prefix ${PROJECT_BINARY_DIR}/test-install)
+add_test(NAME package.consumer_configure COMMAND ${CMAKE_COMMAND}
+  -S ${CMAKE_CURRENT_SOURCE_DIR}/consumer -B ${PROJECT_BINARY_DIR}/consumer-build
+  -DCMAKE_PREFIX_PATH=${PROJECT_BINARY_DIR}/test-install -DCMAKE_BUILD_TYPE=Release)
+add_test(NAME package.consumer_build COMMAND ${CMAKE_COMMAND}
+  --build ${PROJECT_BINARY_DIR}/consumer-build)
+add_test(NAME package.consumer_run COMMAND ${PROJECT_BINARY_DIR}/consumer-build/consumer
+  ${data}/unit_cube.off)
+set_tests_properties(package.consumer_run PROPERTIES PASS_REGULAR_EXPRESSION "volume 1")
+set_tests_properties(package.install PROPERTIES FIXTURES_SETUP morphex_installed)
+set_tests_properties(package.consumer_configure PROPERTIES
+  FIXTURES_REQUIRED morphex_installed FIXTURES_SETUP consumer_configured)
+set_tests_properties(package.consumer_build PROPERTIES
+  FIXTURES_REQUIRED consumer_configured FIXTURES_SETUP consumer_built)
+set_tests_properties(package.consumer_run PROPERTIES FIXTURES_REQUIRED consumer_built)

@@ -1,0 +1,2 @@
+// Anchors the precompiled header shared by the test binaries.
+int main() { return 0; }

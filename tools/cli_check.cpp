@@ -1,0 +1,90 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// `morphex check MESH [--json]`: is this file a valid closed solid, and what is its exact volume?
+#include <chrono>
+#include <iostream>
+
+#include "cli_common.h"
+#include "morphex/check.h"
+#include "morphex/io.h"
+
+namespace morphex::cli {
+
+namespace {
+
+nlohmann::json report_json(const std::string& path, const MeshReport& r, double seconds) {
+  nlohmann::json j;
+  j["file"] = path;
+  j["valid"] = r.valid_solid();
+  j["faces"] = r.triangles;
+  j["vertices"] = r.vertices;
+  j["components"] = r.components;
+  j["border_edges"] = r.border_edges;
+  j["non_manifold_edges"] = r.non_manifold_edges;
+  j["non_manifold_vertices"] = r.non_manifold_vertices;
+  j["degenerate_faces"] = r.degenerate_faces;
+  j["closed"] = r.closed();
+  j["consistently_oriented"] = r.consistently_oriented;
+  j["outward"] = r.outward;
+  j["self_intersecting"] = r.self_intersections > 0;
+  j["self_intersections"] = r.self_intersections;
+  if (r.first_self_intersection)
+    j["first_self_intersection"] = {r.first_self_intersection->first,
+                                    r.first_self_intersection->second};
+  j["genus"] = r.genus;
+  j["bbox"] = {{"min", {r.bbox.xmin(), r.bbox.ymin(), r.bbox.zmin()}},
+               {"max", {r.bbox.xmax(), r.bbox.ymax(), r.bbox.zmax()}}};
+  j["volume"] = to_rational_string(r.volume);
+  j["volume_approx"] = CGAL::to_double(r.volume);
+  j["seconds"] = seconds;
+  return j;
+}
+
+void print_text(const std::string& path, const MeshReport& r) {
+  std::cout << path << ": " << (r.valid_solid() ? "valid closed solid" : "NOT a valid solid")
+            << '\n'
+            << "  triangles " << r.triangles << ", vertices " << r.vertices << ", components "
+            << r.components << ", genus " << r.genus << '\n'
+            << "  border edges " << r.border_edges << ", non-manifold edges "
+            << r.non_manifold_edges << ", non-manifold vertices " << r.non_manifold_vertices
+            << ", degenerate faces " << r.degenerate_faces << '\n'
+            << "  consistently oriented " << (r.consistently_oriented ? "yes" : "no")
+            << ", outward " << (r.outward ? "yes" : "no") << ", self-intersections "
+            << r.self_intersections << '\n'
+            << "  volume " << to_rational_string(r.volume) << " (~" << CGAL::to_double(r.volume)
+            << ")\n";
+  if (!r.valid_solid()) std::cout << "  problem: " << describe_problems(r) << '\n';
+}
+
+}  // namespace
+
+Runner add_check_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("check", "Validity report of a mesh (exit 0 valid solid, 1 not)");
+  auto path = std::make_shared<std::string>();
+  auto json = std::make_shared<bool>(false);
+  cmd->add_option("MESH", *path, "Mesh file (OFF, OBJ, STL, PLY)")->required();
+  cmd->add_flag("--json", *json, "Print one JSON object instead of text");
+  return [=]() -> int {
+    Mesh mesh;
+    try {
+      mesh = read_mesh(*path);
+    } catch (const std::exception& e) {
+      print_error(e.what());
+      return kBadInput;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    const MeshReport report = check_mesh(mesh);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (*json)
+      emit_json(report_json(*path, report, seconds), "-");
+    else
+      print_text(*path, report);
+    if (!report.valid_solid()) {
+      std::cerr << "morphex: " << *path << ": " << describe_problems(report) << '\n';
+      return kFailed;
+    }
+    return kSuccess;
+  };
+}
+
+}  // namespace morphex::cli

@@ -1,0 +1,25 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Shared plumbing of the morphex subcommands: exit codes, error reporting, JSON output.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace morphex::cli {
+
+// The exit-code contract of ../shared/conventions.md.
+enum ExitCode : int { kSuccess = 0, kFailed = 1, kBadInput = 2 };
+
+// Prints "morphex: MESSAGE" on stderr.
+void print_error(const std::string& message);
+
+// Writes `value` as one line to stdout when target is "-", else atomically to the file.
+void emit_json(const nlohmann::json& value, const std::string& target);
+
+// Each subcommand registers itself and returns the function that runs it.
+using Runner = std::function<int()>;
+Runner add_check_command(CLI::App& app);
+
+}  // namespace morphex::cli
