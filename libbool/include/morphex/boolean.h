@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Exact Boolean operations on closed triangle meshes, after Leconte, Barki and Dupont.
+//
+// Notation shared by every phase (libbool/src/boolean_*.cpp, docs/boolean-design.md):
+//   A, B       the two input solids; ta, tb a triangle of A, of B.
+//   cut facet  an input triangle that meets the other mesh (any contact).
+//   segment    a constraint between two intersection points, lying in both ta and tb.
+//   A', B'     A and B with every cut facet replaced by its constrained Delaunay triangulation.
+//   patch      sub-triangles of A' (or B') connected without crossing the other surface.
+//   label      where a patch lies: inside, outside, on the other surface with the same normal
+//              (coplanar-same) or with the opposite one (coplanar-opposite).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "morphex/mesh.h"
+
+namespace morphex {
+
+enum class BooleanOp { Union, Intersection, Difference };  // Difference is A minus B
+
+// "union", "intersection", "difference"; throws std::invalid_argument otherwise.
+BooleanOp parse_boolean_op(const std::string& name);
+const char* to_string(BooleanOp op);
+
+struct BooleanOptions {
+  bool validate_inputs = true;  // refuse invalid solids before any work
+  bool provenance = false;      // fill BooleanResult::provenance
+};
+
+struct PhaseSeconds {
+  double validate = 0, pairs = 0, segments = 0, retriangulate = 0, classify = 0, assemble = 0;
+};
+
+struct BooleanStats {
+  std::size_t candidate_pairs = 0;      // triangle pairs whose boxes overlap
+  std::size_t intersecting_pairs = 0;   // pairs that really touch
+  std::size_t cut_facets_a = 0, cut_facets_b = 0;
+  std::size_t segments = 0;             // constraint segments inserted (both meshes)
+  std::size_t intersection_points = 0;  // distinct new points constructed
+  std::size_t patches = 0;
+  PhaseSeconds seconds;
+};
+
+enum class BooleanStatus { Ok, InvalidInputA, InvalidInputB };
+
+struct FaceOrigin {
+  std::uint8_t mesh;   // 0 for A, 1 for B
+  std::uint32_t face;  // triangle index in that input
+};
+
+struct BooleanResult {
+  BooleanStatus status = BooleanStatus::Ok;
+  std::string message;  // why an input was refused, empty when Ok
+  Mesh mesh;            // a valid closed solid (possibly empty) when Ok
+  BooleanStats stats;
+  std::vector<FaceOrigin> provenance;  // one per output triangle when requested
+  bool ok() const { return status == BooleanStatus::Ok; }
+};
+
+BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
+                              const BooleanOptions& options = {});
+
+}  // namespace morphex

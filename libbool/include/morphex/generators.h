@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Exact, closed, outward-oriented meshes generated in code, for tests, examples and benchmarks.
+#pragma once
+
+#include <utility>
+
+#include "morphex/mesh.h"
+
+namespace morphex {
+
+using Vector = Kernel::Vector_3;
+using Transformation = CGAL::Aff_transformation_3<Kernel>;
+
+Mesh make_box(const Point& min, const Point& max);
+Mesh make_cube(const FT& half_side, const Point& centre = CGAL::ORIGIN);
+Mesh make_tetrahedron();                 // (0,0,0), (1,0,0), (0,1,0), (0,0,1): volume 1/6
+Mesh make_octahedron(const FT& radius);  // vertices at +-radius on the axes: volume 4 r^3 / 3
+// Icosahedron with vertices (0, +-1, +-g) and cyclic permutations, g = 1618/1000 (a rational
+// stand-in for the golden ratio, so the coordinates are exact and the volume is rational).
+Mesh make_icosahedron();
+// The icosahedron subdivided `level` times, every vertex pushed to the sphere of `radius` in
+// double precision then taken exactly: a valid solid with double coordinates.
+Mesh make_icosphere(int level, const FT& radius);
+Mesh make_torus(int major_segments, int minor_segments, double major_radius, double minor_radius);
+Mesh make_cylinder(int segments, double radius, double half_height);
+
+// Unit cubes [0,1]^3 and a translated copy touching it along a face, an edge, a vertex.
+std::pair<Mesh, Mesh> make_cubes_sharing_face();
+std::pair<Mesh, Mesh> make_cubes_sharing_edge();
+std::pair<Mesh, Mesh> make_cubes_sharing_vertex();
+
+Mesh concatenate(const Mesh& a, const Mesh& b);  // disjoint union of the vertex and face lists
+Mesh transformed(const Mesh& mesh, const Transformation& transformation);  // exact
+Mesh translated(const Mesh& mesh, const Vector& offset);                     // exact
+Mesh reversed(const Mesh& mesh);  // every face flipped
+
+}  // namespace morphex

@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The Boolean driver: validation, then the phases in order, each timed.
+#include "morphex/boolean.h"
+
+#include <chrono>
+#include <stdexcept>
+
+#include "boolean_internal.h"
+#include "morphex/check.h"
+
+namespace morphex {
+
+BooleanOp parse_boolean_op(const std::string& name) {
+  if (name == "union") return BooleanOp::Union;
+  if (name == "intersection") return BooleanOp::Intersection;
+  if (name == "difference") return BooleanOp::Difference;
+  throw std::invalid_argument("unknown Boolean operation '" + name +
+                              "' (expected union, intersection or difference)");
+}
+
+const char* to_string(BooleanOp op) {
+  switch (op) {
+    case BooleanOp::Union: return "union";
+    case BooleanOp::Intersection: return "intersection";
+    case BooleanOp::Difference: return "difference";
+  }
+  return "?";
+}
+
+namespace {
+class Stopwatch {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return s;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+}  // namespace
+
+BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
+                              const BooleanOptions& options) {
+  BooleanResult result;
+  Stopwatch clock;
+  if (options.validate_inputs) {
+    const Mesh* inputs[2] = {&a, &b};
+    for (int side = 0; side < 2; ++side) {
+      const MeshReport report = check_mesh(*inputs[side]);
+      if (!report.valid_solid()) {
+        result.status = side == 0 ? BooleanStatus::InvalidInputA : BooleanStatus::InvalidInputB;
+        result.message = std::string(side == 0 ? "first" : "second") +
+                         " operand is not a valid solid: " + describe_problems(report);
+        return result;
+      }
+    }
+  }
+  BooleanStats& stats = result.stats;
+  stats.seconds.validate = clock.lap();
+
+  const auto pairs = detail::candidate_pairs(a, b);
+  stats.candidate_pairs = pairs.size();
+  stats.seconds.pairs = clock.lap();
+
+  const detail::Intersection x = detail::intersect(a, b, pairs);
+  stats.intersecting_pairs = x.intersecting_pairs;
+  stats.intersection_points = x.constructed_points;
+  stats.cut_facets_a = x.cuts[0].size();
+  stats.cut_facets_b = x.cuts[1].size();
+  for (int side = 0; side < 2; ++side)
+    for (const auto& [facet, cut] : x.cuts[side]) stats.segments += cut.segments.size();
+  stats.seconds.segments = clock.lap();
+
+  const detail::Refined refined[2] = {detail::retriangulate(a, 0, x),
+                                      detail::retriangulate(b, 1, x)};
+  stats.seconds.retriangulate = clock.lap();
+
+  std::size_t patches[2] = {0, 0};
+  const std::vector<detail::Label> labels[2] = {
+      detail::classify(a, b, 0, refined[0], x, patches[0]),
+      detail::classify(b, a, 1, refined[1], x, patches[1])};
+  stats.patches = patches[0] + patches[1];
+  stats.seconds.classify = clock.lap();
+
+  result.mesh = detail::assemble(x, refined, labels, op,
+                                 options.provenance ? &result.provenance : nullptr);
+  make_exact(result.mesh);
+  stats.seconds.assemble = clock.lap();
+  return result;
+}
+
+}  // namespace morphex

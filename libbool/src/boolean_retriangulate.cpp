@@ -1,0 +1,93 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Step 5: each cut facet becomes a constrained Delaunay triangulation of its corners and the
+// intersection points on it, constrained by its segments. The CDT works in the coordinate plane
+// that drops the dominant axis of the facet's normal: an exact projection (it only selects
+// coordinates) that keeps the facet non-degenerate.
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Projection_traits_xy_3.h>
+#include <CGAL/Projection_traits_xz_3.h>
+#include <CGAL/Projection_traits_yz_3.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include "boolean_internal.h"
+
+namespace morphex::detail {
+
+namespace {
+
+template <class Traits>
+struct FacetCdt {
+  using Vb = CGAL::Triangulation_vertex_base_with_info_2<PointId, Traits>;
+  using Fb = CGAL::Constrained_triangulation_face_base_2<Traits>;
+  using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+  // Valid inputs never produce crossing constraints; if they do, CGAL throws instead of
+  // silently constructing a point we did not share with the other mesh.
+  using Cdt = CGAL::Constrained_Delaunay_triangulation_2<
+      Traits, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
+
+  static void run(const std::array<PointId, 3>& corners, const FacetCut& cut,
+                  const Intersection& x, std::uint32_t facet, Refined& out) {
+    Cdt cdt;
+    auto insert = [&](PointId id) {
+      auto v = cdt.insert(x.points[id]);
+      v->info() = id;
+      return v;
+    };
+    for (PointId id : corners) insert(id);
+    for (PointId id : cut.points) insert(id);
+    for (const Edge& s : cut.segments) {
+      auto p = insert(s.first), q = insert(s.second);
+      cdt.insert_constraint(p, q);
+    }
+    const auto orient = Traits().orientation_2_object();
+    const bool flip = orient(x.points[corners[0]], x.points[corners[1]], x.points[corners[2]]) ==
+                      CGAL::NEGATIVE;
+    for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+      std::array<PointId, 3> v{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()};
+      if (flip) std::swap(v[1], v[2]);
+      out.triangles.push_back({v, facet});
+      for (int i = 0; i < 3; ++i)
+        if (f->is_constrained(i)) {
+          const PointId p = f->vertex(Cdt::cw(i))->info(), q = f->vertex(Cdt::ccw(i))->info();
+          out.on_other_surface.push_back(undirected(p, q));
+        }
+    }
+  }
+};
+
+int dominant_axis(const Point& a, const Point& b, const Point& c) {
+  const Kernel::Vector_3 n = CGAL::cross_product(b - a, c - a);
+  const FT ax = CGAL::abs(n.x()), ay = CGAL::abs(n.y()), az = CGAL::abs(n.z());
+  if (ax >= ay && ax >= az) return 0;
+  return ay >= az ? 1 : 2;
+}
+
+}  // namespace
+
+Refined retriangulate(const Mesh& mesh, int side, const Intersection& x) {
+  Refined out;
+  out.triangles.reserve(mesh.num_triangles());
+  for (std::uint32_t t = 0; t < mesh.num_triangles(); ++t) {
+    const Triangle& f = mesh.triangles[t];
+    const std::array<PointId, 3> corners{x.vertex_id[side][f[0]], x.vertex_id[side][f[1]],
+                                         x.vertex_id[side][f[2]]};
+    const auto cut = x.cuts[side].find(t);
+    if (cut == x.cuts[side].end()) {
+      out.triangles.push_back({corners, t});
+      continue;
+    }
+    switch (dominant_axis(x.points[corners[0]], x.points[corners[1]], x.points[corners[2]])) {
+      case 0:
+        FacetCdt<CGAL::Projection_traits_yz_3<Kernel>>::run(corners, cut->second, x, t, out);
+        break;
+      case 1:
+        FacetCdt<CGAL::Projection_traits_xz_3<Kernel>>::run(corners, cut->second, x, t, out);
+        break;
+      default:
+        FacetCdt<CGAL::Projection_traits_xy_3<Kernel>>::run(corners, cut->second, x, t, out);
+    }
+  }
+  return out;
+}
+
+}  // namespace morphex::detail

@@ -1,0 +1,227 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Exact Booleans: a generated degenerate suite with exact identities and independent closed forms.
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "morphex/boolean.h"
+#include "morphex/check.h"
+#include "morphex/generators.h"
+
+using namespace morphex;
+
+namespace {
+
+struct Box {
+  FT min[3], max[3];
+};
+
+Mesh box_mesh(const Box& b) {
+  return make_box(Point(b.min[0], b.min[1], b.min[2]), Point(b.max[0], b.max[1], b.max[2]));
+}
+
+// Volume of the intersection of two axis-aligned boxes: an independent exact closed form.
+FT overlap_volume(const Box& a, const Box& b) {
+  FT v = 1;
+  for (int i = 0; i < 3; ++i) {
+    const FT lo = CGAL::max(a.min[i], b.min[i]), hi = CGAL::min(a.max[i], b.max[i]);
+    if (hi <= lo) return 0;
+    v *= hi - lo;
+  }
+  return v;
+}
+
+FT box_volume(const Box& b) {
+  return (b.max[0] - b.min[0]) * (b.max[1] - b.min[1]) * (b.max[2] - b.min[2]);
+}
+
+Box shifted(const Box& b, FT dx, FT dy, FT dz) {
+  return {{b.min[0] + dx, b.min[1] + dy, b.min[2] + dz}, {b.max[0] + dx, b.max[1] + dy, b.max[2] + dz}};
+}
+
+// Runs op, requires a valid solid, returns its exact volume.
+FT checked_volume(const Mesh& a, const Mesh& b, BooleanOp op, Mesh* out = nullptr) {
+  const BooleanResult r = compute_boolean(a, b, op);
+  EXPECT_TRUE(r.ok()) << r.message;
+  const MeshReport report = check_mesh(r.mesh);
+  EXPECT_TRUE(report.valid_solid()) << to_string(op) << ": " << describe_problems(report);
+  if (out) *out = r.mesh;
+  return report.volume;
+}
+
+struct Identities {
+  FT unite, intersect, difference;
+};
+
+Identities check_identities(const Mesh& a, const Mesh& b) {
+  const FT va = signed_volume(a), vb = signed_volume(b);
+  Identities v{checked_volume(a, b, BooleanOp::Union), checked_volume(a, b, BooleanOp::Intersection),
+               checked_volume(a, b, BooleanOp::Difference)};
+  EXPECT_EQ(v.unite + v.intersect, va + vb)
+      << "union " << to_rational_string(v.unite) << " intersection "
+      << to_rational_string(v.intersect);
+  EXPECT_EQ(v.difference, va - v.intersect) << "difference " << to_rational_string(v.difference);
+  return v;
+}
+
+const Box kUnit{{0, 0, 0}, {1, 1, 1}};
+
+}  // namespace
+
+// The unit cube against a second box at every offset in {-1, -1/2, 0, 1/2, 1}^3 (125 cases):
+// identical cubes, coplanar overlaps, and contacts along faces, edges and vertices, plus disjoint.
+class CubeOffsets : public ::testing::TestWithParam<std::tuple<int, int, int>> {};
+
+TEST_P(CubeOffsets, ExactIdentitiesAndClosedForm) {
+  const auto [i, j, k] = GetParam();
+  const Box b = shifted(kUnit, FT(i) / 2, FT(j) / 2, FT(k) / 2);
+  const Identities v = check_identities(box_mesh(kUnit), box_mesh(b));
+  EXPECT_EQ(v.intersect, overlap_volume(kUnit, b));
+}
+
+INSTANTIATE_TEST_SUITE_P(Degenerate, CubeOffsets,
+                         ::testing::Combine(::testing::Range(-2, 3), ::testing::Range(-2, 3),
+                                            ::testing::Range(-2, 3)));
+
+// A half-size box at offsets that put its faces on the cube's faces (nested with coplanar faces).
+class NestedBoxes : public ::testing::TestWithParam<std::tuple<int, int, int>> {};
+
+TEST_P(NestedBoxes, ExactIdentitiesAndClosedForm) {
+  const auto [i, j, k] = GetParam();
+  const Box small{{0, 0, 0}, {FT(1) / 2, FT(1) / 2, FT(1) / 2}};
+  const Box b = shifted(small, FT(i) / 4, FT(j) / 4, FT(k) / 4);
+  const Identities v = check_identities(box_mesh(kUnit), box_mesh(b));
+  EXPECT_EQ(v.intersect, overlap_volume(kUnit, b));
+  // and the other way round: B minus A
+  const FT diff_ba = checked_volume(box_mesh(b), box_mesh(kUnit), BooleanOp::Difference);
+  EXPECT_EQ(diff_ba, box_volume(b) - overlap_volume(kUnit, b));
+}
+
+INSTANTIATE_TEST_SUITE_P(Degenerate, NestedBoxes,
+                         ::testing::Combine(::testing::Range(0, 3), ::testing::Range(0, 3),
+                                            ::testing::Range(0, 3)));
+
+TEST(Boolean, CubesSharingAFaceUniteIntoOneBox) {
+  const Box b = shifted(kUnit, 1, 0, 0);
+  Mesh unite;
+  EXPECT_EQ(checked_volume(box_mesh(kUnit), box_mesh(b), BooleanOp::Union, &unite), FT(2));
+  // the shared face is gone: a 2x1x1 box needs no vertex inside the shared square
+  EXPECT_EQ(check_mesh(unite).components, 1u);
+  EXPECT_EQ(checked_volume(box_mesh(kUnit), box_mesh(b), BooleanOp::Intersection), FT(0));
+}
+
+TEST(Boolean, CubesSharingAnEdgeGiveASeparatedValidResult) {
+  const Box b = shifted(kUnit, 1, 1, 0);
+  Mesh unite;
+  EXPECT_EQ(checked_volume(box_mesh(kUnit), box_mesh(b), BooleanOp::Union, &unite), FT(2));
+  const MeshReport report = check_mesh(unite);
+  EXPECT_EQ(report.non_manifold_edges, 0u);
+  // the result is a valid input of the next operation
+  const Box c{{FT(1) / 2, FT(1) / 2, FT(1) / 4}, {FT(3) / 2, FT(3) / 2, FT(3) / 4}};
+  const Identities v = check_identities(unite, box_mesh(c));
+  EXPECT_EQ(v.intersect, overlap_volume(kUnit, c) + overlap_volume(b, c));
+}
+
+TEST(Boolean, CubesSharingAVertexGiveASeparatedValidResult) {
+  const Box b = shifted(kUnit, 1, 1, 1);
+  Mesh unite;
+  EXPECT_EQ(checked_volume(box_mesh(kUnit), box_mesh(b), BooleanOp::Union, &unite), FT(2));
+  EXPECT_EQ(check_mesh(unite).non_manifold_vertices, 0u);
+  const Identities v = check_identities(unite, box_mesh(shifted(kUnit, FT(1) / 2, FT(1) / 2, FT(1) / 2)));
+  EXPECT_EQ(v.intersect, FT(2) / 8);
+}
+
+TEST(Boolean, IdenticalMeshes) {
+  const Mesh a = make_icosphere(1, FT(1));
+  const FT va = signed_volume(a);
+  EXPECT_EQ(checked_volume(a, a, BooleanOp::Union), va);
+  EXPECT_EQ(checked_volume(a, a, BooleanOp::Intersection), va);
+  Mesh diff;
+  EXPECT_EQ(checked_volume(a, a, BooleanOp::Difference, &diff), FT(0));
+  EXPECT_TRUE(diff.empty());
+}
+
+TEST(Boolean, NestedAndDisjointSolids) {
+  const Mesh outer = make_cube(FT(2));
+  const Mesh inner = make_icosphere(1, FT(1));
+  const FT vo = signed_volume(outer), vi = signed_volume(inner);
+  EXPECT_EQ(checked_volume(outer, inner, BooleanOp::Union), vo);
+  EXPECT_EQ(checked_volume(outer, inner, BooleanOp::Intersection), vi);
+  Mesh hollow;
+  EXPECT_EQ(checked_volume(outer, inner, BooleanOp::Difference, &hollow), vo - vi);
+  EXPECT_EQ(check_mesh(hollow).components, 2u);
+  EXPECT_EQ(checked_volume(inner, outer, BooleanOp::Difference), FT(0));
+  const Mesh far = translated(inner, Kernel::Vector_3(10, 0, 0));
+  EXPECT_EQ(checked_volume(outer, far, BooleanOp::Union), vo + vi);
+  EXPECT_EQ(checked_volume(outer, far, BooleanOp::Intersection), FT(0));
+  EXPECT_EQ(checked_volume(outer, far, BooleanOp::Difference), vo);
+}
+
+TEST(Boolean, RotatedCubesWithRationalRotation) {
+  // rotation about z by the Pythagorean angle (cos, sin) = (3/5, 4/5): exact
+  const CGAL::Aff_transformation_3<Kernel> rotation(FT(3) / 5, FT(-4) / 5, 0, FT(4) / 5,
+                                                    FT(3) / 5, 0, 0, 0, 1);
+  const Mesh a = make_cube(FT(1));
+  const Mesh b = transformed(make_cube(FT(1)), rotation);  // shares the top and bottom planes
+  check_identities(a, b);
+  check_identities(a, translated(b, Kernel::Vector_3(FT(1) / 3, FT(1) / 7, FT(1) / 2)));
+}
+
+TEST(Boolean, CrossingSpheresAndTorus) {
+  const Mesh a = make_icosphere(2, FT(1));
+  check_identities(a, translated(make_icosphere(2, FT(1)), Kernel::Vector_3(FT(1) / 2, FT(1) / 3, FT(1) / 5)));
+  check_identities(make_torus(16, 8, 1.0, 0.3), make_box(Point(-2, -2, -FT(1) / 10), Point(0, 2, 2)));
+}
+
+TEST(Boolean, ChainOfTenOperationsStaysValidAndExact) {
+  Mesh current = box_mesh(kUnit);
+  FT expected = 1;
+  // Alternately add and carve unit-wide slabs: each step's volume is known in closed form.
+  for (int step = 0; step < 10; ++step) {
+    const FT x = FT(step) / 10;
+    const Box slab{{x, FT(-1) / 2, FT(1) / 4}, {x + FT(1) / 20, FT(3) / 2, FT(3) / 4}};
+    const BooleanOp op = step % 2 == 0 ? BooleanOp::Union : BooleanOp::Difference;
+    const BooleanResult r = compute_boolean(current, box_mesh(slab), op);
+    ASSERT_TRUE(r.ok()) << "step " << step << ": " << r.message;
+    const MeshReport report = check_mesh(r.mesh);
+    ASSERT_TRUE(report.valid_solid()) << "step " << step << ": " << describe_problems(report);
+    const FT inside = overlap_volume(kUnit, slab);
+    // union adds the part of the slab outside the cube; difference removes the part inside
+    expected += op == BooleanOp::Union ? box_volume(slab) - inside : -inside;
+    EXPECT_EQ(report.volume, expected) << "step " << step;
+    current = r.mesh;
+  }
+}
+
+TEST(Boolean, InvalidInputIsRefusedWithAReason) {
+  Mesh open = make_cube(FT(1));
+  open.triangles.pop_back();
+  const BooleanResult r = compute_boolean(open, make_cube(FT(1)), BooleanOp::Union);
+  EXPECT_EQ(r.status, BooleanStatus::InvalidInputA);
+  EXPECT_NE(r.message.find("not closed"), std::string::npos) << r.message;
+  Mesh inverted = make_cube(FT(1));
+  for (Triangle& t : inverted.triangles) std::swap(t[1], t[2]);
+  EXPECT_EQ(compute_boolean(make_cube(FT(1)), inverted, BooleanOp::Union).status,
+            BooleanStatus::InvalidInputB);
+}
+
+TEST(Boolean, EmptyOperands) {
+  const Mesh cube = make_cube(FT(1)), empty;
+  EXPECT_EQ(checked_volume(cube, empty, BooleanOp::Union), FT(8));
+  EXPECT_EQ(checked_volume(cube, empty, BooleanOp::Intersection), FT(0));
+  EXPECT_EQ(checked_volume(empty, cube, BooleanOp::Difference), FT(0));
+}
+
+TEST(Boolean, ProvenanceNamesTheInputFaces) {
+  BooleanOptions options;
+  options.provenance = true;
+  const Mesh a = box_mesh(kUnit), b = box_mesh(shifted(kUnit, FT(1) / 2, FT(1) / 3, FT(1) / 5));
+  const BooleanResult r = compute_boolean(a, b, BooleanOp::Union, options);
+  ASSERT_EQ(r.provenance.size(), r.mesh.num_triangles());
+  bool from_a = false, from_b = false;
+  for (const FaceOrigin& o : r.provenance) {
+    (o.mesh == 0 ? from_a : from_b) = true;
+    EXPECT_LT(o.face, o.mesh == 0 ? a.num_triangles() : b.num_triangles());
+  }
+  EXPECT_TRUE(from_a && from_b);
+}
