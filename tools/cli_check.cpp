@@ -57,13 +57,13 @@ void print_text(const std::string& path, const MeshReport& r) {
 
 }  // namespace
 
-Runner add_check_command(CLI::App& app) {
+Command add_check_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("check", "Validity report of a mesh (exit 0 valid solid, 1 not)");
   auto path = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
   cmd->add_option("MESH", *path, "Mesh file (OFF, OBJ, STL, PLY)")->required();
   cmd->add_flag("--json", *json, "Print one JSON object instead of text");
-  return [=]() -> int {
+  return {cmd, [=]() -> int {
     Mesh mesh;
     try {
       mesh = read_mesh(*path);
@@ -84,7 +84,7 @@ Runner add_check_command(CLI::App& app) {
       return kFailed;
     }
     return kSuccess;
-  };
+  }};
 }
 
 }  // namespace morphex::cli

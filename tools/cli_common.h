@@ -18,8 +18,13 @@ void print_error(const std::string& message);
 // Writes `value` as one line to stdout when target is "-", else atomically to the file.
 void emit_json(const nlohmann::json& value, const std::string& target);
 
-// Each subcommand registers itself and returns the function that runs it.
+// Each subcommand registers itself on the app and returns the function that runs it.
 using Runner = std::function<int()>;
-Runner add_check_command(CLI::App& app);
+struct Command {
+  CLI::App* app;
+  Runner run;
+};
+Command add_check_command(CLI::App& app);
+Command add_bool_command(CLI::App& app);
 
 }  // namespace morphex::cli

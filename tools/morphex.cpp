@@ -18,13 +18,7 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads, "Worker threads (default: all cores)")
       ->check(CLI::PositiveNumber);
 
-  std::vector<std::pair<CLI::App*, Runner>> commands;
-  auto add = [&](Runner (*adder)(CLI::App&)) {
-    const std::size_t before = app.get_subcommands({}).size();
-    Runner runner = adder(app);
-    commands.emplace_back(app.get_subcommands({})[before], std::move(runner));
-  };
-  add(add_check_command);
+  const std::vector<Command> commands = {add_check_command(app), add_bool_command(app)};
 
   try {
     app.parse(argc, argv);
@@ -35,10 +29,10 @@ int main(int argc, char** argv) {
   }
 
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-  for (auto& [sub, run] : commands) {
-    if (!sub->parsed()) continue;
+  for (const Command& command : commands) {
+    if (!command.app->parsed()) continue;
     try {
-      return run();
+      return command.run();
     } catch (const std::exception& e) {
       print_error(e.what());
       return kFailed;
