@@ -1,0 +1,193 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Validity checks: every generator gives a valid solid with its hand-computed exact volume, and
+// each kind of defect is detected and described; CGAL's self-intersection test is the oracle.
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Surface_mesh.h>
+#include <gtest/gtest.h>
+
+#include "morphex/check.h"
+#include "morphex/generators.h"
+#include "morphex/spatial.h"
+
+using namespace morphex;
+
+namespace {
+
+void expect_valid(const Mesh& m, const char* what) {
+  const MeshReport r = check_mesh(m);
+  EXPECT_TRUE(r.valid_solid()) << what << ": " << describe_problems(r);
+}
+
+bool cgal_self_intersects(const Mesh& m) {
+  CGAL::Surface_mesh<Point> sm;
+  std::vector<CGAL::Surface_mesh<Point>::Vertex_index> v;
+  for (const Point& p : m.points) v.push_back(sm.add_vertex(p));
+  for (const Triangle& t : m.triangles) sm.add_face(v[t[0]], v[t[1]], v[t[2]]);
+  return CGAL::Polygon_mesh_processing::does_self_intersect(sm);
+}
+
+}  // namespace
+
+TEST(Check, GeneratorsGiveValidSolidsWithExactVolumes) {
+  EXPECT_EQ(check_mesh(make_cube(FT(1) / 2)).volume, FT(1));
+  EXPECT_EQ(check_mesh(make_box(Point(0, 0, 0), Point(2, 3, FT(1) / 5))).volume, FT(6) / 5);
+  EXPECT_EQ(check_mesh(make_tetrahedron()).volume, FT(1) / 6);
+  EXPECT_EQ(check_mesh(make_octahedron(FT(3))).volume, FT(36));  // 4 r^3 / 3
+  // Icosahedron with vertices (0, +-1, +-g) and cyclic permutations, summed as 20 tetrahedra
+  // from the origin: 8 "corner" faces like (0,1,g), (g,0,1), (1,g,0) have det 1 + g^3, and 12
+  // "edge" faces like (0,1,g), (0,-1,g), (g,0,1) have det 2 g^2, so
+  // V = (8 (1 + g^3) + 24 g^2) / 6 = (4 + 4 g^3 + 12 g^2) / 3  (17.45... for g = 1.618).
+  const FT g = FT(1618) / 1000;
+  EXPECT_EQ(check_mesh(make_icosahedron()).volume, (4 + 4 * g * g * g + 12 * g * g) / 3);
+  expect_valid(make_icosahedron(), "icosahedron");
+  expect_valid(make_icosphere(2, FT(1)), "icosphere");
+  expect_valid(make_torus(24, 12, 1.0, 0.25), "torus");
+  expect_valid(make_cylinder(16, 1.0, 0.5), "cylinder");
+  expect_valid(make_octahedron(FT(1)), "octahedron");
+}
+
+TEST(Check, CountsAndGenus) {
+  const MeshReport cube = check_mesh(make_cube(FT(1)));
+  EXPECT_EQ(cube.triangles, 12u);
+  EXPECT_EQ(cube.vertices, 8u);
+  EXPECT_EQ(cube.components, 1u);
+  EXPECT_EQ(cube.genus, 0);
+  EXPECT_EQ(check_mesh(make_torus(24, 12, 1.0, 0.25)).genus, 1);
+  const MeshReport two = check_mesh(concatenate(make_cube(FT(1)), make_torus(12, 6, 5.0, 0.5)));
+  EXPECT_EQ(two.components, 2u);
+  EXPECT_EQ(two.genus, 1);
+  EXPECT_DOUBLE_EQ(cube.bbox.xmin(), -1.0);
+  EXPECT_DOUBLE_EQ(cube.bbox.zmax(), 1.0);
+}
+
+TEST(Check, OpenMeshIsNotClosed) {
+  Mesh m = make_cube(FT(1));
+  m.triangles.pop_back();
+  const MeshReport r = check_mesh(m);
+  EXPECT_EQ(r.border_edges, 3u);
+  EXPECT_FALSE(r.closed());
+  EXPECT_FALSE(r.valid_solid());
+  const std::string message = describe_problems(r);
+  EXPECT_NE(message.find("not closed: 3 border edges, first at vertex"), std::string::npos) << message;
+}
+
+TEST(Check, InvertedMeshIsNotOutward) {
+  const MeshReport r = check_mesh(reversed(make_cube(FT(1))));
+  EXPECT_TRUE(r.consistently_oriented);
+  EXPECT_FALSE(r.outward);
+  EXPECT_LT(r.volume, 0);
+  EXPECT_NE(describe_problems(r).find("inward"), std::string::npos);
+}
+
+TEST(Check, InconsistentOrientation) {
+  Mesh m = make_cube(FT(1));
+  std::swap(m.triangles[0][1], m.triangles[0][2]);
+  const MeshReport r = check_mesh(m);
+  EXPECT_FALSE(r.consistently_oriented);
+  EXPECT_FALSE(r.valid_solid());
+}
+
+TEST(Check, HollowSolidIsOutward) {
+  // a cavity: the inner shell is oriented inward, and that is what a valid hollow solid needs
+  const Mesh hollow = concatenate(make_cube(FT(2)), reversed(make_cube(FT(1))));
+  const MeshReport r = check_mesh(hollow);
+  EXPECT_TRUE(r.valid_solid()) << describe_problems(r);
+  EXPECT_EQ(r.volume, FT(64 - 8));
+  // the same cavity oriented outward is wrong
+  EXPECT_FALSE(check_mesh(concatenate(make_cube(FT(2)), make_cube(FT(1)))).outward);
+}
+
+TEST(Check, SelfIntersectionsAgreeWithCgal) {
+  const Mesh crossing = concatenate(make_cube(FT(1)), make_cube(FT(1), Point(1, 1, 1)));
+  const MeshReport r = check_mesh(crossing);
+  EXPECT_GT(r.self_intersections, 0u);
+  ASSERT_TRUE(r.first_self_intersection.has_value());
+  EXPECT_TRUE(triangles_intersect_improperly(crossing, r.first_self_intersection->first,
+                                             r.first_self_intersection->second));
+  EXPECT_TRUE(cgal_self_intersects(crossing));
+  for (const Mesh& m : {make_icosphere(2, FT(1)), make_torus(24, 12, 1.0, 0.25)}) {
+    EXPECT_EQ(check_mesh(m).self_intersections > 0, cgal_self_intersects(m));
+  }
+  // a vertex of one cube touching the middle of another's face (a T contact) intersects
+  const Mesh touching = concatenate(make_cube(FT(1)), make_octahedron(FT(1)) /* inside */);
+  EXPECT_EQ(check_mesh(touching).self_intersections > 0, cgal_self_intersects(touching));
+}
+
+TEST(Check, SeparatedNonManifoldContactsAreValid) {
+  // Coincident but distinct vertices: the way a Boolean result represents touching solids.
+  for (auto [a, b] : {make_cubes_sharing_edge(), make_cubes_sharing_vertex()}) {
+    const MeshReport r = check_mesh(concatenate(a, b));
+    EXPECT_TRUE(r.valid_solid()) << describe_problems(r);
+    EXPECT_EQ(r.components, 2u);
+  }
+  // sharing a whole face is not a valid solid boundary: the two faces overlap
+  auto [a, b] = make_cubes_sharing_face();
+  EXPECT_GT(check_mesh(concatenate(a, b)).self_intersections, 0u);
+}
+
+TEST(Check, NonManifoldFeaturesByIndex) {
+  // the same two cubes with the shared edge's vertices merged: a non-manifold edge
+  auto [a, b] = make_cubes_sharing_edge();
+  Mesh m = concatenate(a, b);
+  for (Triangle& t : m.triangles)
+    for (VertexIndex& v : t)
+      for (VertexIndex u = 0; u < 8; ++u)
+        if (v >= 8 && m.points[v] == m.points[u]) v = u;
+  const MeshReport r = check_mesh(m);
+  EXPECT_GT(r.non_manifold_edges, 0u);
+  EXPECT_FALSE(r.valid_solid());
+}
+
+TEST(Check, DegenerateFace) {
+  Mesh m = make_cube(FT(1));
+  m.points.push_back(Point(0, 0, 5));
+  m.points.push_back(Point(0, 0, 6));
+  m.points.push_back(Point(0, 0, 7));
+  m.triangles.push_back({8, 9, 10});
+  const MeshReport r = check_mesh(m);
+  EXPECT_EQ(r.degenerate_faces, 1u);
+  EXPECT_EQ(r.first_degenerate_face, 12u);
+  // a closed mesh whose first problem is a face with collinear corners
+  Mesh flat = make_tetrahedron();
+  flat.points[2] = Point(2, 0, 0);  // (0,0,0), (1,0,0), (2,0,0) collinear
+  const MeshReport f = check_mesh(flat);
+  EXPECT_GT(f.degenerate_faces, 0u);
+  EXPECT_NE(describe_problems(f).find("degenerate faces, first is face"), std::string::npos)
+      << describe_problems(f);
+}
+
+TEST(Check, EmptyMeshIsAValidEmptySolid) {
+  const MeshReport r = check_mesh(Mesh{});
+  EXPECT_TRUE(r.valid_solid());
+  EXPECT_EQ(r.volume, FT(0));
+}
+
+TEST(Spatial, WindingNumberIncludingGrazingRays) {
+  const Mesh cube = make_cube(FT(1));
+  const TriangleTree tree(cube);
+  EXPECT_EQ(winding_number(cube, tree, Point(0, 0, 0)), 1);
+  EXPECT_EQ(winding_number(cube, tree, Point(FT(1) / 2, FT(1) / 2, FT(1) / 2)), 1);
+  EXPECT_EQ(winding_number(cube, tree, Point(3, 0, 0)), 0);
+  EXPECT_EQ(winding_number(cube, tree, Point(-3, -1, -1)), 0);  // aligned with an edge's line
+  EXPECT_EQ(winding_number(cube, tree, Point(2, 1, 0)), 0);     // in a face plane
+  EXPECT_THROW(winding_number(cube, tree, Point(1, 0, 0)), std::domain_error);
+  const Mesh torus = make_torus(24, 12, 1.0, 0.25);
+  const TriangleTree torus_tree(torus);
+  EXPECT_EQ(winding_number(torus, torus_tree, Point(0, 0, 0)), 0);  // the hole
+  EXPECT_EQ(winding_number(torus, torus_tree, Point(1, 0, 0)), 1);  // inside the tube
+  const Mesh reversed_cube = reversed(cube);
+  EXPECT_EQ(winding_number(reversed_cube, TriangleTree(reversed_cube), Point(0, 0, 0)), -1);
+}
+
+TEST(Spatial, TreeFindsExactlyTheOverlappingBoxes) {
+  const Mesh m = make_icosphere(3, FT(1));
+  const TriangleTree tree(m);
+  const CGAL::Bbox_3 query(0.1, 0.1, 0.1, 0.9, 0.9, 0.9);
+  std::vector<std::uint32_t> found, expected;
+  tree.for_each_overlap(query, [&](std::uint32_t t) { found.push_back(t); });
+  for (std::uint32_t t = 0; t < m.num_triangles(); ++t)
+    if (CGAL::do_overlap(tree.box(t), query)) expected.push_back(t);
+  std::sort(found.begin(), found.end());
+  EXPECT_EQ(found, expected);
+  EXPECT_FALSE(found.empty());
+}
