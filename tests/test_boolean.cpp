@@ -2,6 +2,7 @@
 // Exact Booleans: a generated degenerate suite with exact identities and independent closed forms.
 #include <gtest/gtest.h>
 
+#include <random>
 #include <sstream>
 
 #include "morphex/boolean.h"
@@ -224,4 +225,49 @@ TEST(Boolean, ProvenanceNamesTheInputFaces) {
     EXPECT_LT(o.face, o.mesh == 0 ? a.num_triangles() : b.num_triangles());
   }
   EXPECT_TRUE(from_a && from_b);
+}
+
+namespace {
+
+// An exact rotation: about z, then x, by angles whose half-tangents are the rationals tz and tx.
+CGAL::Aff_transformation_3<Kernel> rational_rotation(const FT& tz, const FT& tx) {
+  const FT cz = (1 - tz * tz) / (1 + tz * tz), sz = 2 * tz / (1 + tz * tz);
+  const FT cx = (1 - tx * tx) / (1 + tx * tx), sx = 2 * tx / (1 + tx * tx);
+  const CGAL::Aff_transformation_3<Kernel> rz(cz, -sz, 0, sz, cz, 0, 0, 0, 1);
+  const CGAL::Aff_transformation_3<Kernel> rx(1, 0, 0, 0, cx, -sx, 0, sx, cx);
+  return rx * rz;
+}
+
+}  // namespace
+
+// Random rational rigid motions with a fixed seed. Half of the cases only translate by quarters
+// (no rotation), which puts faces, edges and vertices of the two meshes on each other.
+TEST(Boolean, RandomRationalRigidMotions) {
+  std::mt19937 random(20261122);
+  std::uniform_int_distribution<int> small(-4, 4), numerator(-9, 9);
+  const std::vector<Mesh> shapes = {make_cube(FT(1)), make_icosphere(1, FT(1)),
+                                    make_octahedron(FT(1)), make_box(Point(-1, 0, 0), Point(1, FT(1) / 2, 2))};
+  for (int i = 0; i < 40; ++i) {
+    const Mesh& a = shapes[i % shapes.size()];
+    Mesh b = shapes[(i / shapes.size() + i) % shapes.size()];
+    if (i % 2 == 1) b = transformed(b, rational_rotation(FT(numerator(random)) / 10, FT(numerator(random)) / 10));
+    b = translated(b, Kernel::Vector_3(FT(small(random)) / 4, FT(small(random)) / 4, FT(small(random)) / 4));
+    SCOPED_TRACE("case " + std::to_string(i));
+    check_identities(a, b);
+  }
+}
+
+TEST(Boolean, VertexOnAFacetAndEdgeInAFacet) {
+  // the octahedron's lowest vertex touches the middle of the cube's top face
+  const Mesh cube = make_cube(FT(1));
+  const Mesh octahedron = make_octahedron(FT(1));
+  Mesh unite;
+  EXPECT_EQ(checked_volume(cube, translated(octahedron, Kernel::Vector_3(0, 0, 2)), BooleanOp::Union, &unite),
+            FT(8) + FT(4) / 3);
+  EXPECT_EQ(check_mesh(unite).components, 2u);
+  // the octahedron sunk by a half: its equator is above the face, a small pyramid is inside
+  const Identities v = check_identities(cube, translated(octahedron, Kernel::Vector_3(0, 0, FT(3) / 2)));
+  EXPECT_EQ(v.intersect, FT(1) / 3 * FT(1) / 2 * FT(1) / 2 * 2 / 2);  // square pyramid: (2 h^2) h / 3, h = 1/2
+  // a tetrahedron lying on the top face with one edge along the face's diagonal
+  check_identities(cube, translated(make_tetrahedron(), Kernel::Vector_3(-1, -1, 1)));
 }

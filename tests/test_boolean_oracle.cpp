@@ -111,3 +111,22 @@ TEST(Oracle, StarAndCross) {
   const Mesh star = read_mesh(dir + "/star.off"), cross = read_mesh(dir + "/cross.off");
   expect_agreement(star, cross, "star/cross");
 }
+
+TEST(Oracle, ElephantAgainstARotatedElephant) {
+  const std::string dir = demo_dir();
+  if (!std::filesystem::exists(dir + "/elephant.off")) GTEST_SKIP() << "run scripts/fetch-cgal-demo-meshes";
+  const Mesh elephant = read_mesh(dir + "/elephant.off");
+  // rotation about z by the half-tangent 1/12 (about 9.5 degrees), then a small shift
+  const FT t = FT(1) / 12, c = (1 - t * t) / (1 + t * t), s = 2 * t / (1 + t * t);
+  Mesh other = transformed(elephant, Transformation(c, -s, 0, s, c, 0, 0, 0, 1));
+  other = translated(other, Vector(FT(1) / 100, FT(1) / 50, 0));
+  for (BooleanOp op : {BooleanOp::Union, BooleanOp::Intersection, BooleanOp::Difference}) {
+    const BooleanResult r = compute_boolean(elephant, other, op);
+    ASSERT_TRUE(r.ok()) << r.message;
+    const MeshReport report = check_mesh(r.mesh);
+    EXPECT_TRUE(report.valid_solid()) << describe_problems(report);
+    const auto expected = corefinement_volume(elephant, other, op);
+    ASSERT_TRUE(expected.has_value());
+    EXPECT_EQ(report.volume, *expected) << to_string(op);
+  }
+}

@@ -44,8 +44,8 @@ add_test(NAME package.consumer_configure COMMAND ${CMAKE_COMMAND}
 add_test(NAME package.consumer_build COMMAND ${CMAKE_COMMAND}
   --build ${PROJECT_BINARY_DIR}/consumer-build)
 add_test(NAME package.consumer_run COMMAND ${PROJECT_BINARY_DIR}/consumer-build/consumer
-  ${data}/unit_cube.off)
-set_tests_properties(package.consumer_run PROPERTIES PASS_REGULAR_EXPRESSION "volume 1")
+  ${data}/unit_cube.off ${data}/third_cube_exact.off)
+set_tests_properties(package.consumer_run PROPERTIES PASS_REGULAR_EXPRESSION "valid 1 volume 26/27")
 set_tests_properties(package.install PROPERTIES FIXTURES_SETUP morphex_installed)
 set_tests_properties(package.consumer_configure PROPERTIES
   FIXTURES_REQUIRED morphex_installed FIXTURES_SETUP consumer_configured)
