@@ -12,6 +12,7 @@
 #include <unordered_map>
 
 #include "boolean_internal.h"
+#include "union_find.h"
 
 namespace morphex::detail {
 
@@ -29,16 +30,6 @@ bool keep(BooleanOp op, int side, Label label) {
   }
   return false;
 }
-
-struct UnionFind {
-  std::vector<std::uint32_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  std::uint32_t find(std::uint32_t i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  }
-  void join(std::uint32_t a, std::uint32_t b) { parent[find(a)] = find(b); }
-};
 
 // Angle order of the faces around the directed axis u->v: true when face third vertex `p` comes
 // before `q` counter-clockwise, starting from `ref`. Exact orientation predicates only.

@@ -10,25 +10,17 @@
 #include <unordered_map>
 
 #include "morphex/spatial.h"
+#include "union_find.h"
 
 namespace morphex {
 
 namespace {
+using detail::UnionFind;
 
 using EdgeKey = std::uint64_t;
 EdgeKey key(VertexIndex a, VertexIndex b) {
   return (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
 }
-
-struct UnionFind {
-  std::vector<std::uint32_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  std::uint32_t find(std::uint32_t i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  }
-  void join(std::uint32_t a, std::uint32_t b) { parent[find(a)] = find(b); }
-};
 
 }  // namespace
 

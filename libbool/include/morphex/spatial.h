@@ -20,21 +20,7 @@ class TriangleTree {
   // Calls f(triangle index) for every triangle whose box overlaps `box`.
   template <class F>
   void for_each_overlap(const CGAL::Bbox_3& box, F&& f) const {
-    if (nodes_.empty()) return;
-    std::uint32_t stack[64];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-      const Node& node = nodes_[stack[--top]];
-      if (!CGAL::do_overlap(node.box, box)) continue;
-      if (node.count > 0) {
-        for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
-          if (CGAL::do_overlap(boxes_[order_[i]], box)) f(order_[i]);
-      } else {
-        stack[top++] = node.first;
-        stack[top++] = node.first + 1;
-      }
-    }
+    traverse([&](const CGAL::Bbox_3& b) { return CGAL::do_overlap(b, box); }, f);
   }
 
   // Calls f(triangle index) for every triangle whose box the ray origin + t * direction (t >= 0)
@@ -53,6 +39,25 @@ class TriangleTree {
     std::uint32_t count = 0;  // number of triangles in a leaf, 0 for inner nodes
   };
   void build(std::uint32_t node, std::uint32_t begin, std::uint32_t end, int depth);
+  // Visits the leaves' triangles whose boxes pass `keep`, pruning subtrees whose box fails it.
+  template <class Keep, class F>
+  void traverse(Keep&& keep, F&& f) const {
+    if (nodes_.empty()) return;
+    std::uint32_t stack[64];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& node = nodes_[stack[--top]];
+      if (!keep(node.box)) continue;
+      if (node.count > 0) {
+        for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
+          if (keep(boxes_[order_[i]])) f(order_[i]);
+      } else {
+        stack[top++] = node.first;
+        stack[top++] = node.first + 1;
+      }
+    }
+  }
   bool ray_may_hit(const CGAL::Bbox_3& box, const CGAL::Bbox_3& origin,
                    const std::array<double, 3>& direction) const;
 
@@ -64,21 +69,7 @@ class TriangleTree {
 template <class F>
 void TriangleTree::for_each_on_ray(const CGAL::Bbox_3& origin,
                                    const std::array<double, 3>& direction, F&& f) const {
-  if (nodes_.empty()) return;
-  std::uint32_t stack[64];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const Node& node = nodes_[stack[--top]];
-    if (!ray_may_hit(node.box, origin, direction)) continue;
-    if (node.count > 0) {
-      for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
-        if (ray_may_hit(boxes_[order_[i]], origin, direction)) f(order_[i]);
-    } else {
-      stack[top++] = node.first;
-      stack[top++] = node.first + 1;
-    }
-  }
+  traverse([&](const CGAL::Bbox_3& b) { return ray_may_hit(b, origin, direction); }, f);
 }
 
 // Kernel triangle of a mesh face.
