@@ -15,21 +15,13 @@
 #include "morphex/check.h"
 #include "morphex/generators.h"
 #include "morphex/io.h"
+#include "morphex/surface_mesh.h"
 
 using namespace morphex;
 namespace PMP = CGAL::Polygon_mesh_processing;
-using SurfaceMesh = CGAL::Surface_mesh<Point>;
 using Nef = CGAL::Nef_polyhedron_3<Kernel>;
 
 namespace {
-
-SurfaceMesh to_surface_mesh(const Mesh& m) {
-  SurfaceMesh sm;
-  std::vector<SurfaceMesh::Vertex_index> v;
-  for (const Point& p : m.points) v.push_back(sm.add_vertex(p));
-  for (const Triangle& t : m.triangles) sm.add_face(v[t[0]], v[t[1]], v[t[2]]);
-  return sm;
-}
 
 FT nef_volume(const Mesh& a, const Mesh& b, BooleanOp op) {
   SurfaceMesh sa = to_surface_mesh(a), sb = to_surface_mesh(b);

@@ -8,6 +8,7 @@
 #include "morphex/check.h"
 #include "morphex/generators.h"
 #include "morphex/spatial.h"
+#include "morphex/surface_mesh.h"
 
 using namespace morphex;
 
@@ -19,11 +20,7 @@ void expect_valid(const Mesh& m, const char* what) {
 }
 
 bool cgal_self_intersects(const Mesh& m) {
-  CGAL::Surface_mesh<Point> sm;
-  std::vector<CGAL::Surface_mesh<Point>::Vertex_index> v;
-  for (const Point& p : m.points) v.push_back(sm.add_vertex(p));
-  for (const Triangle& t : m.triangles) sm.add_face(v[t[0]], v[t[1]], v[t[2]]);
-  return CGAL::Polygon_mesh_processing::does_self_intersect(sm);
+  return CGAL::Polygon_mesh_processing::does_self_intersect(to_surface_mesh(m));
 }
 
 }  // namespace

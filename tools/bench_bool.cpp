@@ -16,22 +16,14 @@
 #include "morphex/check.h"
 #include "morphex/generators.h"
 #include "morphex/io.h"
+#include "morphex/surface_mesh.h"
 
 using namespace morphex;
 namespace PMP = CGAL::Polygon_mesh_processing;
-using SurfaceMesh = CGAL::Surface_mesh<Point>;
 
 namespace {
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-SurfaceMesh to_surface_mesh(const Mesh& m) {
-  SurfaceMesh sm;
-  std::vector<SurfaceMesh::Vertex_index> v;
-  for (const Point& p : m.points) v.push_back(sm.add_vertex(p));
-  for (const Triangle& t : m.triangles) sm.add_face(v[t[0]], v[t[1]], v[t[2]]);
-  return sm;
 }
 
 // Exact rotation about z then x by the rational angle whose half-tangent is t: cos = (1-t^2)/(1+t^2).
