@@ -44,6 +44,7 @@ Box shifted(const Box& b, FT dx, FT dy, FT dz) {
 FT checked_volume(const Mesh& a, const Mesh& b, BooleanOp op, Mesh* out = nullptr) {
   const BooleanResult r = compute_boolean(a, b, op);
   EXPECT_TRUE(r.ok()) << r.message;
+  EXPECT_EQ(r.stats.orientation_conflicts, 0u);
   const MeshReport report = check_mesh(r.mesh);
   EXPECT_TRUE(report.valid_solid()) << to_string(op) << ": " << describe_problems(report);
   if (out) *out = r.mesh;
@@ -166,6 +167,16 @@ TEST(Boolean, RotatedCubesWithRationalRotation) {
   const Mesh b = transformed(make_cube(FT(1)), rotation);  // shares the top and bottom planes
   check_identities(a, b);
   check_identities(a, translated(b, Kernel::Vector_3(FT(1) / 3, FT(1) / 7, FT(1) / 2)));
+}
+
+TEST(Boolean, TransversalCrossingsAreLabelledByTheSeedsOrientationRule) {
+  const Mesh a = make_icosphere(2, FT(1));
+  const Mesh b = translated(a, Kernel::Vector_3(FT(1) / 2, FT(1) / 3, FT(1) / 5));
+  const BooleanResult r = compute_boolean(a, b, BooleanOp::Union);
+  ASSERT_TRUE(r.ok());
+  EXPECT_GT(r.stats.patches_by_orientation_rule, 0u);
+  EXPECT_EQ(r.stats.orientation_conflicts, 0u);
+  EXPECT_EQ(r.stats.patches, r.stats.patches_by_orientation_rule + r.stats.patches_by_ray_cast);
 }
 
 TEST(Boolean, CrossingSpheresAndTorus) {

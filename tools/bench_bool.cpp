@@ -76,6 +76,8 @@ int main(int argc, char** argv) {
   const auto& s = r.stats.seconds;
   std::cout << "input triangles " << a.num_triangles() << " + " << b.num_triangles() << ", "
             << to_string(op) << ", cut facets " << r.stats.cut_facets_a + r.stats.cut_facets_b
+            << ", patches " << r.stats.patches << " (" << r.stats.patches_by_orientation_rule
+            << " by the orientation rule, " << r.stats.patches_by_ray_cast << " by ray cast)"
             << "\nmorphex      " << ours << " s (validate " << s.validate << ", pairs " << s.pairs
             << ", segments " << s.segments << ", retriangulate " << s.retriangulate
             << ", classify " << s.classify << ", assemble " << s.assemble << ")"

@@ -78,11 +78,14 @@ BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
                                       detail::retriangulate(b, 1, x)};
   stats.seconds.retriangulate = clock.lap();
 
-  std::size_t patches[2] = {0, 0};
+  detail::ClassifyCounts counts[2];
   const std::vector<detail::Label> labels[2] = {
-      detail::classify(a, b, 0, refined[0], x, patches[0]),
-      detail::classify(b, a, 1, refined[1], x, patches[1])};
-  stats.patches = patches[0] + patches[1];
+      detail::classify(a, b, 0, refined[0], x, counts[0]),
+      detail::classify(b, a, 1, refined[1], x, counts[1])};
+  stats.patches = counts[0].patches + counts[1].patches;
+  stats.patches_by_orientation_rule = counts[0].by_orientation_rule + counts[1].by_orientation_rule;
+  stats.patches_by_ray_cast = counts[0].by_ray_cast + counts[1].by_ray_cast;
+  stats.orientation_conflicts = counts[0].rule_conflicts + counts[1].rule_conflicts;
   stats.seconds.classify = clock.lap();
 
   result.mesh = detail::assemble(x, refined, labels, op,

@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Step 6: labels. Sub-triangles are grouped into patches: connected without crossing an edge that
 // lies on the other surface. The open interior of a patch never meets the other surface except by
-// lying on it (coplanar overlaps are bounded by constraints), so one exact test per patch decides
-// all of it: coplanar patches compare normals with the facet they lie on, the others take the
-// exact ray-cast winding number of a point inside one of their sub-triangles. This also decides
-// every component the other mesh never touches (disjoint or nested solids), which the seed's
-// propagation from cut facets could not reach.
+// lying on it (coplanar overlaps are bounded by constraints), so one label decides all of it.
+// A patch bordered by a transversal segment takes the seed's label from the segment's
+// orientation (no construction, no search); every other patch (contacts along edges or at
+// vertices, coplanar overlaps, components the other mesh never touches: nested or disjoint
+// solids, which the seed's propagation could not reach) gets one exact test: coplanar patches
+// compare normals with the facet they lie on, the others take the exact ray-cast winding number
+// of a point inside one of their sub-triangles.
 #include <unordered_map>
 #include <unordered_set>
 
@@ -42,7 +44,7 @@ Label label_of(const SubTriangle& s, const Mesh& mesh, const Mesh& other, int si
 }  // namespace
 
 std::vector<Label> classify(const Mesh& mesh, const Mesh& other, int side, const Refined& refined,
-                            const Intersection& x, std::size_t& patches) {
+                            const Intersection& x, ClassifyCounts& counts) {
   const std::size_t n = refined.triangles.size();
   std::unordered_set<Edge, EdgeHash> barrier(refined.on_other_surface.begin(),
                                              refined.on_other_surface.end());
@@ -54,24 +56,50 @@ std::vector<Label> classify(const Mesh& mesh, const Mesh& other, int side, const
       if (!barrier.count(e)) faces_of_edge[e].push_back(i);
     }
 
+  // The seed's labels: the sub-triangle on the left of an oriented transversal segment is inside
+  // the other solid, the one on its right outside. A segment split by further points in the CDT
+  // is simply not used; its patches fall back to the ray cast.
+  std::vector<std::int8_t> ruled(n, -1);
+  {
+    std::unordered_map<Edge, std::vector<std::uint32_t>, EdgeHash> directed;  // (from, to) -> faces
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const SubTriangle& s = refined.triangles[i];
+      if (!x.cuts[side].count(s.facet)) continue;
+      for (int k = 0; k < 3; ++k) directed[{s.v[k], s.v[(k + 1) % 3]}].push_back(i);
+    }
+    auto mark = [&](PointId from, PointId to, std::uint32_t facet, Label label) {
+      const auto it = directed.find({from, to});
+      if (it == directed.end()) return;
+      for (std::uint32_t i : it->second)
+        if (refined.triangles[i].facet == facet) ruled[i] = std::int8_t(label);
+    };
+    for (const auto& [facet, cut] : x.cuts[side])
+      for (const OrientedSegment& s : cut.transversal) {
+        mark(s.from, s.to, facet, Label::Inside);
+        mark(s.to, s.from, facet, Label::Outside);
+      }
+  }
+
   std::vector<Label> labels(n);
   std::vector<bool> seen(n, false);
-  std::vector<std::uint32_t> stack;
+  std::vector<std::uint32_t> stack, members;
   std::unique_ptr<TriangleTree> other_tree;
-  patches = 0;
+  counts = {};
   for (std::uint32_t seed = 0; seed < n; ++seed) {
     if (seen[seed]) continue;
-    ++patches;
-    if (!other_tree) other_tree = std::make_unique<TriangleTree>(other);
-    const Label label = other.empty() ? Label::Outside
-                                      : label_of(refined.triangles[seed], mesh, other, side, x,
-                                                 *other_tree);
+    ++counts.patches;
+    members.clear();
     seen[seed] = true;
     stack.push_back(seed);
+    std::int8_t rule = -1;
     while (!stack.empty()) {
       const std::uint32_t i = stack.back();
       stack.pop_back();
-      labels[i] = label;
+      members.push_back(i);
+      if (ruled[i] >= 0) {
+        if (rule >= 0 && rule != ruled[i]) ++counts.rule_conflicts;
+        rule = ruled[i];
+      }
       for (int k = 0; k < 3; ++k) {
         const Edge e = undirected(refined.triangles[i].v[k], refined.triangles[i].v[(k + 1) % 3]);
         const auto it = faces_of_edge.find(e);
@@ -83,6 +111,17 @@ std::vector<Label> classify(const Mesh& mesh, const Mesh& other, int side, const
           }
       }
     }
+    Label label;
+    if (rule >= 0) {
+      label = Label(rule);
+      ++counts.by_orientation_rule;
+    } else {
+      if (!other_tree) other_tree = std::make_unique<TriangleTree>(other);
+      label = other.empty() ? Label::Outside
+                            : label_of(refined.triangles[seed], mesh, other, side, x, *other_tree);
+      ++counts.by_ray_cast;
+    }
+    for (std::uint32_t i : members) labels[i] = label;
   }
   return labels;
 }

@@ -27,9 +27,16 @@ struct EdgeHash {
 std::vector<std::pair<std::uint32_t, std::uint32_t>> candidate_pairs(const Mesh& a, const Mesh& b);
 
 // What the other mesh leaves on one input triangle.
+// A transversal segment (its interior lies inside both open triangles), oriented by the seed's
+// rule so that the other solid's interior is on its left, seen along the facet's normal.
+struct OrientedSegment {
+  PointId from, to;
+};
+
 struct FacetCut {
   std::vector<PointId> points;                 // intersection points lying on the facet
   std::vector<Edge> segments;                  // constraints
+  std::vector<OrientedSegment> transversal;    // the subset that decides labels locally
   std::vector<std::uint32_t> coplanar_facets;  // facets of the other mesh coplanar and touching
 };
 
@@ -42,6 +49,12 @@ struct Intersection {
   std::unordered_map<std::uint32_t, FacetCut> cuts[2];   // facet -> cut
   std::size_t intersecting_pairs = 0;
   std::size_t constructed_points = 0;
+};
+
+// How the patches were labelled: by the seed's orientation rule or by an exact ray cast.
+struct ClassifyCounts {
+  std::size_t patches = 0, by_orientation_rule = 0, by_ray_cast = 0;
+  std::size_t rule_conflicts = 0;  // segments of one patch that disagree: must stay 0
 };
 Intersection intersect(const Mesh& a, const Mesh& b,
                        const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs);
@@ -61,7 +74,7 @@ Refined retriangulate(const Mesh& mesh, int side, const Intersection& x);
 enum class Label : std::uint8_t { Outside, Inside, CoplanarSame, CoplanarOpposite };
 // One label per sub-triangle of `refined` (a refinement of `mesh`, side 0 = A, 1 = B).
 std::vector<Label> classify(const Mesh& mesh, const Mesh& other, int side, const Refined& refined,
-                            const Intersection& x, std::size_t& patches);
+                            const Intersection& x, ClassifyCounts& counts);
 
 // Step 7: selection, output, separation of non-manifold features.
 Mesh assemble(const Intersection& x, const Refined refined[2], const std::vector<Label> labels[2],

@@ -51,6 +51,30 @@ bool separated_by_plane(const Kernel::Triangle_3& t, const Kernel::Triangle_3& o
          CGAL::orientation(other[0], other[1], other[2], t[2]) == s0;
 }
 
+bool on_an_edge(const Kernel::Triangle_3& t, const Point& p, const Point& q) {
+  for (int i = 0; i < 3; ++i)
+    if (CGAL::collinear(t[i], t[(i + 1) % 3], p) && CGAL::collinear(t[i], t[(i + 1) % 3], q))
+      return true;
+  return false;
+}
+
+// Step 4, the seed's rule: with s = sign((Na x Nb) . (p2 - p1)), the interior of B lies on the
+// left of (p1, p2) in ta when s > 0, and the interior of A on the left of (p1, p2) in tb when
+// s < 0. Only for transversal segments: on an edge, the local picture involves more facets.
+void orient_transversal(const Kernel::Triangle_3& ta, const Kernel::Triangle_3& tb,
+                        const Kernel::Segment_3& s, PointId p1, PointId p2, FacetCut& ca,
+                        FacetCut& cb) {
+  if (p1 == p2 || on_an_edge(ta, s.source(), s.target()) || on_an_edge(tb, s.source(), s.target()))
+    return;
+  const Kernel::Vector_3 na = CGAL::normal(ta[0], ta[1], ta[2]);
+  const Kernel::Vector_3 nb = CGAL::normal(tb[0], tb[1], tb[2]);
+  const auto sign = CGAL::sign(CGAL::cross_product(na, nb) * (s.target() - s.source()));
+  if (sign == CGAL::ZERO) return;
+  const bool positive = sign == CGAL::POSITIVE;
+  ca.transversal.push_back(positive ? OrientedSegment{p1, p2} : OrientedSegment{p2, p1});
+  cb.transversal.push_back(positive ? OrientedSegment{p2, p1} : OrientedSegment{p1, p2});
+}
+
 void add_segment(FacetCut& cut, PointId p, PointId q) {
   cut.points.push_back(p);
   cut.points.push_back(q);
@@ -86,6 +110,7 @@ Intersection intersect(const Mesh& a, const Mesh& b,
       const PointId p = store.id(s->source()), q = store.id(s->target());
       add_segment(ca, p, q);
       add_segment(cb, p, q);
+      orient_transversal(ta, tb, *s, p, q, ca, cb);
     } else {
       // Coplanar overlap: a triangle or a polygon. Its boundary separates, in each facet, the
       // part that lies on the other surface from the rest.

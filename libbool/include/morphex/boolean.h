@@ -41,6 +41,9 @@ struct BooleanStats {
   std::size_t segments = 0;             // constraint segments inserted (both meshes)
   std::size_t intersection_points = 0;  // distinct new points constructed
   std::size_t patches = 0;
+  std::size_t patches_by_orientation_rule = 0;  // labelled by the seed's segment orientation
+  std::size_t patches_by_ray_cast = 0;          // labelled by an exact point-in-solid test
+  std::size_t orientation_conflicts = 0;        // transversal segments of one patch disagreeing (0)
   PhaseSeconds seconds;
 };
 
