@@ -1,15 +1,20 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Step 3: exact intersection of each candidate pair, each intersection point stored once.
 //
-// The pair is first decided with orientation predicates only (no construction): triangles with all
-// three vertices strictly on one side of the other's plane do not meet. Pairs that meet are
-// intersected exactly; every point is identified by its exact position, so a point on an edge
-// shared by two facets, or on an edge of the other mesh, is constructed once and shared.
+// The vertices of each triangle are classified against the other's plane with orientation
+// predicates (no construction): all on one side, none meet. Non-coplanar pairs: each triangle cuts
+// a chord on the other's plane whose ends are its vertices on that plane or its edges crossing
+// it; an edge/plane crossing is constructed once per (edge, facet) and shared by both facets of the
+// edge. The two chords lie on the planes' common line and their overlap, ordered by exact
+// predicates along that line, is the intersection: a segment, a point, or nothing. Coplanar pairs
+// take CGAL's exact triangle/triangle intersection (the overlap polygon). Points are stored once
+// by exact position.
 // Unlike the seed, point-only contacts are kept (as Steiner points) and coplanar overlaps insert
 // their boundary, so every sub-triangle ends up entirely inside, outside or on the other surface.
 #include <CGAL/intersections.h>
 
 #include <map>
+#include <tuple>
 
 #include "boolean_internal.h"
 
@@ -75,6 +80,50 @@ void orient_transversal(const Kernel::Triangle_3& ta, const Kernel::Triangle_3& 
   cb.transversal.push_back(positive ? OrientedSegment{p2, p1} : OrientedSegment{p1, p2});
 }
 
+// One end of the chord a triangle cuts on the other triangle's plane.
+struct ChordEnd {
+  PointId id;
+  Point point;
+};
+
+// Constructs each crossing of an input edge with a facet's plane once, whichever of the edge's
+// two facets asks first (the seed's "every intersection point once").
+class EdgePlaneCrossings {
+ public:
+  EdgePlaneCrossings(PointStore& store) : store_(store) {}
+  ChordEnd get(int side, VertexIndex u, VertexIndex v, std::uint32_t other_facet, const Point& pu,
+               const Point& pv, const Kernel::Triangle_3& other) {
+    const auto key = std::make_tuple(side, std::min(u, v), std::max(u, v), other_facet);
+    const auto it = memo_.find(key);
+    if (it != memo_.end()) return it->second;
+    const auto crossing = CGAL::intersection(other.supporting_plane(), Kernel::Segment_3(pu, pv));
+    const Point p = boost::get<Point>(*crossing);  // the signs guarantee a single point
+    const ChordEnd end{store_.id(p), p};
+    memo_.emplace(key, end);
+    return end;
+  }
+
+ private:
+  PointStore& store_;
+  std::map<std::tuple<int, VertexIndex, VertexIndex, std::uint32_t>, ChordEnd> memo_;
+};
+
+// The chord t cuts on the plane of `other` from the signs of t's vertices against that plane:
+// vertices on the plane are ends as they are; edges whose ends have opposite signs are crossed.
+std::vector<ChordEnd> chord(int side, const Triangle& f, const Kernel::Triangle_3& t,
+                            const CGAL::Orientation (&signs)[3], std::uint32_t other_facet,
+                            const Kernel::Triangle_3& other, const Intersection& x,
+                            EdgePlaneCrossings& crossings) {
+  std::vector<ChordEnd> ends;
+  for (int i = 0; i < 3; ++i) {
+    if (signs[i] == CGAL::COPLANAR) ends.push_back({x.vertex_id[side][f[i]], t[i]});
+    const int j = (i + 1) % 3;
+    if (signs[i] != CGAL::COPLANAR && signs[j] != CGAL::COPLANAR && signs[i] != signs[j])
+      ends.push_back(crossings.get(side, f[i], f[j], other_facet, t[i], t[j], other));
+  }
+  return ends;
+}
+
 void add_segment(FacetCut& cut, PointId p, PointId q) {
   cut.points.push_back(p);
   cut.points.push_back(q);
@@ -94,9 +143,49 @@ Intersection intersect(const Mesh& a, const Mesh& b,
   }
   const std::size_t input_points = store.size();
 
+  EdgePlaneCrossings crossings(store);
   for (const auto& [ia, ib] : pairs) {
     const Kernel::Triangle_3 ta = triangle(a, ia), tb = triangle(b, ib);
     if (separated_by_plane(ta, tb) || separated_by_plane(tb, ta)) continue;
+    CGAL::Orientation sa[3], sb[3];
+    for (int i = 0; i < 3; ++i) {
+      sa[i] = CGAL::orientation(tb[0], tb[1], tb[2], ta[i]);
+      sb[i] = CGAL::orientation(ta[0], ta[1], ta[2], tb[i]);
+    }
+    const bool coplanar = sa[0] == CGAL::COPLANAR && sa[1] == CGAL::COPLANAR && sa[2] == CGAL::COPLANAR;
+    if (!coplanar) {
+      // Both chords lie on the line of the two planes: their overlap along it is ta n tb.
+      const std::vector<ChordEnd> ca_ends = chord(0, a.triangles[ia], ta, sa, ib, tb, x, crossings);
+      const std::vector<ChordEnd> cb_ends = chord(1, b.triangles[ib], tb, sb, ia, ta, x, crossings);
+      const Kernel::Vector_3 direction = CGAL::cross_product(
+          CGAL::normal(ta[0], ta[1], ta[2]), CGAL::normal(tb[0], tb[1], tb[2]));
+      auto order = [&](const ChordEnd& p, const ChordEnd& q) {  // sign of q - p along the line
+        return p.id == q.id ? CGAL::ZERO : CGAL::sign(direction * (q.point - p.point));
+      };
+      auto sorted = [&](const std::vector<ChordEnd>& e) {
+        const ChordEnd& last = e.back();
+        return order(e.front(), last) == CGAL::NEGATIVE ? std::make_pair(last, e.front())
+                                                        : std::make_pair(e.front(), last);
+      };
+      const auto [a1, a2] = sorted(ca_ends);
+      const auto [b1, b2] = sorted(cb_ends);
+      const ChordEnd& lo = order(a1, b1) == CGAL::POSITIVE ? b1 : a1;  // the later start
+      const ChordEnd& hi = order(a2, b2) == CGAL::POSITIVE ? a2 : b2;  // the earlier end
+      const auto extent = order(lo, hi);
+      if (extent == CGAL::NEGATIVE) continue;
+      ++x.intersecting_pairs;
+      FacetCut& ca = x.cuts[0][ia];
+      FacetCut& cb = x.cuts[1][ib];
+      if (extent == CGAL::ZERO) {
+        ca.points.push_back(lo.id);
+        cb.points.push_back(lo.id);
+      } else {
+        add_segment(ca, lo.id, hi.id);
+        add_segment(cb, lo.id, hi.id);
+        orient_transversal(ta, tb, Kernel::Segment_3(lo.point, hi.point), lo.id, hi.id, ca, cb);
+      }
+      continue;
+    }
     const auto result = CGAL::intersection(ta, tb);
     if (!result) continue;
     ++x.intersecting_pairs;
