@@ -1,2 +1,4 @@
 // Anchors the precompiled header shared by the test binaries.
-int main() { return 0; }
+int main() {
+  return 0;
+}

@@ -37,7 +37,8 @@ FT box_volume(const Box& b) {
 }
 
 Box shifted(const Box& b, FT dx, FT dy, FT dz) {
-  return {{b.min[0] + dx, b.min[1] + dy, b.min[2] + dz}, {b.max[0] + dx, b.max[1] + dy, b.max[2] + dz}};
+  return {{b.min[0] + dx, b.min[1] + dy, b.min[2] + dz},
+          {b.max[0] + dx, b.max[1] + dy, b.max[2] + dz}};
 }
 
 // Runs op, requires a valid solid, returns its exact volume.
@@ -57,11 +58,11 @@ struct Identities {
 
 Identities check_identities(const Mesh& a, const Mesh& b) {
   const FT va = signed_volume(a), vb = signed_volume(b);
-  Identities v{checked_volume(a, b, BooleanOp::Union), checked_volume(a, b, BooleanOp::Intersection),
+  Identities v{checked_volume(a, b, BooleanOp::Union),
+               checked_volume(a, b, BooleanOp::Intersection),
                checked_volume(a, b, BooleanOp::Difference)};
-  EXPECT_EQ(v.unite + v.intersect, va + vb)
-      << "union " << to_rational_string(v.unite) << " intersection "
-      << to_rational_string(v.intersect);
+  EXPECT_EQ(v.unite + v.intersect, va + vb) << "union " << to_rational_string(v.unite)
+                                            << " intersection " << to_rational_string(v.intersect);
   EXPECT_EQ(v.difference, va - v.intersect) << "difference " << to_rational_string(v.difference);
   return v;
 }
@@ -129,7 +130,8 @@ TEST(Boolean, CubesSharingAVertexGiveASeparatedValidResult) {
   Mesh unite;
   EXPECT_EQ(checked_volume(box_mesh(kUnit), box_mesh(b), BooleanOp::Union, &unite), FT(2));
   EXPECT_EQ(check_mesh(unite).non_manifold_vertices, 0u);
-  const Identities v = check_identities(unite, box_mesh(shifted(kUnit, FT(1) / 2, FT(1) / 2, FT(1) / 2)));
+  const Identities v =
+      check_identities(unite, box_mesh(shifted(kUnit, FT(1) / 2, FT(1) / 2, FT(1) / 2)));
   EXPECT_EQ(v.intersect, FT(2) / 8);
 }
 
@@ -161,8 +163,8 @@ TEST(Boolean, NestedAndDisjointSolids) {
 
 TEST(Boolean, RotatedCubesWithRationalRotation) {
   // rotation about z by the Pythagorean angle (cos, sin) = (3/5, 4/5): exact
-  const CGAL::Aff_transformation_3<Kernel> rotation(FT(3) / 5, FT(-4) / 5, 0, FT(4) / 5,
-                                                    FT(3) / 5, 0, 0, 0, 1);
+  const CGAL::Aff_transformation_3<Kernel> rotation(FT(3) / 5, FT(-4) / 5, 0, FT(4) / 5, FT(3) / 5,
+                                                    0, 0, 0, 1);
   const Mesh a = make_cube(FT(1));
   const Mesh b = transformed(make_cube(FT(1)), rotation);  // shares the top and bottom planes
   check_identities(a, b);
@@ -181,8 +183,10 @@ TEST(Boolean, TransversalCrossingsAreLabelledByTheSeedsOrientationRule) {
 
 TEST(Boolean, CrossingSpheresAndTorus) {
   const Mesh a = make_icosphere(2, FT(1));
-  check_identities(a, translated(make_icosphere(2, FT(1)), Kernel::Vector_3(FT(1) / 2, FT(1) / 3, FT(1) / 5)));
-  check_identities(make_torus(16, 8, 1.0, 0.3), make_box(Point(-2, -2, -FT(1) / 10), Point(0, 2, 2)));
+  check_identities(
+      a, translated(make_icosphere(2, FT(1)), Kernel::Vector_3(FT(1) / 2, FT(1) / 3, FT(1) / 5)));
+  check_identities(make_torus(16, 8, 1.0, 0.3),
+                   make_box(Point(-2, -2, -FT(1) / 10), Point(0, 2, 2)));
 }
 
 TEST(Boolean, ChainOfTenOperationsStaysValidAndExact) {
@@ -257,12 +261,15 @@ TEST(Boolean, RandomRationalRigidMotions) {
   std::mt19937 random(20261122);
   std::uniform_int_distribution<int> small(-4, 4), numerator(-9, 9);
   const std::vector<Mesh> shapes = {make_cube(FT(1)), make_icosphere(1, FT(1)),
-                                    make_octahedron(FT(1)), make_box(Point(-1, 0, 0), Point(1, FT(1) / 2, 2))};
+                                    make_octahedron(FT(1)),
+                                    make_box(Point(-1, 0, 0), Point(1, FT(1) / 2, 2))};
   for (int i = 0; i < 40; ++i) {
     const Mesh& a = shapes[i % shapes.size()];
     Mesh b = shapes[(i / shapes.size() + i) % shapes.size()];
-    if (i % 2 == 1) b = transformed(b, rational_rotation(FT(numerator(random)) / 10, FT(numerator(random)) / 10));
-    b = translated(b, Kernel::Vector_3(FT(small(random)) / 4, FT(small(random)) / 4, FT(small(random)) / 4));
+    if (i % 2 == 1)
+      b = transformed(b, rational_rotation(FT(numerator(random)) / 10, FT(numerator(random)) / 10));
+    b = translated(
+        b, Kernel::Vector_3(FT(small(random)) / 4, FT(small(random)) / 4, FT(small(random)) / 4));
     SCOPED_TRACE("case " + std::to_string(i));
     check_identities(a, b);
   }
@@ -273,12 +280,15 @@ TEST(Boolean, VertexOnAFacetAndEdgeInAFacet) {
   const Mesh cube = make_cube(FT(1));
   const Mesh octahedron = make_octahedron(FT(1));
   Mesh unite;
-  EXPECT_EQ(checked_volume(cube, translated(octahedron, Kernel::Vector_3(0, 0, 2)), BooleanOp::Union, &unite),
+  EXPECT_EQ(checked_volume(cube, translated(octahedron, Kernel::Vector_3(0, 0, 2)),
+                           BooleanOp::Union, &unite),
             FT(8) + FT(4) / 3);
   EXPECT_EQ(check_mesh(unite).components, 2u);
   // the octahedron sunk by a half: its equator is above the face, a small pyramid is inside
-  const Identities v = check_identities(cube, translated(octahedron, Kernel::Vector_3(0, 0, FT(3) / 2)));
-  EXPECT_EQ(v.intersect, FT(1) / 3 * FT(1) / 2 * FT(1) / 2 * 2 / 2);  // square pyramid: (2 h^2) h / 3, h = 1/2
+  const Identities v =
+      check_identities(cube, translated(octahedron, Kernel::Vector_3(0, 0, FT(3) / 2)));
+  EXPECT_EQ(v.intersect,
+            FT(1) / 3 * FT(1) / 2 * FT(1) / 2 * 2 / 2);  // square pyramid: (2 h^2) h / 3, h = 1/2
   // a tetrahedron lying on the top face with one edge along the face's diagonal
   check_identities(cube, translated(make_tetrahedron(), Kernel::Vector_3(-1, -1, 1)));
 }

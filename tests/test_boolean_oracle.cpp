@@ -64,8 +64,8 @@ void expect_agreement(const Mesh& a, const Mesh& b, const std::string& name) {
     const BooleanResult r = compute_boolean(a, b, op);
     ASSERT_TRUE(r.ok()) << name << ": " << r.message;
     const MeshReport report = check_mesh(r.mesh);
-    EXPECT_TRUE(report.valid_solid()) << name << " " << to_string(op) << ": "
-                                      << describe_problems(report);
+    EXPECT_TRUE(report.valid_solid())
+        << name << " " << to_string(op) << ": " << describe_problems(report);
     EXPECT_EQ(report.volume, nef_volume(a, b, op)) << name << " " << to_string(op) << " vs Nef";
     if (const auto v = corefinement_volume(a, b, op))
       EXPECT_EQ(report.volume, *v) << name << " " << to_string(op) << " vs corefinement";
@@ -82,8 +82,8 @@ std::string demo_dir() {
 
 TEST(Oracle, OverlappingCubesWithCoplanarFaces) {
   // the seed's figure: cubes overlapping with coplanar top and bottom faces
-  expect_agreement(make_box(Point(0, 0, 0), Point(2, 2, 2)), make_box(Point(1, 1, 0), Point(3, 3, 2)),
-                   "coplanar cubes");
+  expect_agreement(make_box(Point(0, 0, 0), Point(2, 2, 2)),
+                   make_box(Point(1, 1, 0), Point(3, 3, 2)), "coplanar cubes");
 }
 
 TEST(Oracle, CubesTouchingOnAFace) {
@@ -99,14 +99,16 @@ TEST(Oracle, CrossingIcospheres) {
 
 TEST(Oracle, StarAndCross) {
   const std::string dir = demo_dir();
-  if (!std::filesystem::exists(dir + "/star.off")) GTEST_SKIP() << "run scripts/fetch-cgal-demo-meshes";
+  if (!std::filesystem::exists(dir + "/star.off"))
+    GTEST_SKIP() << "run scripts/fetch-cgal-demo-meshes";
   const Mesh star = read_mesh(dir + "/star.off"), cross = read_mesh(dir + "/cross.off");
   expect_agreement(star, cross, "star/cross");
 }
 
 TEST(Oracle, ElephantAgainstARotatedElephant) {
   const std::string dir = demo_dir();
-  if (!std::filesystem::exists(dir + "/elephant.off")) GTEST_SKIP() << "run scripts/fetch-cgal-demo-meshes";
+  if (!std::filesystem::exists(dir + "/elephant.off"))
+    GTEST_SKIP() << "run scripts/fetch-cgal-demo-meshes";
   const Mesh elephant = read_mesh(dir + "/elephant.off");
   // rotation about z by the half-tangent 1/12 (about 9.5 degrees), then a small shift
   const FT t = FT(1) / 12, c = (1 - t * t) / (1 + t * t), s = 2 * t / (1 + t * t);

@@ -65,7 +65,8 @@ TEST(Check, OpenMeshIsNotClosed) {
   EXPECT_FALSE(r.closed());
   EXPECT_FALSE(r.valid_solid());
   const std::string message = describe_problems(r);
-  EXPECT_NE(message.find("not closed: 3 border edges, first at vertex"), std::string::npos) << message;
+  EXPECT_NE(message.find("not closed: 3 border edges, first at vertex"), std::string::npos)
+      << message;
 }
 
 TEST(Check, InvertedMeshIsNotOutward) {

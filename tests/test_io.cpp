@@ -17,8 +17,9 @@ namespace {
 
 class TempDir {
  public:
-  TempDir() : path_(fs::temp_directory_path() / ("morphex-io-" + std::to_string(::getpid()) + "-" +
-                                                  std::to_string(counter_++))) {
+  TempDir()
+      : path_(fs::temp_directory_path() /
+              ("morphex-io-" + std::to_string(::getpid()) + "-" + std::to_string(counter_++))) {
     fs::create_directories(path_);
   }
   ~TempDir() { fs::remove_all(path_); }
@@ -52,7 +53,8 @@ std::string error_for(const std::string& file, const std::string& content) {
   return "";
 }
 
-#define EXPECT_CONTAINS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << text
+#define EXPECT_CONTAINS(text, part) \
+  EXPECT_NE(std::string(text).find(part), std::string::npos) << text
 
 Mesh third_cube() {
   return make_box(Point(0, 0, 0), Point(FT(1) / 3, FT(2) / 7, FT(5) / 11));
@@ -78,7 +80,8 @@ TEST(Io, PlainFormatsRoundTripDoublesExactly) {
     write_mesh(m, dir.file(name));
     const Mesh back = read_mesh(dir.file(name));
     ASSERT_EQ(back.points.size(), m.points.size()) << name;
-    for (std::size_t i = 0; i < m.points.size(); ++i) EXPECT_EQ(back.points[i], m.points[i]) << name;
+    for (std::size_t i = 0; i < m.points.size(); ++i)
+      EXPECT_EQ(back.points[i], m.points[i]) << name;
     EXPECT_EQ(back.triangles, m.triangles) << name;
   }
 }
@@ -95,10 +98,14 @@ TEST(Io, BinaryStlMergesVerticesAndKeepsFloats) {
 
 TEST(Io, AsciiStl) {
   const std::string stl =
-      "solid t\nfacet normal 0 0 -1\nouter loop\nvertex 0 0 0\nvertex 0 1 0\nvertex 1 0 0\nendloop\nendfacet\n"
-      "facet normal 0 -1 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 0 1\nendloop\nendfacet\n"
-      "facet normal -1 0 0\nouter loop\nvertex 0 0 0\nvertex 0 0 1\nvertex 0 1 0\nendloop\nendfacet\n"
-      "facet normal 1 1 1\nouter loop\nvertex 1 0 0\nvertex 0 1 0\nvertex 0 0 1\nendloop\nendfacet\nendsolid t\n";
+      "solid t\nfacet normal 0 0 -1\nouter loop\nvertex 0 0 0\nvertex 0 1 0\nvertex 1 0 "
+      "0\nendloop\nendfacet\n"
+      "facet normal 0 -1 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 0 "
+      "1\nendloop\nendfacet\n"
+      "facet normal -1 0 0\nouter loop\nvertex 0 0 0\nvertex 0 0 1\nvertex 0 1 "
+      "0\nendloop\nendfacet\n"
+      "facet normal 1 1 1\nouter loop\nvertex 1 0 0\nvertex 0 1 0\nvertex 0 0 "
+      "1\nendloop\nendfacet\nendsolid t\n";
   const Mesh m = read_mesh_from_string(stl, MeshFormat::Stl, "t.stl");
   EXPECT_EQ(m.points.size(), 4u);
   EXPECT_EQ(signed_volume(m), FT(1) / 6);
@@ -106,7 +113,8 @@ TEST(Io, AsciiStl) {
 
 TEST(Io, ObjNegativeIndicesSlashesAndQuads) {
   const std::string obj =
-      "# unit cube with quads\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n"
+      "# unit cube with quads\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 "
+      "1 1\n"
       "vn 0 0 1\nvt 0 0\ng cube\nf 1/1/1 3/1/1 4/1/1 2/1/1\nf 5//1 6//1 8//1 7//1\nf 1 2 6 5\n"
       "f -6 -2 -1 -5\nf 1 5 7 3\nf 2 4 8 6\n";
   const Mesh m = read_mesh_from_string(obj, MeshFormat::Obj, "cube.obj");
@@ -135,7 +143,8 @@ TEST(Io, NonConvexPolygonIsEarClipped) {
 
 TEST(Io, PlyAsciiAndBinary) {
   const std::string ascii =
-      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float "
+      "z\n"
       "property uchar red\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
       "0 0 0 1\n1 0 0 1\n0 1 0 1\n0 0 1 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
   EXPECT_EQ(signed_volume(read_mesh_from_string(ascii, MeshFormat::Ply, "t.ply")), FT(1) / 6);
@@ -173,7 +182,9 @@ TEST(Io, ExactIsRefusedForPlainFormats) {
 
 // ---- bad input ----
 
-TEST(BadInput, EmptyFile) { EXPECT_CONTAINS(error_for("empty.off", ""), "empty file"); }
+TEST(BadInput, EmptyFile) {
+  EXPECT_CONTAINS(error_for("empty.off", ""), "empty file");
+}
 
 TEST(BadInput, MissingFile) {
   try {
@@ -194,11 +205,15 @@ TEST(BadInput, WrongHeader) {
 }
 
 TEST(BadInput, TruncatedFile) {
-  const std::string msg = error_for("trunc.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n");
+  const std::string msg =
+      error_for("trunc.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n");
   EXPECT_CONTAINS(msg, "truncated");
-  EXPECT_CONTAINS(error_for("trunc.stl", std::string(84 + 30, '\0').replace(80, 4, "\x01\0\0\0", 4)),
-                  "size mismatch");
-  EXPECT_CONTAINS(error_for("trunc2.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"), "truncated");
+  EXPECT_CONTAINS(
+      error_for("trunc.stl", std::string(84 + 30, '\0').replace(80, 4, "\x01\0\0\0", 4)),
+      "size mismatch");
+  EXPECT_CONTAINS(
+      error_for("trunc2.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"),
+      "truncated");
 }
 
 TEST(BadInput, NanAndInfCoordinates) {
@@ -211,7 +226,8 @@ TEST(BadInput, OutOfRangeAndNegativeIndices) {
   EXPECT_CONTAINS(msg, "face 0");
   EXPECT_CONTAINS(msg, "'7' out of range");
   EXPECT_CONTAINS(msg, "line 6");
-  EXPECT_CONTAINS(error_for("neg.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n"), "out of range");
+  EXPECT_CONTAINS(error_for("neg.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n"),
+                  "out of range");
   EXPECT_CONTAINS(error_for("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"), "out of range");
   EXPECT_CONTAINS(error_for("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"), "out of range");
 }

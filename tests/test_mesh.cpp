@@ -36,7 +36,9 @@ Mesh unit_cube() {
 }
 }  // namespace
 
-TEST(Volume, UnitCubeIsExactlyOne) { EXPECT_EQ(signed_volume(unit_cube()), FT(1)); }
+TEST(Volume, UnitCubeIsExactlyOne) {
+  EXPECT_EQ(signed_volume(unit_cube()), FT(1));
+}
 
 TEST(Volume, ScaledByAThirdIsExact) {
   Mesh m = unit_cube();

@@ -26,7 +26,8 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Exact rotation about z then x by the rational angle whose half-tangent is t: cos = (1-t^2)/(1+t^2).
+// Exact rotation about z then x by the rational angle whose half-tangent is t: cos =
+// (1-t^2)/(1+t^2).
 Transformation rational_rotation(double degrees) {
   const FT t = FT(std::round(std::tan(degrees * 3.14159265358979 / 360) * 1000)) / 1000;
   const FT c = (1 - t * t) / (1 + t * t), s = 2 * t / (1 + t * t);
@@ -47,11 +48,13 @@ int main(int argc, char** argv) {
   BooleanOp op = BooleanOp::Union;
   for (int i = 3; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--rotate" && i + 1 < argc) degrees = std::stod(argv[++i]);
+    if (arg == "--rotate" && i + 1 < argc)
+      degrees = std::stod(argv[++i]);
     else if (arg == "--translate" && i + 3 < argc) {
       offset = Vector(std::stod(argv[i + 1]), std::stod(argv[i + 2]), std::stod(argv[i + 3]));
       i += 3;
-    } else if (arg == "--op" && i + 1 < argc) op = parse_boolean_op(argv[++i]);
+    } else if (arg == "--op" && i + 1 < argc)
+      op = parse_boolean_op(argv[++i]);
   }
   if (degrees != 0) b = transformed(b, rational_rotation(degrees));
   b = translated(b, offset);
@@ -68,9 +71,10 @@ int main(int argc, char** argv) {
 
   SurfaceMesh sa = to_surface_mesh(a), sb = to_surface_mesh(b), out;
   start = std::chrono::steady_clock::now();
-  const bool ok = op == BooleanOp::Union          ? PMP::corefine_and_compute_union(sa, sb, out)
-                  : op == BooleanOp::Intersection ? PMP::corefine_and_compute_intersection(sa, sb, out)
-                                                  : PMP::corefine_and_compute_difference(sa, sb, out);
+  const bool ok = op == BooleanOp::Union ? PMP::corefine_and_compute_union(sa, sb, out)
+                  : op == BooleanOp::Intersection
+                      ? PMP::corefine_and_compute_intersection(sa, sb, out)
+                      : PMP::corefine_and_compute_difference(sa, sb, out);
   const double theirs = seconds_since(start);
   const bool agree = ok && PMP::volume(out) == our_volume;
   const auto& s = r.stats.seconds;
@@ -79,11 +83,11 @@ int main(int argc, char** argv) {
             << ", patches " << r.stats.patches << " (" << r.stats.patches_by_orientation_rule
             << " by the orientation rule, " << r.stats.patches_by_ray_cast << " by ray cast)"
             << "\nmorphex      " << ours << " s (validate " << s.validate << ", pairs " << s.pairs
-            << ", segments " << s.segments << ", retriangulate " << s.retriangulate
-            << ", classify " << s.classify << ", assemble " << s.assemble << ")"
+            << ", segments " << s.segments << ", retriangulate " << s.retriangulate << ", classify "
+            << s.classify << ", assemble " << s.assemble << ")"
             << "\ncorefinement " << theirs << " s" << (ok ? "" : " (failed)")
             << "\nratio (corefinement / morphex) " << theirs / ours
-            << "\nexact volumes agree: " << (agree ? "yes" : "NO") << " (" << CGAL::to_double(our_volume)
-            << ")\n";
+            << "\nexact volumes agree: " << (agree ? "yes" : "NO") << " ("
+            << CGAL::to_double(our_volume) << ")\n";
   return agree ? 0 : 1;
 }

@@ -40,44 +40,46 @@ Command add_bool_command(CLI::App& app) {
   cmd->add_flag("--exact", args->exact, "Write the lossless exact OFF format");
   cmd->add_option("--stats", args->stats, "Write statistics as JSON to FILE, or '-' for stdout");
   return {cmd, [args]() -> int {
-    for (const std::string& input : {args->a, args->b})
-      if (same_file(input, args->out)) {
-        print_error(args->out + ": refusing to overwrite an input");
-        return kBadInput;
-      }
-    Mesh a, b;
-    try {
-      a = read_mesh(args->a);
-      b = read_mesh(args->b);
-    } catch (const std::exception& e) {
-      print_error(e.what());
-      return kBadInput;
-    }
-    const auto start = std::chrono::steady_clock::now();
-    const BooleanResult result = compute_boolean(a, b, parse_boolean_op(args->op));
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!result.ok()) {
-      const std::string& file = result.status == BooleanStatus::InvalidInputA ? args->a : args->b;
-      print_error(file + ": " + result.message);
-      return kBadInput;
-    }
-    WriteOptions write_options;
-    write_options.exact = args->exact;
-    write_mesh(result.mesh, args->out, write_options);
-    if (!args->stats.empty()) {
-      nlohmann::json stats = result_stats(result.mesh, seconds);
-      const BooleanStats& s = result.stats;
-      stats["operation"] = args->op;
-      stats["intersected_facets"] = s.cut_facets_a + s.cut_facets_b;
-      stats["segments"] = s.segments;
-      stats["phases"] = {{"validate", s.seconds.validate},     {"pairs", s.seconds.pairs},
-                         {"segments", s.seconds.segments},     {"retriangulate", s.seconds.retriangulate},
-                         {"classify", s.seconds.classify},     {"assemble", s.seconds.assemble}};
-      emit_json(stats, args->stats);
-    }
-    return kSuccess;
-  }};
+            for (const std::string& input : {args->a, args->b})
+              if (same_file(input, args->out)) {
+                print_error(args->out + ": refusing to overwrite an input");
+                return kBadInput;
+              }
+            Mesh a, b;
+            try {
+              a = read_mesh(args->a);
+              b = read_mesh(args->b);
+            } catch (const std::exception& e) {
+              print_error(e.what());
+              return kBadInput;
+            }
+            const auto start = std::chrono::steady_clock::now();
+            const BooleanResult result = compute_boolean(a, b, parse_boolean_op(args->op));
+            const double seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            if (!result.ok()) {
+              const std::string& file =
+                  result.status == BooleanStatus::InvalidInputA ? args->a : args->b;
+              print_error(file + ": " + result.message);
+              return kBadInput;
+            }
+            WriteOptions write_options;
+            write_options.exact = args->exact;
+            write_mesh(result.mesh, args->out, write_options);
+            if (!args->stats.empty()) {
+              nlohmann::json stats = result_stats(result.mesh, seconds);
+              const BooleanStats& s = result.stats;
+              stats["operation"] = args->op;
+              stats["intersected_facets"] = s.cut_facets_a + s.cut_facets_b;
+              stats["segments"] = s.segments;
+              stats["phases"] = {
+                  {"validate", s.seconds.validate}, {"pairs", s.seconds.pairs},
+                  {"segments", s.seconds.segments}, {"retriangulate", s.seconds.retriangulate},
+                  {"classify", s.seconds.classify}, {"assemble", s.seconds.assemble}};
+              emit_json(stats, args->stats);
+            }
+            return kSuccess;
+          }};
 }
 
 }  // namespace morphex::cli

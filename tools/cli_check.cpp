@@ -64,27 +64,27 @@ Command add_check_command(CLI::App& app) {
   cmd->add_option("MESH", *path, "Mesh file (OFF, OBJ, STL, PLY)")->required();
   cmd->add_flag("--json", *json, "Print one JSON object instead of text");
   return {cmd, [=]() -> int {
-    Mesh mesh;
-    try {
-      mesh = read_mesh(*path);
-    } catch (const std::exception& e) {
-      print_error(e.what());
-      return kBadInput;
-    }
-    const auto start = std::chrono::steady_clock::now();
-    const MeshReport report = check_mesh(mesh);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (*json)
-      emit_json(report_json(*path, report, seconds), "-");
-    else
-      print_text(*path, report);
-    if (!report.valid_solid()) {
-      std::cerr << "morphex: " << *path << ": " << describe_problems(report) << '\n';
-      return kFailed;
-    }
-    return kSuccess;
-  }};
+            Mesh mesh;
+            try {
+              mesh = read_mesh(*path);
+            } catch (const std::exception& e) {
+              print_error(e.what());
+              return kBadInput;
+            }
+            const auto start = std::chrono::steady_clock::now();
+            const MeshReport report = check_mesh(mesh);
+            const double seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            if (*json)
+              emit_json(report_json(*path, report, seconds), "-");
+            else
+              print_text(*path, report);
+            if (!report.valid_solid()) {
+              std::cerr << "morphex: " << *path << ": " << describe_problems(report) << '\n';
+              return kFailed;
+            }
+            return kSuccess;
+          }};
 }
 
 }  // namespace morphex::cli

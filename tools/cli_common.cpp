@@ -7,7 +7,9 @@
 
 namespace morphex::cli {
 
-void print_error(const std::string& message) { std::cerr << "morphex: " << message << '\n'; }
+void print_error(const std::string& message) {
+  std::cerr << "morphex: " << message << '\n';
+}
 
 void emit_json(const nlohmann::json& value, const std::string& target) {
   if (target == "-") {

@@ -20,9 +20,12 @@ BooleanOp parse_boolean_op(const std::string& name) {
 
 const char* to_string(BooleanOp op) {
   switch (op) {
-    case BooleanOp::Union: return "union";
-    case BooleanOp::Intersection: return "intersection";
-    case BooleanOp::Difference: return "difference";
+    case BooleanOp::Union:
+      return "union";
+    case BooleanOp::Intersection:
+      return "intersection";
+    case BooleanOp::Difference:
+      return "difference";
   }
   return "?";
 }
@@ -88,8 +91,8 @@ BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
   stats.orientation_conflicts = counts[0].rule_conflicts + counts[1].rule_conflicts;
   stats.seconds.classify = clock.lap();
 
-  result.mesh = detail::assemble(x, refined, labels, op,
-                                 options.provenance ? &result.provenance : nullptr);
+  result.mesh =
+      detail::assemble(x, refined, labels, op, options.provenance ? &result.provenance : nullptr);
   make_exact(result.mesh);
   stats.seconds.assemble = clock.lap();
   return result;

@@ -117,7 +117,8 @@ Mesh assemble(const Intersection& x, const Refined refined[2], const std::vector
     for (std::size_t i = 0; i < refined[side].triangles.size(); ++i) {
       if (!keep(op, side, labels[side][i])) continue;
       const SubTriangle& s = refined[side].triangles[i];
-      faces.push_back(reverse ? Triangle{s.v[0], s.v[2], s.v[1]} : Triangle{s.v[0], s.v[1], s.v[2]});
+      faces.push_back(reverse ? Triangle{s.v[0], s.v[2], s.v[1]}
+                              : Triangle{s.v[0], s.v[1], s.v[2]});
       origin.push_back({std::uint8_t(side), s.facet});
     }
   }

@@ -26,11 +26,11 @@ Kernel::Triangle_3 input_triangle(const Mesh& m, std::uint32_t t) {
 // The label of one sub-triangle, by an exact test on its centroid.
 Label label_of(const SubTriangle& s, const Mesh& mesh, const Mesh& other, int side,
                const Intersection& x, const TriangleTree& other_tree) {
-  const Point centroid =
-      CGAL::centroid(x.points[s.v[0]], x.points[s.v[1]], x.points[s.v[2]]);
+  const Point centroid = CGAL::centroid(x.points[s.v[0]], x.points[s.v[1]], x.points[s.v[2]]);
   const auto cut = x.cuts[side].find(s.facet);
   if (cut != x.cuts[side].end()) {
-    const Kernel::Vector_3 normal = input_triangle(mesh, s.facet).supporting_plane().orthogonal_vector();
+    const Kernel::Vector_3 normal =
+        input_triangle(mesh, s.facet).supporting_plane().orthogonal_vector();
     for (std::uint32_t t : cut->second.coplanar_facets) {
       const Kernel::Triangle_3 facet = input_triangle(other, t);
       if (!facet.has_on(centroid)) continue;

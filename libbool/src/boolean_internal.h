@@ -15,7 +15,9 @@ namespace morphex::detail {
 using PointId = std::uint32_t;
 using Edge = std::pair<PointId, PointId>;  // undirected edges are stored (min, max)
 
-inline Edge undirected(PointId a, PointId b) { return a < b ? Edge{a, b} : Edge{b, a}; }
+inline Edge undirected(PointId a, PointId b) {
+  return a < b ? Edge{a, b} : Edge{b, a};
+}
 
 struct EdgeHash {
   std::size_t operator()(const Edge& e) const {
@@ -45,8 +47,8 @@ struct FacetCut {
 // share the id of the first one (`vertex_id`).
 struct Intersection {
   std::vector<Point> points;
-  std::vector<PointId> vertex_id[2];                     // input vertex -> point id
-  std::unordered_map<std::uint32_t, FacetCut> cuts[2];   // facet -> cut
+  std::vector<PointId> vertex_id[2];                    // input vertex -> point id
+  std::unordered_map<std::uint32_t, FacetCut> cuts[2];  // facet -> cut
   std::size_t intersecting_pairs = 0;
   std::size_t constructed_points = 0;
 };

@@ -25,8 +25,8 @@ struct FacetCdt {
   using Cdt = CGAL::Constrained_Delaunay_triangulation_2<
       Traits, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
 
-  static void run(const std::array<PointId, 3>& corners, const FacetCut& cut,
-                  const Intersection& x, std::uint32_t facet, Refined& out) {
+  static void run(const std::array<PointId, 3>& corners, const FacetCut& cut, const Intersection& x,
+                  std::uint32_t facet, Refined& out) {
     Cdt cdt;
     auto insert = [&](PointId id) {
       auto v = cdt.insert(x.points[id]);
@@ -40,8 +40,8 @@ struct FacetCdt {
       cdt.insert_constraint(p, q);
     }
     const auto orient = Traits().orientation_2_object();
-    const bool flip = orient(x.points[corners[0]], x.points[corners[1]], x.points[corners[2]]) ==
-                      CGAL::NEGATIVE;
+    const bool flip =
+        orient(x.points[corners[0]], x.points[corners[1]], x.points[corners[2]]) == CGAL::NEGATIVE;
     for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
       std::array<PointId, 3> v{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()};
       if (flip) std::swap(v[1], v[2]);

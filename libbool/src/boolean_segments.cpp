@@ -152,13 +152,14 @@ Intersection intersect(const Mesh& a, const Mesh& b,
       sa[i] = CGAL::orientation(tb[0], tb[1], tb[2], ta[i]);
       sb[i] = CGAL::orientation(ta[0], ta[1], ta[2], tb[i]);
     }
-    const bool coplanar = sa[0] == CGAL::COPLANAR && sa[1] == CGAL::COPLANAR && sa[2] == CGAL::COPLANAR;
+    const bool coplanar =
+        sa[0] == CGAL::COPLANAR && sa[1] == CGAL::COPLANAR && sa[2] == CGAL::COPLANAR;
     if (!coplanar) {
       // Both chords lie on the line of the two planes: their overlap along it is ta n tb.
       const std::vector<ChordEnd> ca_ends = chord(0, a.triangles[ia], ta, sa, ib, tb, x, crossings);
       const std::vector<ChordEnd> cb_ends = chord(1, b.triangles[ib], tb, sb, ia, ta, x, crossings);
-      const Kernel::Vector_3 direction = CGAL::cross_product(
-          CGAL::normal(ta[0], ta[1], ta[2]), CGAL::normal(tb[0], tb[1], tb[2]));
+      const Kernel::Vector_3 direction =
+          CGAL::cross_product(CGAL::normal(ta[0], ta[1], ta[2]), CGAL::normal(tb[0], tb[1], tb[2]));
       auto order = [&](const ChordEnd& p, const ChordEnd& q) {  // sign of q - p along the line
         return p.id == q.id ? CGAL::ZERO : CGAL::sign(direction * (q.point - p.point));
       };

@@ -130,7 +130,8 @@ MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
   if (manifold) {
     long genus = 0;
     for (const Mesh& s : shells) {
-      const long chi = long(s.points.size()) - long(s.triangles.size() * 3 / 2) + long(s.triangles.size());
+      const long chi =
+          long(s.points.size()) - long(s.triangles.size() * 3 / 2) + long(s.triangles.size());
       genus += (2 - chi) / 2;
     }
     r.genus = genus;
@@ -152,7 +153,8 @@ MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
 
   // Outward: a shell nested in an even number of others bounds material (positive volume), in an
   // odd number a cavity (negative). Only meaningful for closed, consistently oriented meshes.
-  if (r.closed() && r.consistently_oriented && r.self_intersections == 0 && r.degenerate_faces == 0) {
+  if (r.closed() && r.consistently_oriented && r.self_intersections == 0 &&
+      r.degenerate_faces == 0) {
     std::vector<TriangleTree> trees;
     trees.reserve(shells.size());
     for (const Mesh& s : shells) trees.emplace_back(s);

@@ -9,7 +9,8 @@ namespace morphex {
 Mesh make_box(const Point& lo, const Point& hi) {
   Mesh m;
   for (int i = 0; i < 8; ++i)
-    m.points.emplace_back(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
+    m.points.emplace_back(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(),
+                          i & 4 ? hi.z() : lo.z());
   m.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
                  {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
   return m;
@@ -28,8 +29,8 @@ Mesh make_tetrahedron() {
 
 Mesh make_octahedron(const FT& r) {
   Mesh m;
-  m.points = {Point(r, 0, 0), Point(-r, 0, 0), Point(0, r, 0),
-              Point(0, -r, 0), Point(0, 0, r), Point(0, 0, -r)};
+  m.points = {Point(r, 0, 0),  Point(-r, 0, 0), Point(0, r, 0),
+              Point(0, -r, 0), Point(0, 0, r),  Point(0, 0, -r)};
   m.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
                  {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
   return m;
@@ -38,9 +39,9 @@ Mesh make_octahedron(const FT& r) {
 Mesh make_icosahedron() {
   const FT g = FT(1618) / 1000;
   Mesh m;
-  m.points = {Point(-1, g, 0), Point(1, g, 0),  Point(-1, -g, 0), Point(1, -g, 0),
-              Point(0, -1, g), Point(0, 1, g),  Point(0, -1, -g), Point(0, 1, -g),
-              Point(g, 0, -1), Point(g, 0, 1),  Point(-g, 0, -1), Point(-g, 0, 1)};
+  m.points = {Point(-1, g, 0), Point(1, g, 0), Point(-1, -g, 0), Point(1, -g, 0),
+              Point(0, -1, g), Point(0, 1, g), Point(0, -1, -g), Point(0, 1, -g),
+              Point(g, 0, -1), Point(g, 0, 1), Point(-g, 0, -1), Point(-g, 0, 1)};
   m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                  {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
                  {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
@@ -123,15 +124,22 @@ std::pair<Mesh, Mesh> unit_cube_and_shift(int dx, int dy, int dz) {
 }
 }  // namespace
 
-std::pair<Mesh, Mesh> make_cubes_sharing_face() { return unit_cube_and_shift(1, 0, 0); }
-std::pair<Mesh, Mesh> make_cubes_sharing_edge() { return unit_cube_and_shift(1, 1, 0); }
-std::pair<Mesh, Mesh> make_cubes_sharing_vertex() { return unit_cube_and_shift(1, 1, 1); }
+std::pair<Mesh, Mesh> make_cubes_sharing_face() {
+  return unit_cube_and_shift(1, 0, 0);
+}
+std::pair<Mesh, Mesh> make_cubes_sharing_edge() {
+  return unit_cube_and_shift(1, 1, 0);
+}
+std::pair<Mesh, Mesh> make_cubes_sharing_vertex() {
+  return unit_cube_and_shift(1, 1, 1);
+}
 
 Mesh concatenate(const Mesh& a, const Mesh& b) {
   Mesh m = a;
   const VertexIndex offset = VertexIndex(a.points.size());
   m.points.insert(m.points.end(), b.points.begin(), b.points.end());
-  for (const Triangle& t : b.triangles) m.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  for (const Triangle& t : b.triangles)
+    m.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
   return m;
 }
 

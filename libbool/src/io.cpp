@@ -22,7 +22,8 @@ namespace fs = std::filesystem;
 
 MeshFormat format_from_path(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   if (ext == ".off") return MeshFormat::Off;
   if (ext == ".obj") return MeshFormat::Obj;
   if (ext == ".stl") return MeshFormat::Stl;
@@ -60,12 +61,15 @@ void triangulate_polygon(const std::vector<Point>& points, const std::vector<Ver
   std::vector<Kernel::Point_2> flat;
   for (VertexIndex v : polygon) {
     const Point& p = points[v];
-    if (axis == 0) flat.emplace_back(p.y(), p.z());
-    else if (axis == 1) flat.emplace_back(p.z(), p.x());
-    else flat.emplace_back(p.x(), p.y());
+    if (axis == 0)
+      flat.emplace_back(p.y(), p.z());
+    else if (axis == 1)
+      flat.emplace_back(p.z(), p.x());
+    else
+      flat.emplace_back(p.x(), p.y());
   }
-  const CGAL::Orientation ccw = CGAL::sign(dominant) == CGAL::POSITIVE ? CGAL::LEFT_TURN
-                                                                       : CGAL::RIGHT_TURN;
+  const CGAL::Orientation ccw =
+      CGAL::sign(dominant) == CGAL::POSITIVE ? CGAL::LEFT_TURN : CGAL::RIGHT_TURN;
   std::vector<std::size_t> ring(n);
   for (std::size_t i = 0; i < n; ++i) ring[i] = i;
   while (ring.size() > 3) {
@@ -80,14 +84,19 @@ void triangulate_polygon(const std::vector<Point>& points, const std::vector<Ver
         const auto s0 = CGAL::orientation(flat[a], flat[b], flat[other]);
         const auto s1 = CGAL::orientation(flat[b], flat[c], flat[other]);
         const auto s2 = CGAL::orientation(flat[c], flat[a], flat[other]);
-        if (s0 != -ccw && s1 != -ccw && s2 != -ccw) { empty = false; break; }
+        if (s0 != -ccw && s1 != -ccw && s2 != -ccw) {
+          empty = false;
+          break;
+        }
       }
       if (!empty) continue;
       out.push_back({polygon[a], polygon[b], polygon[c]});
       ring.erase(ring.begin() + std::ptrdiff_t(k));
       clipped = true;
     }
-    if (!clipped) throw std::invalid_argument("polygon cannot be triangulated (self-intersecting or degenerate)");
+    if (!clipped)
+      throw std::invalid_argument(
+          "polygon cannot be triangulated (self-intersecting or degenerate)");
   }
   if (CGAL::orientation(flat[ring[0]], flat[ring[1]], flat[ring[2]]) != ccw)
     throw std::invalid_argument("polygon cannot be triangulated (degenerate)");
@@ -136,7 +145,9 @@ class LineReader {
     }
     return false;
   }
-  std::size_t remaining_bytes() const { return pos_ < content_.size() ? content_.size() - pos_ : 0; }
+  std::size_t remaining_bytes() const {
+    return pos_ < content_.size() ? content_.size() - pos_ : 0;
+  }
 
  private:
   const std::string& content_;
@@ -144,7 +155,9 @@ class LineReader {
   std::size_t number_ = 0;
 };
 
-std::string at_line(std::size_t n) { return " at line " + std::to_string(n); }
+std::string at_line(std::size_t n) {
+  return " at line " + std::to_string(n);
+}
 
 FT number(const std::string& token, const std::string& name, std::size_t line) {
   try {
@@ -166,7 +179,8 @@ void add_polygon(Mesh& mesh, const std::vector<VertexIndex>& polygon, const std:
   try {
     triangulate_polygon(mesh.points, polygon, mesh.triangles);
   } catch (const std::invalid_argument& e) {
-    throw InputError(name, std::string(e.what()) + ": face " + std::to_string(face) + at_line(line));
+    throw InputError(name,
+                     std::string(e.what()) + ": face " + std::to_string(face) + at_line(line));
   }
 }
 
@@ -179,12 +193,14 @@ Mesh read_off(const std::string& content, const std::string& name) {
   if (!reader.next(line)) throw InputError(name, "empty file");
   std::vector<std::string> header = line.tokens;
   const std::string& magic = header[0];
-  if (magic.size() < 3 || magic.compare(magic.size() - 3, 3, "OFF") != 0 || magic.find('4') != std::string::npos)
+  if (magic.size() < 3 || magic.compare(magic.size() - 3, 3, "OFF") != 0 ||
+      magic.find('4') != std::string::npos)
     throw InputError(name, "not an OFF file: header is '" + magic + "'" + at_line(line.number));
   header.erase(header.begin());
   std::size_t counts_line = line.number;
   if (header.empty()) {
-    if (!reader.next(line)) throw InputError(name, "truncated file: missing vertex and face counts");
+    if (!reader.next(line))
+      throw InputError(name, "truncated file: missing vertex and face counts");
     header = line.tokens;
     counts_line = line.number;
   }
@@ -194,14 +210,17 @@ Mesh read_off(const std::string& content, const std::string& name) {
   // Every vertex needs at least 6 bytes ("0 0 0\n") and every face 8: never trust a huge count.
   if (nv * 6 + nf * 8 > reader.remaining_bytes() + 8)
     throw InputError(name, "truncated file: header announces " + std::to_string(nv) +
-                               " vertices and " + std::to_string(nf) + " faces" + at_line(counts_line));
+                               " vertices and " + std::to_string(nf) + " faces" +
+                               at_line(counts_line));
   Mesh mesh;
   mesh.points.reserve(nv);
   for (std::uint64_t v = 0; v < nv; ++v) {
     if (!reader.next(line))
-      throw InputError(name, "truncated file: " + std::to_string(v) + " of " + std::to_string(nv) + " vertices");
+      throw InputError(
+          name, "truncated file: " + std::to_string(v) + " of " + std::to_string(nv) + " vertices");
     if (line.tokens.size() < 3)
-      throw InputError(name, "vertex " + std::to_string(v) + " has fewer than 3 coordinates" + at_line(line.number));
+      throw InputError(name, "vertex " + std::to_string(v) + " has fewer than 3 coordinates" +
+                                 at_line(line.number));
     mesh.points.emplace_back(number(line.tokens[0], name, line.number),
                              number(line.tokens[1], name, line.number),
                              number(line.tokens[2], name, line.number));
@@ -209,17 +228,20 @@ Mesh read_off(const std::string& content, const std::string& name) {
   std::vector<VertexIndex> polygon;
   for (std::uint64_t f = 0; f < nf; ++f) {
     if (!reader.next(line))
-      throw InputError(name, "truncated file: " + std::to_string(f) + " of " + std::to_string(nf) + " faces");
+      throw InputError(
+          name, "truncated file: " + std::to_string(f) + " of " + std::to_string(nf) + " faces");
     const std::uint64_t n = count(line.tokens[0], name, line.number, "polygon size");
     if (line.tokens.size() < n + 1)
-      throw InputError(name, "face " + std::to_string(f) + " lists fewer than " + std::to_string(n) +
-                                 " vertices" + at_line(line.number));
+      throw InputError(name, "face " + std::to_string(f) + " lists fewer than " +
+                                 std::to_string(n) + " vertices" + at_line(line.number));
     polygon.clear();
     for (std::uint64_t k = 1; k <= n; ++k) {
       const std::string& t = line.tokens[k];
-      if (t.empty() || !std::all_of(t.begin(), t.end(), ::isdigit) || t.size() > 10 || std::stoull(t) >= nv)
+      if (t.empty() || !std::all_of(t.begin(), t.end(), ::isdigit) || t.size() > 10 ||
+          std::stoull(t) >= nv)
         throw InputError(name, "face " + std::to_string(f) + " has vertex index '" + t +
-                                   "' out of range [0, " + std::to_string(nv) + ")" + at_line(line.number));
+                                   "' out of range [0, " + std::to_string(nv) + ")" +
+                                   at_line(line.number));
       polygon.push_back(VertexIndex(std::stoull(t)));
     }
     add_polygon(mesh, polygon, name, f, line.number);
@@ -239,7 +261,8 @@ Mesh read_obj(const std::string& content, const std::string& name) {
   while (reader.next(line)) {
     const std::string& kind = line.tokens[0];
     if (kind == "v") {
-      if (line.tokens.size() < 4) throw InputError(name, "vertex with fewer than 3 coordinates" + at_line(line.number));
+      if (line.tokens.size() < 4)
+        throw InputError(name, "vertex with fewer than 3 coordinates" + at_line(line.number));
       mesh.points.emplace_back(number(line.tokens[1], name, line.number),
                                number(line.tokens[2], name, line.number),
                                number(line.tokens[3], name, line.number));
@@ -275,7 +298,9 @@ Mesh read_obj(const std::string& content, const std::string& name) {
 // STL: triangle soup; vertices with identical coordinates are merged.
 
 struct LessXYZ {
-  bool operator()(const std::array<double, 3>& a, const std::array<double, 3>& b) const { return a < b; }
+  bool operator()(const std::array<double, 3>& a, const std::array<double, 3>& b) const {
+    return a < b;
+  }
 };
 
 class SoupIndexer {
@@ -298,7 +323,8 @@ double finite(double d, const std::string& name, const std::string& where) {
 }
 
 Mesh read_stl_binary(const std::string& content, const std::string& name) {
-  if (content.size() < 84) throw InputError(name, "truncated binary STL: shorter than its 84-byte header");
+  if (content.size() < 84)
+    throw InputError(name, "truncated binary STL: shorter than its 84-byte header");
   std::uint32_t n = 0;
   std::memcpy(&n, content.data() + 80, 4);
   if (content.size() != 84 + std::uint64_t(n) * 50)
@@ -332,12 +358,16 @@ Mesh read_stl_ascii(const std::string& content, const std::string& name) {
   while (reader.next(line)) {
     const std::string& kind = line.tokens[0];
     if (kind == "vertex") {
-      if (line.tokens.size() < 4) throw InputError(name, "vertex with fewer than 3 coordinates" + at_line(line.number));
+      if (line.tokens.size() < 4)
+        throw InputError(name, "vertex with fewer than 3 coordinates" + at_line(line.number));
       std::array<double, 3> p;
-      for (int c = 0; c < 3; ++c) p[c] = CGAL::to_double(number(line.tokens[1 + c], name, line.number));
+      for (int c = 0; c < 3; ++c)
+        p[c] = CGAL::to_double(number(line.tokens[1 + c], name, line.number));
       loop.push_back(index.add(p));
     } else if (kind == "endloop") {
-      if (loop.size() != 3) throw InputError(name, "facet with " + std::to_string(loop.size()) + " vertices" + at_line(line.number));
+      if (loop.size() != 3)
+        throw InputError(
+            name, "facet with " + std::to_string(loop.size()) + " vertices" + at_line(line.number));
       mesh.triangles.push_back({loop[0], loop[1], loop[2]});
       loop.clear();
     } else if (kind == "endsolid") {
@@ -376,7 +406,9 @@ struct PlyElement {
 std::size_t ply_size(const std::string& type) {
   if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
   if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
-  if (type == "int" || type == "uint" || type == "float" || type == "int32" || type == "uint32" || type == "float32") return 4;
+  if (type == "int" || type == "uint" || type == "float" || type == "int32" || type == "uint32" ||
+      type == "float32")
+    return 4;
   if (type == "double" || type == "float64") return 8;
   return 0;
 }
@@ -387,18 +419,39 @@ class PlyBinary {
       : c_(content), pos_(pos), big_(big_endian), name_(name) {}
   double read(const std::string& type) {
     const std::size_t n = ply_size(type);
-    if (pos_ + n > c_.size()) throw InputError(name_, "truncated binary PLY data at byte " + std::to_string(pos_));
+    if (pos_ + n > c_.size())
+      throw InputError(name_, "truncated binary PLY data at byte " + std::to_string(pos_));
     unsigned char b[8];
     std::memcpy(b, c_.data() + pos_, n);
     pos_ += n;
     if (big_) std::reverse(b, b + n);
     if (type == "char" || type == "int8") return double(static_cast<std::int8_t>(b[0]));
     if (type == "uchar" || type == "uint8") return double(b[0]);
-    if (type == "short" || type == "int16") { std::int16_t v; std::memcpy(&v, b, 2); return v; }
-    if (type == "ushort" || type == "uint16") { std::uint16_t v; std::memcpy(&v, b, 2); return v; }
-    if (type == "int" || type == "int32") { std::int32_t v; std::memcpy(&v, b, 4); return v; }
-    if (type == "uint" || type == "uint32") { std::uint32_t v; std::memcpy(&v, b, 4); return v; }
-    if (type == "float" || type == "float32") { float v; std::memcpy(&v, b, 4); return v; }
+    if (type == "short" || type == "int16") {
+      std::int16_t v;
+      std::memcpy(&v, b, 2);
+      return v;
+    }
+    if (type == "ushort" || type == "uint16") {
+      std::uint16_t v;
+      std::memcpy(&v, b, 2);
+      return v;
+    }
+    if (type == "int" || type == "int32") {
+      std::int32_t v;
+      std::memcpy(&v, b, 4);
+      return v;
+    }
+    if (type == "uint" || type == "uint32") {
+      std::uint32_t v;
+      std::memcpy(&v, b, 4);
+      return v;
+    }
+    if (type == "float" || type == "float32") {
+      float v;
+      std::memcpy(&v, b, 4);
+      return v;
+    }
     double v;
     std::memcpy(&v, b, 8);
     return v;
@@ -414,9 +467,11 @@ class PlyBinary {
 
 Mesh read_ply(const std::string& content, const std::string& name) {
   if (content.empty()) throw InputError(name, "empty file");
-  if (content.compare(0, 3, "ply") != 0) throw InputError(name, "not a PLY file: missing 'ply' header at line 1");
+  if (content.compare(0, 3, "ply") != 0)
+    throw InputError(name, "not a PLY file: missing 'ply' header at line 1");
   const std::size_t end_header = content.find("end_header");
-  if (end_header == std::string::npos) throw InputError(name, "truncated PLY header: no 'end_header'");
+  if (end_header == std::string::npos)
+    throw InputError(name, "truncated PLY header: no 'end_header'");
   std::size_t data = content.find('\n', end_header);
   data = data == std::string::npos ? content.size() : data + 1;
   std::string format;
@@ -429,13 +484,22 @@ Mesh read_ply(const std::string& content, const std::string& name) {
       ++number;
       const auto t = split(text);
       if (t.empty()) continue;
-      if (t[0] == "format" && t.size() >= 2) format = t[1];
-      else if (t[0] == "element" && t.size() >= 3) elements.push_back({t[1], count(t[2], name, number, "element count"), {}});
+      if (t[0] == "format" && t.size() >= 2)
+        format = t[1];
+      else if (t[0] == "element" && t.size() >= 3)
+        elements.push_back({t[1], count(t[2], name, number, "element count"), {}});
       else if (t[0] == "property" && !elements.empty()) {
         PlyProperty p;
-        if (t.size() >= 5 && t[1] == "list") { p.list = true; p.list_count_type = t[2]; p.type = t[3]; p.name = t[4]; }
-        else if (t.size() >= 3) { p.type = t[1]; p.name = t[2]; }
-        else throw InputError(name, "malformed property" + at_line(number));
+        if (t.size() >= 5 && t[1] == "list") {
+          p.list = true;
+          p.list_count_type = t[2];
+          p.type = t[3];
+          p.name = t[4];
+        } else if (t.size() >= 3) {
+          p.type = t[1];
+          p.name = t[2];
+        } else
+          throw InputError(name, "malformed property" + at_line(number));
         if (ply_size(p.type) == 0 || (p.list && ply_size(p.list_count_type) == 0))
           throw InputError(name, "unknown PLY type in property '" + text + "'" + at_line(number));
         elements.back().properties.push_back(p);
@@ -448,7 +512,8 @@ Mesh read_ply(const std::string& content, const std::string& name) {
   std::uint64_t declared = 0;
   for (const auto& e : elements) declared += e.count;
   if (declared > content.size() - data + 1)
-    throw InputError(name, "truncated file: header announces " + std::to_string(declared) + " elements");
+    throw InputError(name,
+                     "truncated file: header announces " + std::to_string(declared) + " elements");
 
   Mesh mesh;
   std::uint64_t vertex_count = 0;
@@ -477,7 +542,8 @@ Mesh read_ply(const std::string& content, const std::string& name) {
       for (const PlyProperty& p : e.properties) {
         if (p.list) {
           const double n = next_value(p.list_count_type);
-          if (n < 0 || n > 1e6) throw InputError(name, "invalid list size in " + e.name + " " + std::to_string(i));
+          if (n < 0 || n > 1e6)
+            throw InputError(name, "invalid list size in " + e.name + " " + std::to_string(i));
           polygon.clear();
           for (int k = 0; k < int(n); ++k) {
             const double v = next_value(p.type);
@@ -524,12 +590,17 @@ std::string read_file(const std::string& path) {
 }  // namespace
 
 Mesh read_mesh_from_string(const std::string& content, MeshFormat format, const std::string& name) {
-  if (content.find_first_not_of(" \t\r\n") == std::string::npos) throw InputError(name, "empty file");
+  if (content.find_first_not_of(" \t\r\n") == std::string::npos)
+    throw InputError(name, "empty file");
   switch (format) {
-    case MeshFormat::Off: return read_off(content, name);
-    case MeshFormat::Obj: return read_obj(content, name);
-    case MeshFormat::Stl: return read_stl(content, name);
-    case MeshFormat::Ply: return read_ply(content, name);
+    case MeshFormat::Off:
+      return read_off(content, name);
+    case MeshFormat::Obj:
+      return read_obj(content, name);
+    case MeshFormat::Stl:
+      return read_stl(content, name);
+    case MeshFormat::Ply:
+      return read_ply(content, name);
   }
   throw InputError(name, "unknown format");
 }
@@ -542,12 +613,14 @@ Mesh read_mesh(const std::string& path) {
 // ---------------------------------------------------------------------------------------------
 // Writing
 
-void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& writer) {
+void write_file_atomically(const std::string& path,
+                           const std::function<void(std::ostream&)>& writer) {
   const fs::path target(path);
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::string tmp = (dir / ("." + target.filename().string() + ".tmp.XXXXXX")).string();
   const int fd = mkstemp(tmp.data());
-  if (fd < 0) throw std::runtime_error(path + ": cannot create a temporary file: " + std::strerror(errno));
+  if (fd < 0)
+    throw std::runtime_error(path + ": cannot create a temporary file: " + std::strerror(errno));
   close(fd);
   try {
     {
@@ -563,7 +636,8 @@ void write_file_atomically(const std::string& path, const std::function<void(std
       close(sync_fd);
     }
     if (std::rename(tmp.c_str(), path.c_str()) != 0)
-      throw std::runtime_error(path + ": cannot rename the temporary file: " + std::strerror(errno));
+      throw std::runtime_error(path +
+                               ": cannot rename the temporary file: " + std::strerror(errno));
   } catch (...) {
     std::remove(tmp.c_str());
     throw;
@@ -583,9 +657,11 @@ void write_off(const Mesh& m, std::ostream& out, bool exact) {
   out << std::setprecision(17);
   for (const Point& p : m.points) {
     if (exact)
-      out << to_rational_string(p.x()) << ' ' << to_rational_string(p.y()) << ' ' << to_rational_string(p.z()) << '\n';
+      out << to_rational_string(p.x()) << ' ' << to_rational_string(p.y()) << ' '
+          << to_rational_string(p.z()) << '\n';
     else
-      out << CGAL::to_double(p.x()) << ' ' << CGAL::to_double(p.y()) << ' ' << CGAL::to_double(p.z()) << '\n';
+      out << CGAL::to_double(p.x()) << ' ' << CGAL::to_double(p.y()) << ' '
+          << CGAL::to_double(p.z()) << '\n';
   }
   for (const Triangle& t : m.triangles) out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
 }
@@ -593,8 +669,10 @@ void write_off(const Mesh& m, std::ostream& out, bool exact) {
 void write_obj(const Mesh& m, std::ostream& out) {
   out << std::setprecision(17);
   for (const Point& p : m.points)
-    out << "v " << CGAL::to_double(p.x()) << ' ' << CGAL::to_double(p.y()) << ' ' << CGAL::to_double(p.z()) << '\n';
-  for (const Triangle& t : m.triangles) out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
+    out << "v " << CGAL::to_double(p.x()) << ' ' << CGAL::to_double(p.y()) << ' '
+        << CGAL::to_double(p.z()) << '\n';
+  for (const Triangle& t : m.triangles)
+    out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
 }
 
 void write_stl(const Mesh& m, std::ostream& out) {
@@ -615,7 +693,8 @@ void write_stl(const Mesh& m, std::ostream& out) {
 
 void write_ply(const Mesh& m, std::ostream& out) {
   out << "ply\nformat binary_little_endian 1.0\ncomment written by morphex\nelement vertex "
-      << m.points.size() << "\nproperty double x\nproperty double y\nproperty double z\nelement face "
+      << m.points.size()
+      << "\nproperty double x\nproperty double y\nproperty double z\nelement face "
       << m.triangles.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
   for (const auto& p : to_double(m).points) out.write(reinterpret_cast<const char*>(p.data()), 24);
   for (const Triangle& t : m.triangles) {
@@ -634,10 +713,18 @@ void write_mesh(const Mesh& mesh, const std::string& path, const WriteOptions& o
     throw InputError(path, "the exact format is OFF: use a .off output with --exact");
   write_file_atomically(path, [&](std::ostream& out) {
     switch (format) {
-      case MeshFormat::Off: write_off(mesh, out, options.exact); break;
-      case MeshFormat::Obj: write_obj(mesh, out); break;
-      case MeshFormat::Stl: write_stl(mesh, out); break;
-      case MeshFormat::Ply: write_ply(mesh, out); break;
+      case MeshFormat::Off:
+        write_off(mesh, out, options.exact);
+        break;
+      case MeshFormat::Obj:
+        write_obj(mesh, out);
+        break;
+      case MeshFormat::Stl:
+        write_stl(mesh, out);
+        break;
+      case MeshFormat::Ply:
+        write_ply(mesh, out);
+        break;
     }
   });
 }

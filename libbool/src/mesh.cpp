@@ -60,7 +60,8 @@ FT parse_exact_number(const std::string& text) {
   }
   char* end = nullptr;
   const double d = std::strtod(text.c_str(), &end);
-  if (end == text.c_str() || *end != '\0') throw std::invalid_argument("malformed number '" + text + "'");
+  if (end == text.c_str() || *end != '\0')
+    throw std::invalid_argument("malformed number '" + text + "'");
   if (!std::isfinite(d)) throw std::invalid_argument("non-finite number '" + text + "'");
   return FT(d);
 }

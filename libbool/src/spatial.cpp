@@ -12,7 +12,9 @@ namespace morphex {
 namespace {
 constexpr std::uint32_t kLeafSize = 4;
 
-double centre(const CGAL::Bbox_3& b, int axis) { return 0.5 * (b.min(axis) + b.max(axis)); }
+double centre(const CGAL::Bbox_3& b, int axis) {
+  return 0.5 * (b.min(axis) + b.max(axis));
+}
 }  // namespace
 
 Kernel::Triangle_3 triangle_of(const Mesh& mesh, std::uint32_t t) {
@@ -68,7 +70,8 @@ bool TriangleTree::ray_may_hit(const CGAL::Bbox_3& box, const CGAL::Bbox_3& orig
   double t_enter = 0, t_exit = std::numeric_limits<double>::infinity();
   for (int a = 0; a < 3; ++a) {
     const double pad = 1e-9 * (std::abs(box.min(a)) + std::abs(box.max(a)) +
-                               std::abs(origin.min(a)) + std::abs(origin.max(a))) + 1e-300;
+                               std::abs(origin.min(a)) + std::abs(origin.max(a))) +
+                       1e-300;
     const double lo = box.min(a) - pad, hi = box.max(a) + pad;
     if (d[a] == 0) {
       if (origin.max(a) < lo || origin.min(a) > hi) return false;
@@ -101,7 +104,13 @@ bool triangles_intersect_improperly(const Mesh& mesh, std::uint32_t i, std::uint
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b)
       if (same_position(mesh, f[a], g[b])) {
-        if (shared == 0) { sf = a; sg = b; } else { sf2 = a; sg2 = b; }
+        if (shared == 0) {
+          sf = a;
+          sg = b;
+        } else {
+          sf2 = a;
+          sg2 = b;
+        }
         ++shared;
       }
   if (shared == 0) return CGAL::do_intersect(tf, tg);
@@ -123,10 +132,12 @@ bool triangles_intersect_improperly(const Mesh& mesh, std::uint32_t i, std::uint
 namespace {
 
 // Generic directions: not parallel to any axis or to the diagonal planes of boxes.
-constexpr std::array<double, 3> kDirections[] = {
-    {1.0, 0.5773502691896257, 0.3119047619047619}, {-0.2718281828459045, 1.0, 0.7071067811865476},
-    {0.4142135623730951, -0.8660254037844386, 1.0}, {-1.0, -0.3183098861837907, 0.6931471805599453},
-    {0.1414213562373095, 0.7320508075688772, -1.0}, {0.9, -0.1234567890123457, -0.4567891234567891}};
+constexpr std::array<double, 3> kDirections[] = {{1.0, 0.5773502691896257, 0.3119047619047619},
+                                                 {-0.2718281828459045, 1.0, 0.7071067811865476},
+                                                 {0.4142135623730951, -0.8660254037844386, 1.0},
+                                                 {-1.0, -0.3183098861837907, 0.6931471805599453},
+                                                 {0.1414213562373095, 0.7320508075688772, -1.0},
+                                                 {0.9, -0.1234567890123457, -0.4567891234567891}};
 
 enum class RayHit { Miss, Hit, Degenerate };
 
@@ -164,9 +175,14 @@ int winding_number(const Mesh& closed_mesh, const TriangleTree& tree, const Poin
       if (degenerate) return;
       int sign = 0;
       switch (cross(triangle_of(closed_mesh, t), q, beyond, d, sign)) {
-        case RayHit::Hit: winding += sign; break;
-        case RayHit::Degenerate: degenerate = true; break;
-        case RayHit::Miss: break;
+        case RayHit::Hit:
+          winding += sign;
+          break;
+        case RayHit::Degenerate:
+          degenerate = true;
+          break;
+        case RayHit::Miss:
+          break;
       }
     });
     if (!degenerate) return winding;

@@ -35,8 +35,8 @@ struct PhaseSeconds {
 };
 
 struct BooleanStats {
-  std::size_t candidate_pairs = 0;      // triangle pairs whose boxes overlap
-  std::size_t intersecting_pairs = 0;   // pairs that really touch
+  std::size_t candidate_pairs = 0;     // triangle pairs whose boxes overlap
+  std::size_t intersecting_pairs = 0;  // pairs that really touch
   std::size_t cut_facets_a = 0, cut_facets_b = 0;
   std::size_t segments = 0;             // constraint segments inserted (both meshes)
   std::size_t intersection_points = 0;  // distinct new points constructed

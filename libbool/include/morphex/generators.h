@@ -31,7 +31,7 @@ std::pair<Mesh, Mesh> make_cubes_sharing_vertex();
 
 Mesh concatenate(const Mesh& a, const Mesh& b);  // disjoint union of the vertex and face lists
 Mesh transformed(const Mesh& mesh, const Transformation& transformation);  // exact
-Mesh translated(const Mesh& mesh, const Vector& offset);                     // exact
-Mesh reversed(const Mesh& mesh);  // every face flipped
+Mesh translated(const Mesh& mesh, const Vector& offset);                   // exact
+Mesh reversed(const Mesh& mesh);                                           // every face flipped
 
 }  // namespace morphex
