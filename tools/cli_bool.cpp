@@ -10,20 +10,6 @@
 
 namespace morphex::cli {
 
-nlohmann::json result_stats(const Mesh& mesh, double seconds) {
-  const MeshReport report = check_mesh(mesh);
-  nlohmann::json j;
-  j["faces"] = mesh.num_triangles();
-  j["vertices"] = mesh.num_vertices();
-  j["volume"] = to_rational_string(report.volume);
-  j["volume_approx"] = CGAL::to_double(report.volume);
-  j["closed"] = report.closed();
-  j["self_intersecting"] = report.self_intersections > 0;
-  j["valid"] = report.valid_solid();
-  j["seconds"] = seconds;
-  return j;
-}
-
 Command add_bool_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("bool", "Exact Boolean operation on two closed meshes");
   struct Args {

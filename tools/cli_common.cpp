@@ -3,12 +3,51 @@
 
 #include <iostream>
 
+#include "morphex/check.h"
 #include "morphex/io.h"
 
 namespace morphex::cli {
 
 void print_error(const std::string& message) {
   std::cerr << "morphex: " << message << '\n';
+}
+
+nlohmann::json result_stats(const Mesh& mesh, double seconds) {
+  const MeshReport report = check_mesh(mesh);
+  nlohmann::json j;
+  j["faces"] = mesh.num_triangles();
+  j["vertices"] = mesh.num_vertices();
+  j["volume"] = to_rational_string(report.volume);
+  j["volume_approx"] = CGAL::to_double(report.volume);
+  j["closed"] = report.closed();
+  j["self_intersecting"] = report.self_intersections > 0;
+  j["valid"] = report.valid_solid();
+  j["seconds"] = seconds;
+  return j;
+}
+
+std::optional<Mesh> read_solid(const std::string& path) {
+  try {
+    Mesh mesh = read_mesh(path);
+    const MeshReport report = check_mesh(mesh);
+    if (!report.valid_solid()) {
+      print_error(path + ": " + describe_problems(report));
+      return std::nullopt;
+    }
+    return mesh;
+  } catch (const std::exception& e) {
+    print_error(e.what());
+    return std::nullopt;
+  }
+}
+
+bool output_overwrites_input(const std::string& output, const std::vector<std::string>& inputs) {
+  for (const std::string& input : inputs)
+    if (same_file(input, output)) {
+      print_error(output + ": refusing to overwrite an input");
+      return true;
+    }
+  return false;
 }
 
 void emit_json(const nlohmann::json& value, const std::string& target) {

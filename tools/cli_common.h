@@ -5,7 +5,11 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <optional>
 #include <string>
+#include <vector>
+
+#include "morphex/mesh.h"
 
 namespace morphex::cli {
 
@@ -18,6 +22,16 @@ void print_error(const std::string& message);
 // Writes `value` as one line to stdout when target is "-", else atomically to the file.
 void emit_json(const nlohmann::json& value, const std::string& target);
 
+// The --stats keys every mesh-producing command shares (conventions.md): sizes, exact volume,
+// validity and the operation's wall time.
+nlohmann::json result_stats(const Mesh& mesh, double seconds);
+
+// Reads an operand; a read error or an invalid solid is reported as "FILE: problem" and nullopt.
+std::optional<Mesh> read_solid(const std::string& path);
+
+// Refuses an output path that names one of the inputs.
+bool output_overwrites_input(const std::string& output, const std::vector<std::string>& inputs);
+
 // Each subcommand registers itself on the app and returns the function that runs it.
 using Runner = std::function<int()>;
 struct Command {
@@ -26,5 +40,6 @@ struct Command {
 };
 Command add_check_command(CLI::App& app);
 Command add_bool_command(CLI::App& app);
+std::vector<Command> add_morphology_commands(CLI::App& app);
 
 }  // namespace morphex::cli

@@ -18,7 +18,8 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads, "Worker threads (default: all cores)")
       ->check(CLI::PositiveNumber);
 
-  const std::vector<Command> commands = {add_check_command(app), add_bool_command(app)};
+  std::vector<Command> commands = {add_check_command(app), add_bool_command(app)};
+  for (Command& c : add_morphology_commands(app)) commands.push_back(std::move(c));
 
   try {
     app.parse(argc, argv);

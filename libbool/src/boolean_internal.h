@@ -72,6 +72,10 @@ struct Refined {
 };
 Refined retriangulate(const Mesh& mesh, int side, const Intersection& x);
 
+// 0, 1 or 2: the axis along which the normal of triangle abc is largest, so that dropping that
+// coordinate projects the triangle's plane without degeneracy (exact: it only selects coordinates).
+int dominant_axis(const Point& a, const Point& b, const Point& c);
+
 // Step 6: labels.
 enum class Label : std::uint8_t { Outside, Inside, CoplanarSame, CoplanarOpposite };
 // One label per sub-triangle of `refined` (a refinement of `mesh`, side 0 = A, 1 = B).

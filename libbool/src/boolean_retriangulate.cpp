@@ -55,14 +55,14 @@ struct FacetCdt {
   }
 };
 
+}  // namespace
+
 int dominant_axis(const Point& a, const Point& b, const Point& c) {
   const Kernel::Vector_3 n = CGAL::cross_product(b - a, c - a);
   const FT ax = CGAL::abs(n.x()), ay = CGAL::abs(n.y()), az = CGAL::abs(n.z());
   if (ax >= ay && ax >= az) return 0;
   return ay >= az ? 1 : 2;
 }
-
-}  // namespace
 
 Refined retriangulate(const Mesh& mesh, int side, const Intersection& x) {
   Refined out;

@@ -28,6 +28,9 @@ const char* to_string(BooleanOp op);
 struct BooleanOptions {
   bool validate_inputs = true;  // refuse invalid solids before any work
   bool provenance = false;      // fill BooleanResult::provenance
+  // Merge neighbouring coplanar result triangles and drop the vertices that are not corners
+  // (merge_coplanar_faces): no new coordinates, far fewer faces after coplanar overlaps.
+  bool merge_coplanar = true;
 };
 
 struct PhaseSeconds {
@@ -65,5 +68,23 @@ struct BooleanResult {
 
 BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
                               const BooleanOptions& options = {});
+
+// Re-triangulates every maximal region of neighbouring coplanar, equally oriented triangles of a
+// valid solid without its removable vertices: those inside a region, and those on a straight crease
+// between two regions. Exact (only existing points are used); the solid is unchanged as a set.
+// Regions where two distinct vertices share a position (separated non-manifold features) are kept.
+Mesh merge_coplanar_faces(const Mesh& solid);
+
+struct UnionStats {
+  std::size_t binary_unions = 0;   // compute_boolean calls made
+  std::size_t disjoint_merges = 0;  // unions of operands with disjoint boxes, done by concatenation
+};
+
+// The union of many closed solids (they may overlap, touch or nest) as one valid solid.
+// The solids are sorted along a space-filling curve and united in a balanced binary tree, so each
+// binary union meets neighbouring pieces and intermediate results stay small; independent subtrees
+// run in parallel with TBB. The tree depends only on the input, so the result is identical for any
+// number of threads. Inputs are trusted to be valid solids (they are not re-checked).
+Mesh compute_union(std::vector<Mesh> solids, UnionStats* stats = nullptr);
 
 }  // namespace morphex

@@ -1,0 +1,134 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Union of many solids: a balanced tree of exact binary unions over a Morton order.
+#include <tbb/parallel_invoke.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstdint>
+#include <numeric>
+#include <stdexcept>
+
+#include "morphex/boolean.h"
+
+namespace morphex {
+namespace {
+
+CGAL::Bbox_3 bbox_of(const Mesh& mesh) {
+  CGAL::Bbox_3 box;
+  for (const Point& p : mesh.points) box += p.bbox();
+  return box;
+}
+
+// Interleaves the top 21 bits of three normalised coordinates.
+std::uint64_t morton_code(const std::array<double, 3>& unit) {
+  auto spread = [](std::uint64_t v) {
+    v &= 0x1fffff;
+    v = (v | v << 32) & 0x1f00000000ffffULL;
+    v = (v | v << 16) & 0x1f0000ff0000ffULL;
+    v = (v | v << 8) & 0x100f00f00f00f00fULL;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+    v = (v | v << 2) & 0x1249249249249249ULL;
+    return v;
+  };
+  std::uint64_t code = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double clamped = std::clamp(unit[i], 0.0, 1.0);
+    code |= spread(static_cast<std::uint64_t>(clamped * double(0x1fffff))) << i;
+  }
+  return code;
+}
+
+struct Operand {
+  Mesh mesh;
+  CGAL::Bbox_3 box;
+};
+
+bool boxes_overlap(const CGAL::Bbox_3& a, const CGAL::Bbox_3& b) {
+  // Touching boxes count as overlapping: solids that touch must go through the exact union.
+  return CGAL::do_overlap(a, b);
+}
+
+struct Counters {
+  std::atomic<std::size_t> binary_unions{0}, disjoint_merges{0};
+};
+
+Operand unite(std::vector<Operand>& items, std::size_t begin, std::size_t end, Counters& counters) {
+  if (end - begin == 1) return std::move(items[begin]);
+  const std::size_t middle = begin + (end - begin) / 2;
+  Operand left, right;
+  // Small subtrees are not worth a task; the cut-off keeps scheduling overhead negligible.
+  if (end - begin >= 8)
+    tbb::parallel_invoke([&] { left = unite(items, begin, middle, counters); },
+                         [&] { right = unite(items, middle, end, counters); });
+  else {
+    left = unite(items, begin, middle, counters);
+    right = unite(items, middle, end, counters);
+  }
+  Operand out;
+  out.box = left.box + right.box;
+  if (left.mesh.empty()) {
+    out.mesh = std::move(right.mesh);
+  } else if (right.mesh.empty()) {
+    out.mesh = std::move(left.mesh);
+  } else if (!boxes_overlap(left.box, right.box)) {
+    ++counters.disjoint_merges;
+    out.mesh = std::move(left.mesh);
+    const auto offset = VertexIndex(out.mesh.points.size());
+    out.mesh.points.insert(out.mesh.points.end(), right.mesh.points.begin(),
+                           right.mesh.points.end());
+    for (const Triangle& t : right.mesh.triangles)
+      out.mesh.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  } else {
+    ++counters.binary_unions;
+    BooleanOptions options;
+    options.validate_inputs = false;
+    BooleanResult r = compute_boolean(left.mesh, right.mesh, BooleanOp::Union, options);
+    if (!r.ok()) throw std::logic_error("compute_union: " + r.message);
+    out.mesh = std::move(r.mesh);
+  }
+  return out;
+}
+
+}  // namespace
+
+Mesh compute_union(std::vector<Mesh> solids, UnionStats* stats) {
+  std::vector<Operand> items;
+  items.reserve(solids.size());
+  CGAL::Bbox_3 all;
+  for (Mesh& m : solids) {
+    if (m.empty()) continue;
+    Operand op{std::move(m), {}};
+    op.box = bbox_of(op.mesh);
+    all += op.box;
+    items.push_back(std::move(op));
+  }
+  if (items.empty()) return {};
+
+  std::vector<std::uint64_t> codes(items.size());
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    std::array<double, 3> unit;
+    for (int k = 0; k < 3; ++k) {
+      const double extent = all.max(k) - all.min(k);
+      const double centre = 0.5 * (items[i].box.min(k) + items[i].box.max(k));
+      unit[k] = extent > 0 ? (centre - all.min(k)) / extent : 0.0;
+    }
+    codes[i] = morton_code(unit);
+  }
+  std::vector<std::size_t> order(items.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t x, std::size_t y) { return codes[x] < codes[y]; });
+  std::vector<Operand> sorted;
+  sorted.reserve(items.size());
+  for (std::size_t i : order) sorted.push_back(std::move(items[i]));
+
+  Counters counters;
+  Operand result = unite(sorted, 0, sorted.size(), counters);
+  if (stats) {
+    stats->binary_unions = counters.binary_unions;
+    stats->disjoint_merges = counters.disjoint_merges;
+  }
+  return std::move(result.mesh);
+}
+
+}  // namespace morphex

@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Exact Minkowski sums of closed triangle meshes.
+//
+// For solids A, B (B connected) and any point b0 of B:
+//   A + B = (A + b0)  u  (dA + B),         dA + B = union over facets f of A of (f + B).
+// For convex B each f + B = conv(f + B), a convex polytope from the vertex sums. For non-convex B,
+// f + B = (f + dB) u (p_f + B) for any point p_f of f, and f + dB = union over facets g of B of
+// conv(f + g). A B with several components is summed component by component. The pieces overlap
+// heavily; compute_union (libbool) closes them into one valid solid.
+#pragma once
+
+#include <cstddef>
+
+#include "morphex/mesh.h"
+
+namespace morphex {
+
+struct MinkowskiStats {
+  std::size_t pieces = 0;           // convex pieces (and translated copies) united
+  std::size_t piece_triangles = 0;  // their triangles in total
+  std::size_t binary_unions = 0;
+  double seconds_pieces = 0, seconds_union = 0;
+};
+
+// A + B for closed solids. Throws std::invalid_argument if either is not a valid solid.
+Mesh minkowski_sum(const Mesh& a, const Mesh& b, MinkowskiStats* stats = nullptr);
+
+// dA + B: the union of the sums of every facet of `surface` with the solid b (the "offset shell"
+// behind dilation and erosion). `b_convex` selects the convex-hull route.
+Mesh boundary_sum(const Mesh& surface, const Mesh& b, bool b_convex,
+                  MinkowskiStats* stats = nullptr);
+
+}  // namespace morphex

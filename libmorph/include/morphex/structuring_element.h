@@ -1,0 +1,53 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Structuring elements (SE): the probe shapes of morphology, as exact closed meshes.
+//
+// Text form  shape:key=value,...   e.g. "cube:r=1/20", "ball:r=0.05,level=1", "mesh:path=se.off"
+// JSON form  {"shape": "ball", "r": 0.05, "level": 1}  (pipelines convert it to the same pairs)
+// Numbers are exact: "1/20" is one twentieth, a decimal such as 0.05 is the nearest double.
+// Every SE is centred on the origin unless an offset ox, oy, oz is given.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "morphex/mesh.h"
+
+namespace morphex {
+
+struct StructuringElement {
+  std::string shape;  // cube, box, octahedron, ball, cylinder or mesh
+  std::string spec;   // the text form it was made from, normalised (for reports)
+  Mesh mesh;          // closed, outward oriented, exact
+  bool convex = true;  // decided exactly (the hull has the same volume)
+};
+
+using SeParameters = std::vector<std::pair<std::string, std::string>>;  // key, value text
+
+// Builds a structuring element; throws std::invalid_argument naming the shape, the key and the
+// problem ("ball: r: expected a positive number, got '-1'").
+StructuringElement make_structuring_element(const std::string& shape, const SeParameters& params);
+// Parses the text form, then make_structuring_element.
+StructuringElement parse_structuring_element(const std::string& text);
+
+// What each shape accepts, for --help, `morphex stages` and error messages.
+struct SeParameterInfo {
+  std::string key, type, default_value, description;  // default empty when required
+};
+struct SeShapeInfo {
+  std::string shape, description;
+  std::vector<SeParameterInfo> parameters;
+};
+const std::vector<SeShapeInfo>& structuring_element_shapes();
+
+// -B: every point negated (faces re-oriented so that the mesh stays outward).
+Mesh reflected(const Mesh& mesh);
+
+// The convex hull of a point set as a closed outward triangle mesh (exact; empty when the points
+// do not span a solid).
+Mesh convex_hull(const std::vector<Point>& points);
+
+// Exact convexity of a valid closed solid: its volume equals its hull's.
+bool is_convex(const Mesh& solid);
+
+}  // namespace morphex

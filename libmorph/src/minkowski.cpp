@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Minkowski sums as unions of convex pieces (see minkowski.h for the decomposition).
+#include "morphex/minkowski.h"
+
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <numeric>
+#include <stdexcept>
+
+#include "minkowski_internal.h"
+#include "morphex/boolean.h"
+#include "morphex/check.h"
+#include "morphex/generators.h"
+#include "morphex/structuring_element.h"
+#include "union_find.h"
+
+namespace morphex {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// conv(f + B) for one facet f and a convex B: the hull of three translated copies of B's vertices.
+Mesh facet_sum_convex(const Mesh& surface, const Triangle& f, const Mesh& b) {
+  std::vector<Point> points;
+  points.reserve(3 * b.points.size());
+  for (VertexIndex v : f) {
+    const Vector offset = surface.points[v] - CGAL::ORIGIN;
+    for (const Point& q : b.points) points.push_back(q + offset);
+  }
+  Mesh piece = convex_hull(points);
+  make_exact(piece);
+  return piece;
+}
+
+// conv(f + g) for two triangles: the hull of their nine vertex sums (empty when they are coplanar
+// and the sum is flat: a flat piece bounds no volume and other pieces cover its surface).
+Mesh triangle_pair_sum(const Mesh& surface, const Triangle& f, const Mesh& b, const Triangle& g) {
+  std::vector<Point> points;
+  points.reserve(9);
+  for (VertexIndex v : f)
+    for (VertexIndex w : g) points.push_back(surface.points[v] + (b.points[w] - CGAL::ORIGIN));
+  Mesh piece = convex_hull(points);
+  make_exact(piece);
+  return piece;
+}
+
+}  // namespace
+
+namespace detail {
+
+std::vector<Mesh> connected_components(const Mesh& mesh) {
+  UnionFind sets(mesh.points.size());
+  for (const Triangle& t : mesh.triangles) {
+    sets.join(t[0], t[1]);
+    sets.join(t[0], t[2]);
+  }
+  std::vector<std::int64_t> component_of_root(mesh.points.size(), -1);
+  std::vector<Mesh> components;
+  std::vector<std::vector<std::int64_t>> local;  // per component: global vertex -> local index
+  for (const Triangle& t : mesh.triangles) {
+    const std::size_t root = sets.find(t[0]);
+    if (component_of_root[root] < 0) {
+      component_of_root[root] = std::int64_t(components.size());
+      components.emplace_back();
+      local.emplace_back(mesh.points.size(), -1);
+    }
+    const std::size_t c = std::size_t(component_of_root[root]);
+    Triangle mapped;
+    for (int k = 0; k < 3; ++k) {
+      std::int64_t& index = local[c][t[k]];
+      if (index < 0) {
+        index = std::int64_t(components[c].points.size());
+        components[c].points.push_back(mesh.points[t[k]]);
+      }
+      mapped[k] = VertexIndex(index);
+    }
+    components[c].triangles.push_back(mapped);
+  }
+  return components;
+}
+
+bool convex_contains_origin(const Mesh& convex) {
+  for (const Triangle& t : convex.triangles)
+    if (CGAL::orientation(convex.points[t[0]], convex.points[t[1]], convex.points[t[2]],
+                          Point(CGAL::ORIGIN)) == CGAL::POSITIVE)
+      return false;
+  return true;
+}
+
+Mesh sum_with_component(const Mesh& a, const Mesh& b, bool b_convex, MinkowskiStats* stats) {
+  Mesh shell = boundary_sum(a, b, b_convex, stats);
+  // A + b0 for a point b0 of B; when B is convex and holds the origin, A itself.
+  const bool origin_inside = b_convex && convex_contains_origin(b);
+  Mesh moved = origin_inside ? a : translated(a, b.points.front() - CGAL::ORIGIN);
+  const auto start = std::chrono::steady_clock::now();
+  Mesh sum = compute_union({std::move(shell), std::move(moved)});
+  if (stats) {
+    stats->seconds_union += seconds_since(start);
+    ++stats->binary_unions;
+  }
+  return sum;
+}
+
+void require_valid(const Mesh& mesh, const char* which) {
+  const MeshReport report = check_mesh(mesh);
+  if (!report.valid_solid())
+    throw std::invalid_argument(std::string(which) +
+                                " is not a valid solid: " + describe_problems(report));
+}
+
+}  // namespace detail
+
+Mesh boundary_sum(const Mesh& surface, const Mesh& b, bool b_convex, MinkowskiStats* stats) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<Mesh> pieces;
+  if (b_convex) {
+    pieces.resize(surface.triangles.size());
+    tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t i) {
+      pieces[i] = facet_sum_convex(surface, surface.triangles[i], b);
+    });
+  } else {
+    // f + B = (f + dB) u (p_f + B): pairs of triangles, plus B at every vertex of the surface.
+    const std::size_t pairs = surface.triangles.size() * b.triangles.size();
+    pieces.resize(pairs + surface.points.size());
+    tbb::parallel_for(std::size_t(0), pairs, [&](std::size_t i) {
+      pieces[i] = triangle_pair_sum(surface, surface.triangles[i / b.triangles.size()], b,
+                                    b.triangles[i % b.triangles.size()]);
+    });
+    tbb::parallel_for(std::size_t(0), surface.points.size(), [&](std::size_t v) {
+      pieces[pairs + v] = translated(b, surface.points[v] - CGAL::ORIGIN);
+      make_exact(pieces[pairs + v]);
+    });
+  }
+  const double seconds_pieces = seconds_since(start);
+  std::size_t triangles = 0;
+  for (const Mesh& p : pieces) triangles += p.triangles.size();
+  const std::size_t count = pieces.size();
+
+  const auto union_start = std::chrono::steady_clock::now();
+  UnionStats union_stats;
+  Mesh shell = compute_union(std::move(pieces), &union_stats);
+  if (stats) {
+    stats->pieces += count;
+    stats->piece_triangles += triangles;
+    stats->binary_unions += union_stats.binary_unions;
+    stats->seconds_pieces += seconds_pieces;
+    stats->seconds_union += seconds_since(union_start);
+  }
+  return shell;
+}
+
+Mesh minkowski_sum(const Mesh& a, const Mesh& b, MinkowskiStats* stats) {
+  detail::require_valid(a, "first operand");
+  detail::require_valid(b, "second operand");
+  if (a.empty() || b.empty()) return {};
+  std::vector<Mesh> sums;
+  for (const Mesh& component : detail::connected_components(b))
+    sums.push_back(detail::sum_with_component(a, component, is_convex(component), stats));
+  return sums.size() == 1 ? std::move(sums.front()) : compute_union(std::move(sums));
+}
+
+}  // namespace morphex

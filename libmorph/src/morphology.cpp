@@ -1,0 +1,146 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Dilation, erosion, opening and closing from Minkowski shells and exact Booleans.
+#include "morphex/morphology.h"
+
+#include <chrono>
+#include <stdexcept>
+
+#include "minkowski_internal.h"
+#include "morphex/boolean.h"
+#include "morphex/generators.h"
+
+namespace morphex {
+
+MorphologyOp parse_morphology_op(const std::string& name) {
+  if (name == "dilate") return MorphologyOp::Dilate;
+  if (name == "erode") return MorphologyOp::Erode;
+  if (name == "open") return MorphologyOp::Open;
+  if (name == "close") return MorphologyOp::Close;
+  throw std::invalid_argument("unknown morphological operation '" + name +
+                              "' (expected dilate, erode, open or close)");
+}
+
+const char* to_string(MorphologyOp op) {
+  switch (op) {
+    case MorphologyOp::Dilate:
+      return "dilate";
+    case MorphologyOp::Erode:
+      return "erode";
+    case MorphologyOp::Open:
+      return "open";
+    case MorphologyOp::Close:
+      return "close";
+  }
+  return "?";
+}
+
+namespace {
+
+// One connected part of the SE with its convexity, decided once per SE.
+struct SePart {
+  Mesh mesh;
+  bool convex;
+};
+
+std::vector<SePart> parts_of(const StructuringElement& se) {
+  if (se.convex) return {{se.mesh, true}};
+  std::vector<SePart> parts;
+  for (Mesh& c : detail::connected_components(se.mesh)) {
+    const bool convex = is_convex(c);
+    parts.push_back({std::move(c), convex});
+  }
+  return parts;
+}
+
+Mesh binary(const Mesh& a, const Mesh& b, BooleanOp op) {
+  BooleanOptions options;
+  options.validate_inputs = false;  // both operands are results of exact operations
+  BooleanResult r = compute_boolean(a, b, op, options);
+  if (!r.ok()) throw std::logic_error(r.message);
+  return std::move(r.mesh);
+}
+
+Mesh dilate_valid(const Mesh& a, const std::vector<SePart>& parts, MinkowskiStats& stats) {
+  if (a.empty()) return {};
+  Mesh result;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    Mesh sum = detail::sum_with_component(a, parts[i].mesh, parts[i].convex, &stats);
+    result = i == 0 ? std::move(sum) : binary(result, sum, BooleanOp::Union);
+  }
+  return result;
+}
+
+// {x : x + B inside A} for connected B = (A - b0) minus (dA + (-B)); for several components, the
+// intersection of the erosions by each.
+Mesh erode_valid(const Mesh& a, const std::vector<SePart>& parts, MinkowskiStats& stats) {
+  Mesh result;
+  for (std::size_t i = 0; i < parts.size() && !(i > 0 && result.empty()); ++i) {
+    if (a.empty()) return {};
+    const SePart& b = parts[i];
+    const Mesh minus_b = reflected(b.mesh);
+    const Mesh shell = boundary_sum(a, minus_b, b.convex, &stats);
+    const bool origin_inside = b.convex && detail::convex_contains_origin(b.mesh);
+    const Mesh moved =
+        origin_inside ? a : translated(a, CGAL::ORIGIN - b.mesh.points.front());
+    Mesh eroded = binary(moved, shell, BooleanOp::Difference);
+    ++stats.binary_unions;
+    result = i == 0 ? std::move(eroded) : binary(result, eroded, BooleanOp::Intersection);
+  }
+  return result;
+}
+
+template <class Body>
+Mesh timed(const Mesh& a, MorphologyStats* stats, Body&& body) {
+  const auto start = std::chrono::steady_clock::now();
+  detail::require_valid(a, "input");
+  MinkowskiStats minkowski;
+  Mesh result = body(minkowski);
+  make_exact(result);
+  if (stats) {
+    stats->pieces += minkowski.pieces;
+    stats->binary_unions += minkowski.binary_unions;
+    stats->seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  return result;
+}
+
+}  // namespace
+
+Mesh dilation(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
+  return timed(a, stats, [&](MinkowskiStats& s) { return dilate_valid(a, parts_of(se), s); });
+}
+
+Mesh erosion(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
+  return timed(a, stats, [&](MinkowskiStats& s) { return erode_valid(a, parts_of(se), s); });
+}
+
+Mesh opening(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
+  return timed(a, stats, [&](MinkowskiStats& s) {
+    const auto parts = parts_of(se);
+    return dilate_valid(erode_valid(a, parts, s), parts, s);
+  });
+}
+
+Mesh closing(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
+  return timed(a, stats, [&](MinkowskiStats& s) {
+    const auto parts = parts_of(se);
+    return erode_valid(dilate_valid(a, parts, s), parts, s);
+  });
+}
+
+Mesh apply_morphology(MorphologyOp op, const Mesh& a, const StructuringElement& se,
+                      MorphologyStats* stats) {
+  switch (op) {
+    case MorphologyOp::Dilate:
+      return dilation(a, se, stats);
+    case MorphologyOp::Erode:
+      return erosion(a, se, stats);
+    case MorphologyOp::Open:
+      return opening(a, se, stats);
+    case MorphologyOp::Close:
+      return closing(a, se, stats);
+  }
+  throw std::logic_error("unknown morphological operation");
+}
+
+}  // namespace morphex

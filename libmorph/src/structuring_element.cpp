@@ -1,0 +1,275 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Structuring elements: parameter parsing and the exact meshes behind each shape.
+#include "morphex/structuring_element.h"
+
+#include <CGAL/convex_hull_3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+#include "morphex/check.h"
+#include "morphex/generators.h"
+#include "morphex/io.h"
+
+namespace morphex {
+namespace {
+
+const SeParameterInfo kOffset[] = {
+    {"ox", "number", "0", "offset of the centre along x"},
+    {"oy", "number", "0", "offset of the centre along y"},
+    {"oz", "number", "0", "offset of the centre along z"},
+};
+
+std::vector<SeParameterInfo> with_offset(std::vector<SeParameterInfo> params) {
+  params.insert(params.end(), std::begin(kOffset), std::end(kOffset));
+  return params;
+}
+
+// Reads the parameters of one shape against its declaration: unknown, duplicate and missing keys
+// and malformed values are errors that name the shape and the key.
+class ParameterReader {
+ public:
+  ParameterReader(const SeShapeInfo& info, const SeParameters& given) : info_(info) {
+    for (const auto& [key, value] : given) {
+      const auto known = std::find_if(info.parameters.begin(), info.parameters.end(),
+                                      [&](const SeParameterInfo& p) { return p.key == key; });
+      if (known == info.parameters.end()) {
+        std::string list;
+        for (const auto& p : info.parameters) list += (list.empty() ? "" : ", ") + p.key;
+        fail(key, "unknown parameter (" + info.shape + " takes " + list + ")");
+      }
+      if (!values_.emplace(key, value).second) fail(key, "given twice");
+    }
+  }
+
+  std::string text(const std::string& key) const {
+    const auto it = values_.find(key);
+    if (it != values_.end()) return it->second;
+    const auto& p = declaration(key);
+    if (p.default_value.empty()) fail(key, "missing (required)");
+    return p.default_value;
+  }
+
+  FT number(const std::string& key, bool positive) const {
+    const std::string value = text(key);
+    FT x;
+    try {
+      x = parse_exact_number(value);
+    } catch (const std::exception&) {
+      fail(key, "expected a number, got '" + value + "'");
+    }
+    if (positive && x <= 0) fail(key, "expected a positive number, got '" + value + "'");
+    return x;
+  }
+
+  int integer(const std::string& key, int min, int max) const {
+    const std::string value = text(key);
+    std::size_t used = 0;
+    long v = 0;
+    try {
+      v = std::stol(value, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != value.size() || v < min || v > max)
+      fail(key, "expected an integer from " + std::to_string(min) + " to " + std::to_string(max) +
+                    ", got '" + value + "'");
+    return int(v);
+  }
+
+  Vector offset() const {
+    return Vector(number("ox", false), number("oy", false), number("oz", false));
+  }
+
+  // "shape:key=value,..." with every given key in declaration order.
+  std::string canonical() const {
+    std::string out = info_.shape;
+    char separator = ':';
+    for (const auto& p : info_.parameters) {
+      const auto it = values_.find(p.key);
+      if (it == values_.end()) continue;
+      out += separator + p.key + "=" + it->second;
+      separator = ',';
+    }
+    return out;
+  }
+
+  [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
+    throw std::invalid_argument(info_.shape + ": " + key + ": " + problem);
+  }
+
+ private:
+  const SeParameterInfo& declaration(const std::string& key) const {
+    for (const auto& p : info_.parameters)
+      if (p.key == key) return p;
+    throw std::logic_error("undeclared structuring element parameter " + key);
+  }
+
+  const SeShapeInfo& info_;
+  std::map<std::string, std::string> values_;
+};
+
+// A double point in direction `unit` whose exact distance from the origin is at least r (and
+// exceeds it by a few ulps at most), so that polyhedral balls and cylinders are never smaller
+// than the radius at their vertices.
+Point point_at_least(const std::array<double, 3>& unit, const FT& r) {
+  double scale = CGAL::to_double(r);
+  const FT r2 = r * r;
+  for (;;) {
+    const Point p(unit[0] * scale, unit[1] * scale, unit[2] * scale);
+    if ((p - CGAL::ORIGIN).squared_length() >= r2) return p;
+    scale = std::nextafter(scale, std::numeric_limits<double>::infinity()) * (1 + 1e-15);
+  }
+}
+
+Mesh make_ball(const FT& r, int level) {
+  // The subdivided icosahedron gives well-spread directions; its vertices are pushed to the sphere
+  // (on or just outside it) and the SE is their exact convex hull.
+  const DoubleMesh directions = to_double(make_icosphere(level, FT(1)));
+  std::vector<Point> points;
+  points.reserve(directions.points.size());
+  for (const auto& d : directions.points) {
+    const double n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    points.push_back(point_at_least({d[0] / n, d[1] / n, d[2] / n}, r));
+  }
+  return convex_hull(points);
+}
+
+Mesh make_prism(const FT& r, const FT& height, int segments) {
+  const FT half = height / 2;
+  std::vector<Point> points;
+  for (int i = 0; i < segments; ++i) {
+    const double angle = 6.283185307179586 * i / segments;
+    const Point p = point_at_least({std::cos(angle), std::sin(angle), 0.0}, r);
+    points.emplace_back(p.x(), p.y(), -half);
+    points.emplace_back(p.x(), p.y(), half);
+  }
+  return convex_hull(points);
+}
+
+}  // namespace
+
+const std::vector<SeShapeInfo>& structuring_element_shapes() {
+  static const std::vector<SeShapeInfo> shapes = {
+      {"cube", "axis-aligned cube", with_offset({{"r", "number", "", "half side"}})},
+      {"box",
+       "axis-aligned box",
+       with_offset({{"x", "number", "", "half size along x"},
+                    {"y", "number", "", "half size along y"},
+                    {"z", "number", "", "half size along z"}})},
+      {"octahedron", "regular octahedron (the L1 ball)",
+       with_offset({{"r", "number", "", "distance from the centre to each vertex"}})},
+      {"ball",
+       "polyhedral ball: an icosahedron subdivided `level` times, vertices on or just outside the "
+       "sphere of radius r (exact convex hull)",
+       with_offset({{"r", "number", "", "radius"},
+                    {"level", "integer", "1", "subdivisions, 0 to 5 (20 * 4^level faces)"}})},
+      {"cylinder",
+       "cylinder along z: a prism over a regular polygon whose vertices are on or just outside "
+       "the circle of radius r",
+       with_offset({{"r", "number", "", "radius"},
+                    {"h", "number", "", "height (the cylinder spans z = -h/2 to h/2)"},
+                    {"segments", "integer", "16", "polygon sides, 3 to 1024"}})},
+      {"mesh",
+       "a closed mesh from a file, convex or not, in its own coordinates (the file's origin is "
+       "the SE's reference point)",
+       with_offset({{"path", "file", "", "OFF, OBJ, STL or PLY file"}})},
+  };
+  return shapes;
+}
+
+StructuringElement make_structuring_element(const std::string& shape, const SeParameters& params) {
+  const auto& shapes = structuring_element_shapes();
+  const auto info = std::find_if(shapes.begin(), shapes.end(),
+                                 [&](const SeShapeInfo& s) { return s.shape == shape; });
+  if (info == shapes.end())
+    throw std::invalid_argument("unknown structuring element shape '" + shape +
+                                "' (expected cube, box, octahedron, ball, cylinder or mesh)");
+  const ParameterReader read(*info, params);
+  StructuringElement se;
+  se.shape = shape;
+  se.spec = read.canonical();
+  if (shape == "cube") {
+    se.mesh = make_cube(read.number("r", true));
+  } else if (shape == "box") {
+    const FT x = read.number("x", true), y = read.number("y", true), z = read.number("z", true);
+    se.mesh = make_box(Point(-x, -y, -z), Point(x, y, z));
+  } else if (shape == "octahedron") {
+    se.mesh = make_octahedron(read.number("r", true));
+  } else if (shape == "ball") {
+    se.mesh = make_ball(read.number("r", true), read.integer("level", 0, 5));
+  } else if (shape == "cylinder") {
+    se.mesh = make_prism(read.number("r", true), read.number("h", true),
+                         read.integer("segments", 3, 1024));
+  } else {
+    const std::string path = read.text("path");
+    se.mesh = read_mesh(path);  // InputError names the file
+    const MeshReport report = check_mesh(se.mesh);
+    if (!report.valid_solid())
+      read.fail("path", path + ": not a valid solid: " + describe_problems(report));
+    se.convex = is_convex(se.mesh);
+  }
+  const Vector offset = read.offset();
+  if (offset != CGAL::NULL_VECTOR) se.mesh = translated(se.mesh, offset);
+  make_exact(se.mesh);
+  return se;
+}
+
+StructuringElement parse_structuring_element(const std::string& text) {
+  const auto colon = text.find(':');
+  const std::string shape = text.substr(0, colon);
+  SeParameters params;
+  if (colon != std::string::npos) {
+    std::size_t start = colon + 1;
+    while (start <= text.size()) {
+      const std::size_t comma = std::min(text.find(',', start), text.size());
+      const std::string item = text.substr(start, comma - start);
+      const auto equals = item.find('=');
+      if (equals == std::string::npos || equals == 0)
+        throw std::invalid_argument("structuring element '" + text + "': expected key=value, got '" +
+                                    item + "'");
+      params.emplace_back(item.substr(0, equals), item.substr(equals + 1));
+      start = comma + 1;
+    }
+  }
+  return make_structuring_element(shape, params);
+}
+
+Mesh reflected(const Mesh& mesh) {
+  Mesh out;
+  out.points.reserve(mesh.points.size());
+  for (const Point& p : mesh.points) out.points.push_back(CGAL::ORIGIN - (p - CGAL::ORIGIN));
+  // A point reflection has determinant -1: reverse every face to stay outward.
+  for (const Triangle& t : mesh.triangles) out.triangles.push_back({t[0], t[2], t[1]});
+  make_exact(out);
+  return out;
+}
+
+Mesh convex_hull(const std::vector<Point>& points) {
+  Mesh hull;
+  // CGAL writes lower-dimensional hulls as points, segments or polygons: only solids go on.
+  std::size_t second = 1, third = 2;
+  while (second < points.size() && points[second] == points[0]) ++second;
+  while (third < points.size() && (second >= points.size() ||
+                                   CGAL::collinear(points[0], points[second], points[third])))
+    ++third;
+  if (third >= points.size()) return hull;
+  if (std::none_of(points.begin(), points.end(), [&](const Point& p) {
+        return !CGAL::coplanar(points[0], points[second], points[third], p);
+      }))
+    return hull;
+  std::vector<std::array<VertexIndex, 3>> faces;
+  CGAL::convex_hull_3(points.begin(), points.end(), hull.points, faces);
+  hull.triangles.assign(faces.begin(), faces.end());
+  if (hull.triangles.size() < 4 || signed_volume(hull) == 0) return {};  // flat or lower
+  return hull;
+}
+
+bool is_convex(const Mesh& solid) {
+  return signed_volume(convex_hull(solid.points)) == signed_volume(solid);
+}
+
+}  // namespace morphex

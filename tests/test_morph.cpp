@@ -1,0 +1,244 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// libmorph: structuring elements, exact closed forms of Minkowski sums, and the morphological laws
+// as exact volume identities. Every result is checked to be a valid solid.
+#include <gtest/gtest.h>
+
+#include "morphex/boolean.h"
+#include "morphex/check.h"
+#include "morphex/generators.h"
+#include "morphex/minkowski.h"
+#include "morphex/morphology.h"
+#include "morphex/structuring_element.h"
+
+using namespace morphex;
+
+namespace {
+
+FT valid_volume(const Mesh& mesh, const std::string& what) {
+  const MeshReport report = check_mesh(mesh);
+  EXPECT_TRUE(report.valid_solid()) << what << ": " << describe_problems(report);
+  return report.volume;
+}
+
+// vol(a minus b): zero exactly when a is inside b (up to a null set).
+FT volume_outside(const Mesh& a, const Mesh& b) {
+  const BooleanResult r = compute_boolean(a, b, BooleanOp::Difference);
+  EXPECT_TRUE(r.ok()) << r.message;
+  return valid_volume(r.mesh, "difference");
+}
+
+Mesh l_shape() {
+  const BooleanResult r = compute_boolean(make_box(Point(0, 0, 0), Point(2, 1, 1)),
+                                          make_box(Point(0, 0, 0), Point(1, 2, 1)),
+                                          BooleanOp::Union);
+  return r.mesh;
+}
+
+std::string error_of(const std::string& spec) {
+  try {
+    parse_structuring_element(spec);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(StructuringElement, ShapesHaveTheirExactVolumes) {
+  EXPECT_EQ(valid_volume(parse_structuring_element("cube:r=1/2").mesh, "cube"), FT(1));
+  EXPECT_EQ(valid_volume(parse_structuring_element("box:x=1,y=2,z=3").mesh, "box"), FT(48));
+  EXPECT_EQ(valid_volume(parse_structuring_element("octahedron:r=3").mesh, "octahedron"), FT(36));
+  const StructuringElement moved = parse_structuring_element("cube:r=1,ox=5,oy=-1/2");
+  EXPECT_EQ(check_mesh(moved.mesh).bbox.xmin(), 4.0);
+  EXPECT_EQ(check_mesh(moved.mesh).bbox.ymax(), 0.5);
+  EXPECT_EQ(moved.spec, "cube:r=1,ox=5,oy=-1/2");
+}
+
+TEST(StructuringElement, BallVerticesAreOnOrOutsideTheSphere) {
+  for (int level = 0; level <= 2; ++level) {
+    const StructuringElement ball =
+        parse_structuring_element("ball:r=1/20,level=" + std::to_string(level));
+    EXPECT_TRUE(ball.convex);
+    EXPECT_EQ(ball.mesh.points.size(), 10u * (1u << (2 * level)) + 2u);
+    EXPECT_EQ(ball.mesh.triangles.size(), 20u * (1u << (2 * level)));
+    valid_volume(ball.mesh, "ball");
+    for (const Point& p : ball.mesh.points) {
+      const FT d2 = (p - CGAL::ORIGIN).squared_length();
+      EXPECT_GE(d2, FT(1) / 400);
+      EXPECT_LT(CGAL::to_double(d2), 1.0 / 400 * (1 + 1e-12));
+    }
+  }
+  const StructuringElement cylinder = parse_structuring_element("cylinder:r=1,h=2,segments=12");
+  EXPECT_EQ(cylinder.mesh.points.size(), 24u);
+  EXPECT_TRUE(cylinder.convex);
+  EXPECT_NEAR(CGAL::to_double(valid_volume(cylinder.mesh, "cylinder")), 6.0, 1e-9);  // 12 sin 30
+}
+
+TEST(StructuringElement, MeshFromFileKeepsItsCoordinatesAndConvexity) {
+  const StructuringElement cube =
+      parse_structuring_element(std::string("mesh:path=") + MORPHEX_TEST_DATA_DIR "/unit_cube.off");
+  EXPECT_TRUE(cube.convex);
+  EXPECT_EQ(valid_volume(cube.mesh, "mesh SE"), FT(1));
+  EXPECT_FALSE(is_convex(l_shape()));
+}
+
+TEST(StructuringElement, BadSpecificationsAreClearErrors) {
+  EXPECT_EQ(error_of("sphere:r=1"),
+            "unknown structuring element shape 'sphere' (expected cube, box, octahedron, ball, "
+            "cylinder or mesh)");
+  EXPECT_EQ(error_of("ball:radius=1"),
+            "ball: radius: unknown parameter (ball takes r, level, ox, oy, oz)");
+  EXPECT_EQ(error_of("cube"), "cube: r: missing (required)");
+  EXPECT_EQ(error_of("cube:r=-1"), "cube: r: expected a positive number, got '-1'");
+  EXPECT_EQ(error_of("cube:r=abc"), "cube: r: expected a number, got 'abc'");
+  EXPECT_EQ(error_of("ball:r=1,level=9"), "ball: level: expected an integer from 0 to 5, got '9'");
+  EXPECT_EQ(error_of("cube:r=1,r=2"), "cube: r: given twice");
+  EXPECT_EQ(error_of("cube:r"), "structuring element 'cube:r': expected key=value, got 'r'");
+  EXPECT_NE(error_of("mesh:path=" MORPHEX_TEST_DATA_DIR "/open_cube.off").find("not a valid solid"),
+            std::string::npos);
+}
+
+TEST(Minkowski, BoxPlusBoxIsTheBoxWithSummedHalfSizes) {
+  const Mesh a = make_box(Point(-1, -2, -3), Point(1, 2, 3));
+  const StructuringElement b = parse_structuring_element("box:x=1/2,y=1/4,z=1/8");
+  const Mesh sum = minkowski_sum(a, b.mesh);
+  const Mesh expected = make_box(Point(FT(-3) / 2, FT(-9) / 4, FT(-25) / 8),
+                                 Point(FT(3) / 2, FT(9) / 4, FT(25) / 8));
+  EXPECT_EQ(valid_volume(sum, "box + box"), valid_volume(expected, "expected"));
+  EXPECT_EQ(volume_outside(sum, expected), 0);
+  EXPECT_EQ(volume_outside(expected, sum), 0);
+}
+
+TEST(Minkowski, CubePlusOctahedronHasTheMixedVolumeClosedForm) {
+  // [-a,a]^3 + octahedron(r): 8a^3 + 24a^2 r + 12 a r^2 + 4r^3/3 (Steiner formula, L1 ball)
+  const FT a = FT(1) / 2, r = FT(1) / 3;
+  const Mesh sum = minkowski_sum(make_cube(a), make_octahedron(r));
+  EXPECT_EQ(valid_volume(sum, "cube + octahedron"),
+            8 * a * a * a + 24 * a * a * r + 12 * a * r * r + 4 * r * r * r / 3);
+}
+
+TEST(Minkowski, ConvexPlusConvexIsTheHullOfTheVertexSums) {
+  const Mesh a = transformed(make_icosphere(1, FT(1)), Transformation(2, 0, 0, 0, 1, 0, 0, 0, 1));
+  const Mesh b = parse_structuring_element("ball:r=1/3,level=0").mesh;
+  std::vector<Point> sums;
+  for (const Point& p : a.points)
+    for (const Point& q : b.points) sums.push_back(p + (q - CGAL::ORIGIN));
+  EXPECT_EQ(valid_volume(minkowski_sum(a, b), "sum"), signed_volume(convex_hull(sums)));
+}
+
+TEST(Minkowski, NonConvexSecondOperandMatchesTheSwappedSum) {
+  // A + B = B + A: the convex route (cube second) and the pair route (L-shape second) agree.
+  const Mesh l = l_shape(), cube = make_cube(FT(1) / 4);
+  MinkowskiStats stats;
+  const FT pairs = valid_volume(minkowski_sum(cube, l, &stats), "cube + L");
+  EXPECT_EQ(pairs, valid_volume(minkowski_sum(l, cube), "L + cube"));
+  EXPECT_EQ(stats.pieces, cube.triangles.size() * l.triangles.size() + cube.points.size());
+  // the L is two 2x1x1 boxes overlapping in a unit cube; each grows by 1/2 along every axis
+  const FT arm = FT(5) / 2 * FT(3) / 2 * FT(3) / 2, overlap = FT(3) / 2 * FT(3) / 2 * FT(3) / 2;
+  EXPECT_EQ(pairs, 2 * arm - overlap);
+}
+
+TEST(Morphology, ErosionToNothingIsAValidEmptyMesh) {
+  const Mesh small = make_cube(FT(1) / 10);
+  const Mesh eroded = erosion(small, parse_structuring_element("cube:r=1/5"));
+  EXPECT_TRUE(eroded.empty());
+  EXPECT_EQ(opening(small, parse_structuring_element("octahedron:r=1")).triangles.size(), 0u);
+}
+
+TEST(Morphology, ErosionOfABoxByABoxShrinksItsHalfSizes) {
+  const Mesh a = make_box(Point(0, 0, 0), Point(4, 3, 2));
+  const Mesh eroded = erosion(a, parse_structuring_element("box:x=1,y=1/2,z=1/4"));
+  EXPECT_EQ(valid_volume(eroded, "eroded box"), FT(2) * 2 * FT(3) / 2);
+  EXPECT_EQ(volume_outside(eroded, make_box(Point(1, FT(1) / 2, FT(1) / 4),
+                                            Point(3, FT(5) / 2, FT(7) / 4))),
+            0);
+}
+
+TEST(Morphology, OpeningIsInsideAndClosingContainsTheInputAndBothAreIdempotent) {
+  const Mesh a = l_shape();
+  for (const char* spec : {"cube:r=1/4", "octahedron:r=1/3", "ball:r=1/4,level=0"}) {
+    const StructuringElement se = parse_structuring_element(spec);
+    const Mesh opened = opening(a, se), closed = closing(a, se);
+    const FT v_open = valid_volume(opened, "opening"), v_close = valid_volume(closed, "closing");
+    EXPECT_EQ(volume_outside(opened, a), 0) << spec;
+    EXPECT_EQ(volume_outside(a, closed), 0) << spec;
+    EXPECT_LE(v_open, signed_volume(a));
+    EXPECT_GE(v_close, signed_volume(a));
+    EXPECT_EQ(valid_volume(opening(opened, se), "open twice"), v_open) << spec;
+    EXPECT_EQ(valid_volume(closing(closed, se), "close twice"), v_close) << spec;
+  }
+}
+
+TEST(Morphology, DilationAndErosionAreIncreasing) {
+  const Mesh small = make_box(Point(0, 0, 0), Point(2, 1, 1));
+  const Mesh large = l_shape();  // contains `small`
+  const StructuringElement se = parse_structuring_element("octahedron:r=1/4");
+  EXPECT_EQ(volume_outside(dilation(small, se), dilation(large, se)), 0);
+  EXPECT_EQ(volume_outside(erosion(small, se), erosion(large, se)), 0);
+  EXPECT_GT(signed_volume(dilation(large, se)), signed_volume(dilation(small, se)));
+}
+
+TEST(Morphology, ErosionIsTheComplementOfTheDilationOfTheComplement) {
+  // In a frame M far larger than A + B: A eroded by B = A minus ((M minus A) dilated by -B).
+  const Mesh a = l_shape();
+  const StructuringElement se = parse_structuring_element("box:x=1/4,y=1/8,z=1/8,ox=1/16");
+  const Mesh frame = make_box(Point(-3, -3, -3), Point(5, 5, 5));
+  const BooleanResult complement = compute_boolean(frame, a, BooleanOp::Difference);
+  ASSERT_TRUE(complement.ok());
+  StructuringElement minus_se = se;
+  minus_se.mesh = reflected(se.mesh);
+  const Mesh grown = dilation(complement.mesh, minus_se);
+  const BooleanResult dual = compute_boolean(a, grown, BooleanOp::Difference);
+  ASSERT_TRUE(dual.ok());
+  const Mesh eroded = erosion(a, se);
+  EXPECT_EQ(valid_volume(dual.mesh, "dual"), valid_volume(eroded, "erosion"));
+  EXPECT_EQ(volume_outside(dual.mesh, eroded), 0);
+  EXPECT_EQ(volume_outside(eroded, dual.mesh), 0);
+}
+
+TEST(Morphology, OffCentreStructuringElementTranslatesTheResult) {
+  // B not containing the origin: dilation by B + t is the dilation by B moved by t.
+  const Mesh a = make_cube(FT(1));
+  const StructuringElement far = parse_structuring_element("cube:r=1/4,ox=3");
+  const StructuringElement centred = parse_structuring_element("cube:r=1/4");
+  const Mesh d_far = dilation(a, far);
+  const Mesh d_moved = translated(dilation(a, centred), Vector(3, 0, 0));
+  EXPECT_EQ(valid_volume(d_far, "off-centre dilation"), FT(125) / 8);
+  EXPECT_EQ(volume_outside(d_far, d_moved), 0);
+  const Mesh e_far = erosion(a, far);
+  EXPECT_EQ(valid_volume(e_far, "off-centre erosion"), FT(27) / 8);
+  EXPECT_EQ(volume_outside(e_far, translated(erosion(a, centred), Vector(-3, 0, 0))), 0);
+}
+
+TEST(Morphology, SeveralComponentsAndGenusOne) {
+  const Mesh two = concatenate(make_cube(FT(1)), translated(make_cube(FT(1)), Vector(5, 0, 0)));
+  const StructuringElement se = parse_structuring_element("cube:r=1/2");
+  EXPECT_EQ(valid_volume(dilation(two, se), "two cubes dilated"), 2 * FT(27));
+  EXPECT_EQ(valid_volume(erosion(two, se), "two cubes eroded"), 2 * FT(1));
+  // a square ring (genus 1) dilated until its hole closes, eroded back: the closing fills it
+  const BooleanResult ring = compute_boolean(make_box(Point(0, 0, 0), Point(3, 3, 1)),
+                                             make_box(Point(1, 1, -1), Point(2, 2, 2)),
+                                             BooleanOp::Difference);
+  ASSERT_TRUE(ring.ok());
+  EXPECT_EQ(check_mesh(ring.mesh).genus, 1);
+  const Mesh closed = closing(ring.mesh, parse_structuring_element("box:x=1/2,y=1/2,z=1/8"));
+  EXPECT_EQ(valid_volume(closed, "closed ring"), FT(9));
+  EXPECT_EQ(check_mesh(closed).genus, 0);
+  const Mesh thin = opening(ring.mesh, parse_structuring_element("box:x=1/4,y=1/4,z=1/4"));
+  EXPECT_EQ(valid_volume(thin, "opened ring"), FT(8));
+}
+
+TEST(Morphology, NonConvexStructuringElement) {
+  // dilating a point-like cube by an L-shaped SE gives (about) the L: exact against the swapped sum
+  const Mesh a = make_cube(FT(1) / 8);
+  StructuringElement l;
+  l.shape = "mesh";
+  l.mesh = translated(l_shape(), Vector(-1, -1, 0));
+  l.convex = false;
+  const Mesh dilated = dilation(a, l);
+  EXPECT_EQ(valid_volume(dilated, "dilated by L"), signed_volume(minkowski_sum(l.mesh, a)));
+  const Mesh eroded = erosion(make_box(Point(-2, -2, -1), Point(2, 2, 2)), l);
+  // {x : x + L inside [-2,2]x[-2,2]x[-1,2]}: L spans [-1,1]^2 x [0,1] -> [-1,1]^2 x [-1,1]
+  EXPECT_EQ(valid_volume(eroded, "eroded by L"), FT(8));
+}
