@@ -1,11 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Agreement with independent exact methods on the same input: CGAL Nef polyhedra and CGAL
 // corefinement (both Epeck) must give exactly the volume morphex gives.
-#include <CGAL/Nef_polyhedron_3.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Surface_mesh.h>
-#include <CGAL/boost/graph/convert_nef_polyhedron_to_polygon_mesh.h>
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -16,32 +14,17 @@
 #include "morphex/generators.h"
 #include "morphex/io.h"
 #include "morphex/surface_mesh.h"
+#include "morphex/nef.h"
 
 using namespace morphex;
 namespace PMP = CGAL::Polygon_mesh_processing;
-using Nef = CGAL::Nef_polyhedron_3<Kernel>;
 
 namespace {
 
 FT nef_volume(const Mesh& a, const Mesh& b, BooleanOp op) {
-  SurfaceMesh sa = to_surface_mesh(a), sb = to_surface_mesh(b);
-  Nef na(sa), nb(sb);
-  Nef r = op == BooleanOp::Union ? na + nb : op == BooleanOp::Intersection ? na * nb : na - nb;
-  SurfaceMesh out;
-  CGAL::convert_nef_polyhedron_to_polygon_mesh(r, out, /*triangulate_all_faces=*/true);
-  Mesh m;
-  std::map<SurfaceMesh::Vertex_index, VertexIndex> index;
-  for (auto v : out.vertices()) {
-    index[v] = VertexIndex(m.points.size());
-    m.points.push_back(out.point(v));
-  }
-  for (auto f : out.faces()) {
-    Triangle t;
-    int k = 0;
-    for (auto v : CGAL::vertices_around_face(out.halfedge(f), out)) t[k++] = index[v];
-    m.triangles.push_back(t);
-  }
-  return signed_volume(m);
+  const NefPolyhedron na = to_nef(a), nb = to_nef(b);
+  const NefPolyhedron r = op == BooleanOp::Union ? na + nb : op == BooleanOp::Intersection ? na * nb : na - nb;
+  return signed_volume(from_nef(r));
 }
 
 // CGAL corefinement refuses some degenerate outputs; it is an oracle only where it succeeds.

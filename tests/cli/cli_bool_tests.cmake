@@ -13,3 +13,28 @@ morphex_cli_test(bool_unknown_op 2 "xor" bool xor ${data}/unit_cube.off ${data}/
 # the exact output reads back with the same exact volume
 morphex_cli_test(bool_exact_reread 0 "\"volume\":\"26/27\"" check --json ${out}/diff.off)
 set_tests_properties(cli.bool_exact_reread PROPERTIES DEPENDS cli.bool_difference_exact)
+
+# `morphex dilate|erode|open|close|minkowski`: exact volumes, SE errors, invalid inputs.
+morphex_cli_test(dilate_cube 0 "\"closed\":true.*\"se\":\"cube:r=1/4\".*\"volume\":\"27/8\""
+  dilate ${data}/unit_cube.off --se cube:r=1/4 -o ${out}/dilated.off --exact --stats -)
+morphex_cli_test(erode_cube 0 "\"volume\":\"1/8\""
+  erode ${data}/unit_cube.off --se box:x=1/4,y=1/4,z=1/4 -o ${out}/eroded.off --stats -)
+morphex_cli_test(erode_to_nothing 0 "\"faces\":0.*\"volume\":\"0\""
+  erode ${data}/unit_cube.off --se cube:r=1 -o ${out}/nothing.off --stats -)
+# eroded to [1/8,7/8]^3, dilated back with chamfered edges: 8a^3+24a^2r+12ar^2+4r^3/3, a=3/8, r=1/8
+morphex_cli_test(open_cube 0 "\"volume\":\"11/12\""
+  open ${data}/unit_cube.off --se octahedron:r=1/8 -o ${out}/opened.off --stats -)
+morphex_cli_test(close_cube 0 "\"volume\":\"1\""
+  close ${data}/unit_cube.off --se cube:r=1/8 -o ${out}/closed.off --stats -)
+morphex_cli_test(minkowski_cubes 0 "\"volume\":\"8\""
+  minkowski ${data}/unit_cube.off ${data}/unit_cube.off -o ${out}/sum.off --stats -)
+morphex_cli_test(dilate_bad_se 2 "--se ball:radius=1: ball: radius: unknown parameter"
+  dilate ${data}/unit_cube.off --se ball:radius=1 -o ${out}/never.off)
+morphex_cli_test(dilate_missing_se 2 "--se is required" dilate ${data}/unit_cube.off -o ${out}/never.off)
+morphex_cli_test(dilate_invalid_input 2 "open_cube.off: mesh is not closed"
+  dilate ${data}/open_cube.off --se cube:r=1 -o ${out}/never.off)
+morphex_cli_test(dilate_refuses_overwrite 2 "refusing to overwrite"
+  dilate ${data}/unit_cube.off --se cube:r=1 -o ${data}/unit_cube.off)
+morphex_cli_test(dilate_chained_exact 0 "\"volume\":\"125/8\""
+  dilate ${out}/dilated.off --se cube:r=1/2 -o ${out}/dilated_twice.off --stats -)
+set_tests_properties(cli.dilate_chained_exact PROPERTIES DEPENDS cli.dilate_cube)

@@ -1,0 +1,159 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// bench_morph: morphex morphology against CGAL's minkowski_sum_3 (Nef polyhedra, exact) on the
+// same input in the same run, with exact volumes compared, wall time and peak memory.
+//
+//   bench_morph [--se SPEC] [--ops dilate,erode,open,close] [--peer] [--chain N] [--json FILE]
+//               INPUT...
+// INPUT is a mesh file or a generated mesh: torus:U,V (U*V*2 facets, non-convex), l-shape,
+// icosphere:L. --peer runs minkowski_sum_3 on every dilation; --chain N dilates N times in a row
+// and reports the first and the last step.
+#include <sys/resource.h>
+
+#include "morphex/nef.h"  // Nef before minkowski_sum_3.h, which needs the Nef headers first
+
+#include <CGAL/minkowski_sum_3.h>
+
+#include <chrono>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "morphex/boolean.h"
+#include "morphex/check.h"
+#include "morphex/generators.h"
+#include "morphex/io.h"
+#include "morphex/morphology.h"
+
+using namespace morphex;
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Peak resident memory of the process so far (Linux reports KiB).
+double peak_mib() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;
+}
+
+Mesh load(const std::string& input) {
+  if (input.rfind("torus:", 0) == 0) {
+    int u = 16, v = 10;
+    char comma;
+    std::istringstream(input.substr(6)) >> u >> comma >> v;
+    return make_torus(u, v, 1.0, 0.4);
+  }
+  if (input.rfind("icosphere:", 0) == 0) return make_icosphere(std::stoi(input.substr(10)), FT(1));
+  if (input == "l-shape")
+    return compute_boolean(make_box(Point(0, 0, 0), Point(2, 1, 1)),
+                           make_box(Point(0, 0, 0), Point(1, 2, 1)), BooleanOp::Union)
+        .mesh;
+  return read_mesh(input);
+}
+
+std::vector<std::string> split(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) out.push_back(item);
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string se_spec = "cube:r=1/20", json_path;
+  std::vector<std::string> ops = {"dilate"}, inputs;
+  bool peer = false;
+  int chain = 0;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--se" && i + 1 < argc)
+      se_spec = argv[++i];
+    else if (arg == "--ops" && i + 1 < argc)
+      ops = split(argv[++i]);
+    else if (arg == "--peer")
+      peer = true;
+    else if (arg == "--chain" && i + 1 < argc)
+      chain = std::stoi(argv[++i]);
+    else if (arg == "--json" && i + 1 < argc)
+      json_path = argv[++i];
+    else if (arg.rfind("--", 0) == 0) {
+      std::cerr << "bench_morph: unknown option " << arg << '\n';
+      return 2;
+    } else
+      inputs.push_back(arg);
+  }
+  if (inputs.empty()) {
+    std::cerr << "usage: bench_morph [--se SPEC] [--ops dilate,erode,open,close] [--peer] "
+                 "[--chain N] [--json FILE] INPUT...\n";
+    return 2;
+  }
+  const StructuringElement se = parse_structuring_element(se_spec);
+  nlohmann::json rows = nlohmann::json::array();
+  bool all_agree = true;
+  std::cout << std::left << std::setw(28) << "input" << std::setw(8) << "op" << std::right
+            << std::setw(8) << "facets" << std::setw(10) << "morphex s" << std::setw(10)
+            << "CGAL s" << std::setw(9) << "ratio" << std::setw(9) << "result" << std::setw(10)
+            << "peak MiB" << "  exact volumes\n";
+  for (const std::string& input : inputs) {
+    const Mesh a = load(input);
+    for (const std::string& op_name : ops) {
+      const MorphologyOp op = parse_morphology_op(op_name);
+      MorphologyStats stats;
+      auto start = std::chrono::steady_clock::now();
+      const Mesh ours = apply_morphology(op, a, se, &stats);
+      const double our_seconds = seconds_since(start);
+      const MeshReport report = check_mesh(ours);
+      nlohmann::json row = {{"input", input},        {"op", op_name},
+                            {"se", se.spec},         {"facets", a.num_triangles()},
+                            {"seconds", our_seconds}, {"result_facets", ours.num_triangles()},
+                            {"pieces", stats.pieces}, {"valid", report.valid_solid()},
+                            {"peak_mib", peak_mib()}};
+      std::string agreement = report.valid_solid() ? "valid" : "INVALID";
+      double their_seconds = 0;
+      if (peer && op == MorphologyOp::Dilate) {
+        NefPolyhedron na = to_nef(a), nb = to_nef(se.mesh);
+        start = std::chrono::steady_clock::now();
+        const NefPolyhedron sum = CGAL::minkowski_sum_3(na, nb);
+        their_seconds = seconds_since(start);
+        const bool agree = signed_volume(from_nef(sum)) == report.volume;
+        all_agree = all_agree && agree;
+        agreement += agree ? ", agree with minkowski_sum_3" : ", DIFFER from minkowski_sum_3";
+        row["cgal_minkowski_sum_3_seconds"] = their_seconds;
+        row["ratio"] = their_seconds / our_seconds;
+        row["agree"] = agree;
+      }
+      all_agree = all_agree && report.valid_solid();
+      std::cout << std::left << std::setw(28) << input << std::setw(8) << op_name << std::right
+                << std::setw(8) << a.num_triangles() << std::setw(10) << std::setprecision(3)
+                << our_seconds << std::setw(10)
+                << (their_seconds > 0 ? std::to_string(their_seconds).substr(0, 6) : "-")
+                << std::setw(9)
+                << (their_seconds > 0 ? std::to_string(their_seconds / our_seconds).substr(0, 6)
+                                      : "-")
+                << std::setw(9) << ours.num_triangles() << std::setw(10) << int(peak_mib()) << "  "
+                << agreement << '\n';
+      rows.push_back(row);
+    }
+    if (chain > 0) {
+      Mesh current = a;
+      std::vector<double> steps;
+      for (int i = 0; i < chain; ++i) {
+        const auto start = std::chrono::steady_clock::now();
+        current = dilation(current, se);
+        steps.push_back(seconds_since(start));
+      }
+      std::cout << "chain of " << chain << " dilations of " << input << ": first " << steps.front()
+                << " s, last " << steps.back() << " s, result " << current.num_triangles()
+                << " facets, valid " << check_mesh(current).valid_solid() << '\n';
+      rows.push_back({{"input", input}, {"chain", chain}, {"step_seconds", steps}});
+    }
+  }
+  if (!json_path.empty()) std::ofstream(json_path) << rows.dump(2) << '\n';
+  return all_agree ? 0 : 1;
+}
