@@ -98,7 +98,7 @@ class ParameterReader {
   }
 
   [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
-    throw std::invalid_argument(info_.shape + ": " + key + ": " + problem);
+    throw StructuringElementError(info_.shape, key, problem);
   }
 
  private:
@@ -186,8 +186,9 @@ StructuringElement make_structuring_element(const std::string& shape, const SePa
   const auto info = std::find_if(shapes.begin(), shapes.end(),
                                  [&](const SeShapeInfo& s) { return s.shape == shape; });
   if (info == shapes.end())
-    throw std::invalid_argument("unknown structuring element shape '" + shape +
-                                "' (expected cube, box, octahedron, ball, cylinder or mesh)");
+    throw StructuringElementError("", "shape",
+                                  "unknown structuring element shape '" + shape +
+                                      "' (expected cube, box, octahedron, ball, cylinder or mesh)");
   const ParameterReader read(*info, params);
   StructuringElement se;
   se.shape = shape;
@@ -229,8 +230,8 @@ StructuringElement parse_structuring_element(const std::string& text) {
       const std::string item = text.substr(start, comma - start);
       const auto equals = item.find('=');
       if (equals == std::string::npos || equals == 0)
-        throw std::invalid_argument("structuring element '" + text + "': expected key=value, got '" +
-                                    item + "'");
+        throw StructuringElementError(
+            "", "", "structuring element '" + text + "': expected key=value, got '" + item + "'");
       params.emplace_back(item.substr(0, equals), item.substr(equals + 1));
       start = comma + 1;
     }

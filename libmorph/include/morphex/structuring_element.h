@@ -7,6 +7,7 @@
 // Every SE is centred on the origin unless an offset ox, oy, oz is given.
 #pragma once
 
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,8 +25,23 @@ struct StructuringElement {
 
 using SeParameters = std::vector<std::pair<std::string, std::string>>;  // key, value text
 
-// Builds a structuring element; throws std::invalid_argument naming the shape, the key and the
-// problem ("ball: r: expected a positive number, got '-1'").
+// A bad structuring element: what() reads "ball: r: expected a positive number, got '-1'"; key()
+// is the parameter at fault ("shape" for the shape itself) and problem() the rest, so callers can
+// point at their own location (a JSON path, a command-line option).
+class StructuringElementError : public std::invalid_argument {
+ public:
+  StructuringElementError(const std::string& shape, std::string key, std::string problem)
+      : std::invalid_argument(shape.empty() ? problem : shape + ": " + key + ": " + problem),
+        key_(std::move(key)),
+        problem_(std::move(problem)) {}
+  const std::string& key() const { return key_; }
+  const std::string& problem() const { return problem_; }
+
+ private:
+  std::string key_, problem_;
+};
+
+// Builds a structuring element; throws StructuringElementError.
 StructuringElement make_structuring_element(const std::string& shape, const SeParameters& params);
 // Parses the text form, then make_structuring_element.
 StructuringElement parse_structuring_element(const std::string& text);

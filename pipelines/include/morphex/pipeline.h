@@ -1,0 +1,163 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// JSON pipelines: a chain (or graph) of mesh filters described as
+//   {"pipeline": [{"type": "read", "path": "${input}", "tag": "in"},
+//                 {"type": "open", "se": {"shape": "ball", "r": 0.05, "level": 1}},
+//                 {"type": "write", "path": "${out_dir}/${stem}-opened.off"}]}
+// Each stage has a "type", an optional unique "tag", optional "inputs" (tags; by default the
+// previous stage) and the options its type declares. "${name}" in any string is replaced by a
+// variable: those given with --set, then the defaults in the document's optional "variables"
+// object, plus "input" (the mesh being processed) and "stem" (its file name without extension) when
+// the pipeline runs over input meshes. A variable used in a number option holds the number's text.
+//
+// A pipeline is validated completely before anything runs: every problem is reported at once with
+// its JSON location ("pipeline[2].se.r: expected a positive number, got -1").
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <functional>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "morphex/mesh.h"
+
+namespace morphex::pipeline {
+
+// ---- the stage registry ----------------------------------------------------------------------
+
+enum class OptionType { String, Path, Bool, Integer, Number, Vector3, StructuringElement };
+const char* to_string(OptionType type);
+
+struct OptionInfo {
+  std::string name;
+  OptionType type;
+  std::string description;
+  std::optional<nlohmann::json> default_value;  // none: the option is required
+  std::optional<double> min, max;               // for Integer and Number
+  std::vector<std::string> choices;             // for String, when restricted
+  bool positive = false;                        // Number: strictly greater than zero
+};
+
+struct StageContext;  // what a running stage sees (run.cpp)
+using StageRunner = std::function<Mesh(StageContext&)>;
+
+struct StageInfo {
+  std::string type;
+  std::string description;  // one line
+  int inputs = 1;           // meshes consumed: 0 (read), 1, or 2 (Booleans, minkowski)
+  std::vector<OptionInfo> options;
+  StageRunner run;
+};
+
+// The stages, registered explicitly at first use (no static initialisers to lose at link time).
+class StageRegistry {
+ public:
+  static const StageRegistry& builtin();
+  void add(StageInfo stage);
+  const StageInfo* find(const std::string& type) const;
+  const std::vector<StageInfo>& stages() const { return stages_; }
+  // The known type nearest to `type` by edit distance, for "did you mean" hints.
+  std::string closest(const std::string& type) const;
+
+ private:
+  std::vector<StageInfo> stages_;
+};
+
+// ---- validation --------------------------------------------------------------------------------
+
+struct Problem {
+  std::string location;  // JSON path such as "pipeline[2].se.r", or "file:line:column"
+  std::string message;
+  std::string text() const { return location.empty() ? message : location + ": " + message; }
+};
+
+// Thrown by load/validate with every problem found.
+class PipelineError : public std::runtime_error {
+ public:
+  explicit PipelineError(std::vector<Problem> problems);
+  const std::vector<Problem>& problems() const { return problems_; }
+
+ private:
+  std::vector<Problem> problems_;
+};
+
+using Variables = std::map<std::string, std::string>;
+
+struct Stage {
+  std::size_t index;                     // position in the "pipeline" array
+  std::string type, tag;                 // tag defaults to "<type>#<index>"
+  std::vector<std::size_t> inputs;       // indices of the stages it reads
+  nlohmann::json options;                // validated, defaults filled in, variables substituted
+  const StageInfo* info = nullptr;
+};
+
+struct Pipeline {
+  std::string name;                // file name, for messages
+  nlohmann::json document;         // as written, variables not yet substituted
+  std::vector<Stage> stages;       // in array order
+  std::vector<std::size_t> order;  // a topological order of the stage graph
+};
+
+// Parses JSON text; malformed JSON is reported with line and column.
+nlohmann::json parse_document(const std::string& text, const std::string& name);
+// Reads and parses a pipeline file.
+nlohmann::json load_document(const std::string& path);
+
+// Validates a document with the given variables bound, filling defaults. Variables named in
+// `deferred` (such as "input" while no input is known) may stay unsubstituted.
+// Throws PipelineError listing every problem.
+Pipeline validate(const nlohmann::json& document, const std::string& name, const Variables& variables,
+                  const std::vector<std::string>& deferred = {},
+                  const StageRegistry& registry = StageRegistry::builtin());
+
+// ---- execution ---------------------------------------------------------------------------------
+
+struct StageReport {
+  std::size_t index;
+  std::string type, tag;
+  double seconds = 0;
+  std::size_t faces = 0, vertices = 0;
+  std::string volume;  // exact rational
+  double volume_approx = 0;
+  nlohmann::json extra;  // stage-specific facts (check results, written path)
+};
+
+struct InputReport {
+  std::string input;  // the mesh path, or "" for a pipeline without inputs
+  bool ok = true;
+  std::string error;  // "pipeline[3] (difference): ..." when !ok
+  double seconds = 0;
+  std::vector<StageReport> stages;
+};
+
+struct RunOptions {
+  Variables variables;              // from --set
+  std::vector<std::string> inputs;  // each run binds ${input} and ${stem}
+  bool progress = false;            // a progress line on stderr
+};
+
+struct RunReport {
+  std::vector<InputReport> inputs;
+  double seconds = 0;
+  bool ok() const;
+  nlohmann::json to_json() const;
+};
+
+// Validates the pipeline for every input first (throws PipelineError before anything runs), then
+// runs the inputs in parallel, independent branches in parallel; a failing input is reported in
+// its InputReport and the others go on.
+RunReport run(const nlohmann::json& document, const std::string& name, const RunOptions& options,
+              const StageRegistry& registry = StageRegistry::builtin());
+
+// What a stage sees while it runs.
+struct StageContext {
+  const Stage& stage;
+  std::vector<const Mesh*> inputs;
+  nlohmann::json extra;  // facts for the report
+  const nlohmann::json& option(const std::string& name) const { return stage.options.at(name); }
+};
+
+}  // namespace morphex::pipeline

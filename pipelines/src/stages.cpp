@@ -1,0 +1,257 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The built-in stages: options, limits, defaults and what each one does.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "morphex/boolean.h"
+#include "morphex/check.h"
+#include "morphex/io.h"
+#include "morphex/minkowski.h"
+#include "morphex/morphology.h"
+#include "morphex/pipeline.h"
+#include "pipeline_internal.h"
+
+namespace morphex::pipeline {
+
+const char* to_string(OptionType type) {
+  switch (type) {
+    case OptionType::String:
+      return "string";
+    case OptionType::Path:
+      return "path";
+    case OptionType::Bool:
+      return "bool";
+    case OptionType::Integer:
+      return "integer";
+    case OptionType::Number:
+      return "number";
+    case OptionType::Vector3:
+      return "[x, y, z]";
+    case OptionType::StructuringElement:
+      return "structuring element";
+  }
+  return "?";
+}
+
+namespace detail {
+
+FT exact_number(const nlohmann::json& value) {
+  if (value.is_number_integer()) return parse_exact_number(value.dump());
+  if (value.is_number()) return FT(value.get<double>());  // the JSON text's nearest double
+  if (value.is_string()) return parse_exact_number(value.get<std::string>());
+  throw std::invalid_argument("not a number");
+}
+
+StructuringElement structuring_element(const nlohmann::json& value) {
+  if (value.is_string()) return parse_structuring_element(value.get<std::string>());
+  if (!value.is_object())
+    throw StructuringElementError("", "", "expected an object such as {\"shape\": \"ball\", \"r\": 0.05}");
+  if (!value.contains("shape") || !value["shape"].is_string())
+    throw StructuringElementError("", "shape", "missing (a string: cube, box, octahedron, ball, cylinder or mesh)");
+  SeParameters params;
+  for (const auto& [key, v] : value.items()) {
+    if (key == "shape") continue;
+    if (v.is_string())
+      params.emplace_back(key, v.get<std::string>());
+    else if (v.is_number())
+      params.emplace_back(key, v.dump());  // the JSON text: 0.05 stays "0.05"
+    else
+      throw StructuringElementError(value["shape"].get<std::string>(), key,
+                                    "expected a number or a string, got " + v.dump());
+  }
+  return make_structuring_element(value["shape"].get<std::string>(), params);
+}
+
+Transformation rotation(const std::string& axis, const FT& degrees) {
+  FT c, s;
+  const double d = CGAL::to_double(degrees);
+  const double turns = d / 90.0;
+  if (FT(double(std::llround(turns))) * 90 == degrees) {
+    const long q = ((std::llround(turns) % 4) + 4) % 4;
+    c = q == 0 ? 1 : q == 2 ? -1 : 0;
+    s = q == 1 ? 1 : q == 3 ? -1 : 0;
+  } else {
+    const FT t = FT(std::round(std::tan(d * M_PI / 360.0) * 1e9)) / FT(1000000000);
+    c = (1 - t * t) / (1 + t * t);
+    s = 2 * t / (1 + t * t);
+  }
+  if (axis == "x") return Transformation(1, 0, 0, 0, c, -s, 0, s, c);
+  if (axis == "y") return Transformation(c, 0, s, 0, 1, 0, -s, 0, c);
+  return Transformation(c, -s, 0, s, c, 0, 0, 0, 1);
+}
+
+}  // namespace detail
+
+namespace {
+
+OptionInfo required(std::string name, OptionType type, std::string description) {
+  OptionInfo o;
+  o.name = std::move(name);
+  o.type = type;
+  o.description = std::move(description);
+  return o;
+}
+
+OptionInfo optional(std::string name, OptionType type, nlohmann::json value, std::string description) {
+  OptionInfo o = required(std::move(name), type, std::move(description));
+  o.default_value = std::move(value);
+  return o;
+}
+
+Mesh boolean_stage(StageContext& c, BooleanOp op) {
+  BooleanOptions options;
+  options.validate_inputs = false;  // stage outputs and read meshes are valid solids already
+  BooleanResult r = compute_boolean(*c.inputs[0], *c.inputs[1], op, options);
+  if (!r.ok()) throw std::runtime_error(r.message);
+  return std::move(r.mesh);
+}
+
+Mesh morphology_stage(StageContext& c, MorphologyOp op) {
+  const StructuringElement se = detail::structuring_element(c.option("se"));
+  MorphologyStats stats;
+  Mesh result = apply_morphology(op, *c.inputs[0], se, &stats);
+  c.extra["se"] = se.spec;
+  c.extra["pieces"] = stats.pieces;
+  return result;
+}
+
+void add_builtin_stages(StageRegistry& r) {
+  r.add({"read", "read a closed mesh (OFF, OBJ, STL, PLY) and check that it is a valid solid", 0,
+         {required("path", OptionType::Path, "mesh file")},
+         [](StageContext& c) {
+           const std::string path = c.option("path").get<std::string>();
+           Mesh mesh = read_mesh(path);
+           const MeshReport report = check_mesh(mesh);
+           if (!report.valid_solid()) throw InputError(path, describe_problems(report));
+           return mesh;
+         }});
+  r.add({"write", "write the mesh atomically (format from the extension); passes it on", 1,
+         {required("path", OptionType::Path, "output file; missing directories are created"),
+          optional("exact", OptionType::Bool, false,
+                   "lossless exact OFF (rational coordinates) instead of doubles")},
+         [](StageContext& c) {
+           const std::string path = c.option("path").get<std::string>();
+           const auto parent = std::filesystem::path(path).parent_path();
+           if (!parent.empty()) std::filesystem::create_directories(parent);
+           WriteOptions options;
+           options.exact = c.option("exact").get<bool>();
+           write_mesh(*c.inputs[0], path, options);
+           c.extra["path"] = path;
+           return *c.inputs[0];
+         }});
+  const std::pair<MorphologyOp, const char*> morphology[] = {
+      {MorphologyOp::Dilate, "dilation A + B"},
+      {MorphologyOp::Erode, "erosion {x : x + B inside A}"},
+      {MorphologyOp::Open, "opening: erosion then dilation (removes what B cannot fit in)"},
+      {MorphologyOp::Close, "closing: dilation then erosion (fills what B cannot enter)"}};
+  for (const auto& [op, description] : morphology)
+    r.add({to_string(op), description, 1,
+           {required("se", OptionType::StructuringElement,
+                     "structuring element, {\"shape\": ..., parameters} or \"shape:key=value,...\"")},
+           [op = op](StageContext& c) { return morphology_stage(c, op); }});
+  for (BooleanOp op : {BooleanOp::Union, BooleanOp::Intersection, BooleanOp::Difference})
+    r.add({to_string(op),
+           op == BooleanOp::Difference ? "exact Boolean difference of two inputs (first minus second)"
+                                       : std::string("exact Boolean ") + to_string(op) +
+                                             " of two inputs",
+           2,
+           {},
+           [op](StageContext& c) { return boolean_stage(c, op); }});
+  r.add({"minkowski", "exact Minkowski sum of two inputs", 2, {}, [](StageContext& c) {
+           MinkowskiStats stats;
+           Mesh sum = minkowski_sum(*c.inputs[0], *c.inputs[1], &stats);
+           c.extra["pieces"] = stats.pieces;
+           return sum;
+         }});
+  r.add({"translate", "move the mesh by an exact offset", 1,
+         {required("offset", OptionType::Vector3, "[x, y, z]")},
+         [](StageContext& c) {
+           const auto& v = c.option("offset");
+           return translated(*c.inputs[0], Vector(detail::exact_number(v[0]), detail::exact_number(v[1]),
+                                                  detail::exact_number(v[2])));
+         }});
+  OptionInfo factor = required("factor", OptionType::Number, "uniform scale factor");
+  factor.positive = true;
+  r.add({"scale", "scale the mesh about the origin", 1, {factor}, [](StageContext& c) {
+           const FT f = detail::exact_number(c.option("factor"));
+           Mesh m = transformed(*c.inputs[0], Transformation(CGAL::SCALING, f));
+           make_exact(m);
+           return m;
+         }});
+  OptionInfo axis = optional("axis", OptionType::String, "z", "rotation axis: x, y or z");
+  axis.choices = {"x", "y", "z"};
+  r.add({"rotate",
+         "rotate about a coordinate axis through the origin (exactly orthogonal; multiples of 90 "
+         "degrees exact, other angles within 1e-9 radian)",
+         1,
+         {axis, required("degrees", OptionType::Number, "angle, counter-clockwise")},
+         [](StageContext& c) {
+           Mesh m = transformed(*c.inputs[0],
+                                detail::rotation(c.option("axis").get<std::string>(),
+                                                 detail::exact_number(c.option("degrees"))));
+           make_exact(m);
+           return m;
+         }});
+  r.add({"check", "report validity, volume, genus and components; passes the mesh on", 1,
+         {optional("require_valid", OptionType::Bool, true,
+                   "fail this input when the mesh is not a valid solid")},
+         [](StageContext& c) {
+           const MeshReport report = check_mesh(*c.inputs[0]);
+           c.extra["valid"] = report.valid_solid();
+           c.extra["genus"] = report.genus;
+           c.extra["components"] = report.components;
+           if (c.option("require_valid").get<bool>() && !report.valid_solid())
+             throw std::runtime_error(describe_problems(report));
+           return *c.inputs[0];
+         }});
+}
+
+}  // namespace
+
+void StageRegistry::add(StageInfo stage) {
+  if (find(stage.type)) throw std::logic_error("stage registered twice: " + stage.type);
+  stages_.push_back(std::move(stage));
+}
+
+const StageInfo* StageRegistry::find(const std::string& type) const {
+  for (const StageInfo& s : stages_)
+    if (s.type == type) return &s;
+  return nullptr;
+}
+
+std::string StageRegistry::closest(const std::string& type) const {
+  std::string best;
+  std::size_t best_distance = std::string::npos;
+  for (const StageInfo& s : stages_) {
+    // Levenshtein distance, one row at a time.
+    std::vector<std::size_t> row(s.type.size() + 1);
+    for (std::size_t j = 0; j < row.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= type.size(); ++i) {
+      std::size_t diagonal = row[0];
+      row[0] = i;
+      for (std::size_t j = 1; j <= s.type.size(); ++j) {
+        const std::size_t up = row[j];
+        row[j] = std::min({row[j] + 1, row[j - 1] + 1,
+                           diagonal + (type[i - 1] == s.type[j - 1] ? 0 : 1)});
+        diagonal = up;
+      }
+    }
+    if (row.back() < best_distance) {
+      best_distance = row.back();
+      best = s.type;
+    }
+  }
+  return best;
+}
+
+const StageRegistry& StageRegistry::builtin() {
+  static const StageRegistry registry = [] {
+    StageRegistry r;
+    add_builtin_stages(r);
+    return r;
+  }();
+  return registry;
+}
+
+}  // namespace morphex::pipeline

@@ -1,0 +1,336 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Pipeline validation: every problem found before anything runs, each with its JSON location.
+#include <algorithm>
+#include <fstream>
+#include <functional>
+#include <set>
+#include <sstream>
+
+#include "morphex/io.h"
+#include "morphex/pipeline.h"
+#include "pipeline_internal.h"
+
+namespace morphex::pipeline {
+
+namespace {
+
+std::string join(const std::vector<Problem>& problems) {
+  std::string out;
+  for (const Problem& p : problems) out += (out.empty() ? "" : "\n") + p.text();
+  return out;
+}
+
+std::string at(const std::string& base, const std::string& key) { return base + "." + key; }
+std::string at(const std::string& base, std::size_t index) {
+  return base + "[" + std::to_string(index) + "]";
+}
+
+// Replaces ${name} in every string of `value`; unknown names are problems, deferred ones stay.
+void substitute(nlohmann::json& value, const std::string& location, const Variables& variables,
+                const std::vector<std::string>& deferred, std::vector<Problem>& problems) {
+  if (value.is_object()) {
+    for (auto& [key, member] : value.items()) substitute(member, at(location, key), variables, deferred, problems);
+  } else if (value.is_array()) {
+    for (std::size_t i = 0; i < value.size(); ++i)
+      substitute(value[i], at(location, i), variables, deferred, problems);
+  } else if (value.is_string()) {
+    const std::string text = value.get<std::string>();
+    std::string out;
+    std::size_t pos = 0;
+    while (pos < text.size()) {
+      const std::size_t open = text.find("${", pos);
+      if (open == std::string::npos) break;
+      const std::size_t close = text.find('}', open);
+      if (close == std::string::npos) {
+        problems.push_back({location, "unterminated variable in \"" + text + "\""});
+        return;
+      }
+      const std::string name = text.substr(open + 2, close - open - 2);
+      out += text.substr(pos, open - pos);
+      const auto it = variables.find(name);
+      if (it != variables.end())
+        out += it->second;
+      else if (std::find(deferred.begin(), deferred.end(), name) != deferred.end())
+        out += text.substr(open, close - open + 1);
+      else
+        problems.push_back({location, "unknown variable ${" + name + "} (set it with --set " +
+                                          name + "=VALUE)"});
+      pos = close + 1;
+    }
+    value = out + text.substr(std::min(pos, text.size()));
+  }
+}
+
+void check_option(const OptionInfo& option, const nlohmann::json& value,
+                  const std::string& location, std::vector<Problem>& problems) {
+  auto expected = [&](const std::string& what) {
+    problems.push_back({location, "expected " + what + ", got " + value.dump()});
+  };
+  switch (option.type) {
+    case OptionType::String:
+    case OptionType::Path:
+      if (!value.is_string() || (option.type == OptionType::Path && value.get<std::string>().empty()))
+        return expected(option.type == OptionType::Path ? "a file path" : "a string");
+      if (!option.choices.empty() &&
+          std::find(option.choices.begin(), option.choices.end(), value.get<std::string>()) ==
+              option.choices.end()) {
+        std::string list;
+        for (const auto& c : option.choices) list += (list.empty() ? "" : ", ") + c;
+        return expected("one of " + list);
+      }
+      return;
+    case OptionType::Bool:
+      if (!value.is_boolean()) expected("true or false");
+      return;
+    case OptionType::Integer:
+      if (!value.is_number_integer()) return expected("an integer");
+      if ((option.min && value.get<double>() < *option.min) ||
+          (option.max && value.get<double>() > *option.max))
+        expected("an integer from " + std::to_string(long(*option.min)) + " to " +
+                 std::to_string(long(*option.max)));
+      return;
+    case OptionType::Number: {
+      FT x;
+      try {
+        x = detail::exact_number(value);
+      } catch (const std::exception&) {
+        return expected(option.positive ? "a positive number" : "a number");
+      }
+      if (option.positive && x <= 0) expected("a positive number");
+      return;
+    }
+    case OptionType::Vector3:
+      if (!value.is_array() || value.size() != 3) return expected("an array of 3 numbers");
+      for (std::size_t i = 0; i < 3; ++i) {
+        try {
+          detail::exact_number(value[i]);
+        } catch (const std::exception&) {
+          problems.push_back({at(location, i), "expected a number, got " + value[i].dump()});
+        }
+      }
+      return;
+    case OptionType::StructuringElement:
+      try {
+        detail::structuring_element(value);
+      } catch (const StructuringElementError& e) {
+        problems.push_back({value.is_object() && !e.key().empty() ? at(location, e.key()) : location,
+                            e.problem()});
+      } catch (const std::exception& e) {  // an unreadable mesh:path=FILE
+        problems.push_back({value.is_object() ? at(location, "path") : location, e.what()});
+      }
+      return;
+  }
+}
+
+}  // namespace
+
+PipelineError::PipelineError(std::vector<Problem> problems)
+    : std::runtime_error(join(problems)), problems_(std::move(problems)) {}
+
+nlohmann::json parse_document(const std::string& text, const std::string& name) {
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    std::size_t line = 1, column = 1;
+    for (std::size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
+      if (text[i] == '\n') {
+        ++line;
+        column = 1;
+      } else {
+        ++column;
+      }
+    }
+    std::string what = e.what();
+    const auto colon = what.find("]: ");  // drop nlohmann's "[json.exception.parse_error.101]"
+    if (colon != std::string::npos) what = what.substr(colon + 3);
+    throw PipelineError(std::vector<Problem>{{name + ":" + std::to_string(line) + ":" + std::to_string(column),
+                          "malformed JSON: " + what}});
+  }
+}
+
+nlohmann::json load_document(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw PipelineError(std::vector<Problem>{{path, "cannot open the pipeline file"}});
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parse_document(buffer.str(), path);
+}
+
+Pipeline validate(const nlohmann::json& document, const std::string& name,
+                  const Variables& variables, const std::vector<std::string>& deferred,
+                  const StageRegistry& registry) {
+  std::vector<Problem> problems;
+  Pipeline pipeline;
+  pipeline.name = name;
+  pipeline.document = document;
+  nlohmann::json stages_json;
+  Variables bound = variables;  // --set wins over the document's defaults
+  if (document.is_array()) {
+    stages_json = document;
+  } else if (document.is_object() && document.contains("pipeline")) {
+    stages_json = document["pipeline"];
+    for (const auto& [key, value] : document.items()) {
+      if (key == "variables") {
+        if (!value.is_object()) {
+          problems.push_back({key, "expected an object of default values, got " + value.dump()});
+          continue;
+        }
+        for (const auto& [name, default_value] : value.items()) {
+          if (default_value.is_string())
+            bound.emplace(name, default_value.get<std::string>());
+          else if (default_value.is_number())
+            bound.emplace(name, default_value.dump());
+          else
+            problems.push_back({"variables." + name,
+                                "expected a string or a number, got " + default_value.dump()});
+        }
+      } else if (key != "pipeline" && key != "description") {
+        problems.push_back({key, "unknown top-level key (expected \"pipeline\", and optionally "
+                                 "\"description\" and \"variables\")"});
+      }
+    }
+  }
+  if (!stages_json.is_array() || stages_json.empty())
+    throw PipelineError(std::vector<Problem>{{"pipeline", "expected a non-empty array of stages"}});
+
+  std::map<std::string, std::size_t> tag_index;
+  std::vector<std::vector<std::string>> input_tags(stages_json.size());
+  for (std::size_t i = 0; i < stages_json.size(); ++i) {
+    const std::string here = at("pipeline", i);
+    Stage stage;
+    stage.index = i;
+    nlohmann::json raw = stages_json[i];
+    if (!raw.is_object()) {
+      problems.push_back({here, "expected a stage object with a \"type\""});
+      pipeline.stages.push_back(stage);
+      continue;
+    }
+    substitute(raw, here, bound, deferred, problems);
+    if (!raw.contains("type") || !raw["type"].is_string()) {
+      problems.push_back({at(here, "type"), "missing (a stage type such as \"read\")"});
+    } else {
+      stage.type = raw["type"].get<std::string>();
+      stage.info = registry.find(stage.type);
+      if (!stage.info)
+        problems.push_back({at(here, "type"), "unknown stage '" + stage.type + "' (did you mean '" +
+                                                  registry.closest(stage.type) + "'?)"});
+    }
+    stage.tag = stage.type + "#" + std::to_string(i);
+    if (raw.contains("tag")) {
+      if (!raw["tag"].is_string() || raw["tag"].get<std::string>().empty()) {
+        problems.push_back({at(here, "tag"), "expected a non-empty string, got " + raw["tag"].dump()});
+      } else {
+        stage.tag = raw["tag"].get<std::string>();
+        const auto [it, inserted] = tag_index.emplace(stage.tag, i);
+        if (!inserted)
+          problems.push_back({at(here, "tag"), "duplicate tag '" + stage.tag + "' (first used by " +
+                                                   at("pipeline", it->second) + ")"});
+      }
+    }
+    if (raw.contains("inputs")) {
+      const auto& inputs = raw["inputs"];
+      if (inputs.is_string())
+        input_tags[i].push_back(inputs.get<std::string>());
+      else if (inputs.is_array() && std::all_of(inputs.begin(), inputs.end(),
+                                                [](const auto& t) { return t.is_string(); }))
+        for (const auto& t : inputs) input_tags[i].push_back(t.get<std::string>());
+      else
+        problems.push_back({at(here, "inputs"), "expected a tag or an array of tags, got " + inputs.dump()});
+    }
+    if (stage.info) {
+      for (const auto& [key, value] : raw.items()) {
+        if (key == "type" || key == "tag" || key == "inputs") continue;
+        const auto option = std::find_if(stage.info->options.begin(), stage.info->options.end(),
+                                         [&](const OptionInfo& o) { return o.name == key; });
+        if (option == stage.info->options.end()) {
+          std::string known;
+          for (const auto& o : stage.info->options) known += (known.empty() ? "" : ", ") + o.name;
+          problems.push_back({at(here, key), "unknown option for '" + stage.type + "' (" +
+                                                 (known.empty() ? "it takes no options"
+                                                                : "known: " + known) +
+                                                 ")"});
+          continue;
+        }
+        check_option(*option, value, at(here, key), problems);
+        stage.options[key] = value;
+      }
+      for (const OptionInfo& option : stage.info->options) {
+        if (stage.options.contains(option.name)) continue;
+        if (option.default_value)
+          stage.options[option.name] = *option.default_value;
+        else
+          problems.push_back({at(here, option.name), "missing (required by '" + stage.type + "')"});
+      }
+    }
+    pipeline.stages.push_back(std::move(stage));
+  }
+
+  // Inputs: explicit tags, or the previous stage for one-input stages.
+  for (std::size_t i = 0; i < pipeline.stages.size(); ++i) {
+    Stage& stage = pipeline.stages[i];
+    if (!stage.info) continue;
+    const std::string here = at("pipeline", i);
+    const int wanted = stage.info->inputs;
+    if (input_tags[i].empty()) {
+      if (wanted == 1 && i > 0)
+        stage.inputs.push_back(i - 1);
+      else if (wanted > 0)
+        problems.push_back({at(here, "inputs"),
+                            wanted == 1 ? "'" + stage.type + "' needs an input: it cannot come first"
+                                        : "'" + stage.type + "' needs \"inputs\" with 2 tags"});
+      continue;
+    }
+    if (int(input_tags[i].size()) != wanted) {
+      problems.push_back({at(here, "inputs"), "'" + stage.type + "' takes " + std::to_string(wanted) +
+                                                  " input" + (wanted == 1 ? "" : "s") + ", got " +
+                                                  std::to_string(input_tags[i].size())});
+      continue;
+    }
+    for (std::size_t k = 0; k < input_tags[i].size(); ++k) {
+      const auto it = tag_index.find(input_tags[i][k]);
+      if (it == tag_index.end())
+        problems.push_back({at(at(here, "inputs"), k), "unknown tag '" + input_tags[i][k] + "'"});
+      else
+        stage.inputs.push_back(it->second);
+    }
+  }
+
+  // A topological order; a cycle is reported with its tags.
+  std::vector<int> state(pipeline.stages.size(), 0);  // 0 new, 1 on the path, 2 done
+  std::vector<std::size_t> path;
+  bool cyclic = false;
+  std::function<void(std::size_t)> visit = [&](std::size_t s) {
+    if (cyclic || state[s] == 2) return;
+    if (state[s] == 1) {
+      std::string cycle;
+      const auto from = std::find(path.begin(), path.end(), s);
+      for (auto it = from; it != path.end(); ++it) cycle += pipeline.stages[*it].tag + " -> ";
+      problems.push_back({at(at("pipeline", s), "inputs"), "cycle: " + cycle + pipeline.stages[s].tag});
+      cyclic = true;
+      return;
+    }
+    state[s] = 1;
+    path.push_back(s);
+    for (std::size_t input : pipeline.stages[s].inputs) visit(input);
+    path.pop_back();
+    state[s] = 2;
+    pipeline.order.push_back(s);
+  };
+  for (std::size_t s = 0; s < pipeline.stages.size(); ++s) visit(s);
+
+  // No write may replace a file that a read stage (or a mesh SE) takes as input.
+  for (const Stage& w : pipeline.stages) {
+    if (w.type != "write" || !w.options.contains("path")) continue;
+    const std::string out = w.options["path"].get<std::string>();
+    for (const Stage& r : pipeline.stages)
+      if (r.type == "read" && r.options.contains("path") &&
+          (r.options["path"] == out || same_file(r.options["path"].get<std::string>(), out)))
+        problems.push_back({at(at("pipeline", w.index), "path"),
+                            "would overwrite the input read by " + at("pipeline", r.index) + " (" +
+                                out + ")"});
+  }
+  if (!problems.empty()) throw PipelineError(std::move(problems));
+  return pipeline;
+}
+
+}  // namespace morphex::pipeline

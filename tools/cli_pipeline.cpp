@@ -1,0 +1,192 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// `morphex run P.json [--set k=v ...] [--input MESH|GLOB ...] [--report FILE]`,
+// `morphex validate P.json [--set k=v ...] [--input ...]` and `morphex stages [NAME]`.
+#include <glob.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "cli_common.h"
+#include "morphex/pipeline.h"
+#include "morphex/structuring_element.h"
+
+namespace morphex::cli {
+namespace {
+
+namespace mp = morphex::pipeline;
+
+struct PipelineArgs {
+  std::string file;
+  std::vector<std::string> sets, inputs;
+};
+
+void add_pipeline_options(CLI::App* cmd, PipelineArgs& args) {
+  cmd->add_option("PIPELINE", args.file, "Pipeline JSON file")->required();
+  cmd->add_option("--set", args.sets, "Variable for ${name}, as name=value (repeatable)");
+  cmd->add_option("--input", args.inputs,
+                  "Meshes (or quoted globs) to run the pipeline over, each bound to ${input} and "
+                  "${stem}");
+}
+
+// name=value pairs; a malformed one is reported and makes the whole call fail.
+bool parse_variables(const std::vector<std::string>& sets, mp::Variables& out) {
+  for (const std::string& s : sets) {
+    const auto eq = s.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      print_error("--set " + s + ": expected name=value");
+      return false;
+    }
+    out[s.substr(0, eq)] = s.substr(eq + 1);
+  }
+  return true;
+}
+
+// Expands glob patterns; plain paths are kept even if missing (the read stage reports them).
+std::vector<std::string> expand_inputs(const std::vector<std::string>& patterns) {
+  std::vector<std::string> out;
+  for (const std::string& p : patterns) {
+    if (p.find_first_of("*?[") == std::string::npos) {
+      out.push_back(p);
+      continue;
+    }
+    glob_t matches{};
+    if (glob(p.c_str(), 0, nullptr, &matches) == 0)
+      for (std::size_t i = 0; i < matches.gl_pathc; ++i) out.emplace_back(matches.gl_pathv[i]);
+    else
+      out.push_back(p);  // no match: reported as a missing file by the read stage
+    globfree(&matches);
+  }
+  return out;
+}
+
+void print_problems(const std::string& file, const mp::PipelineError& e) {
+  for (const mp::Problem& p : e.problems())
+    print_error(p.location.rfind(file, 0) == 0 ? p.text() : file + ": " + p.text());
+}
+
+Command add_run_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("run", "Run a JSON pipeline, once or over many input meshes");
+  auto args = std::make_shared<PipelineArgs>();
+  auto report_path = std::make_shared<std::string>();
+  add_pipeline_options(cmd, *args);
+  cmd->add_option("--report", *report_path, "Per-stage timings and sizes as JSON (FILE or '-')");
+  return {cmd, [args, report_path]() -> int {
+            mp::RunOptions options;
+            if (!parse_variables(args->sets, options.variables)) return kBadInput;
+            options.inputs = expand_inputs(args->inputs);
+            options.progress = isatty(STDERR_FILENO) != 0;
+            mp::RunReport report;
+            try {
+              report = mp::run(mp::load_document(args->file), args->file, options);
+            } catch (const mp::PipelineError& e) {
+              print_problems(args->file, e);
+              return kBadInput;
+            }
+            std::size_t failed = 0;
+            for (const mp::InputReport& input : report.inputs)
+              if (!input.ok) {
+                ++failed;
+                print_error((input.input.empty() ? args->file : input.input) + ": " + input.error);
+              }
+            if (!report_path->empty()) emit_json(report.to_json(), *report_path);
+            if (*report_path != "-")
+              std::cout << args->file << ": " << report.inputs.size() << " run"
+                        << (report.inputs.size() == 1 ? "" : "s") << ", "
+                        << report.inputs.size() - failed << " succeeded, " << failed
+                        << " failed, " << std::setprecision(3) << report.seconds << " s\n";
+            return failed == 0 ? kSuccess : kFailed;
+          }};
+}
+
+Command add_validate_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("validate", "Check a pipeline without running it");
+  auto args = std::make_shared<PipelineArgs>();
+  add_pipeline_options(cmd, *args);
+  return {cmd, [args]() -> int {
+            mp::Variables variables;
+            if (!parse_variables(args->sets, variables)) return kBadInput;
+            const auto inputs = expand_inputs(args->inputs);
+            try {
+              const nlohmann::json document = mp::load_document(args->file);
+              std::size_t stages = 0;
+              if (inputs.empty()) {
+                stages = mp::validate(document, args->file, variables, {"input", "stem"}).stages.size();
+              } else {
+                for (const std::string& input : inputs) {
+                  mp::Variables v = variables;
+                  v["input"] = input;
+                  v["stem"] = std::filesystem::path(input).stem().string();
+                  stages = mp::validate(document, args->file, v).stages.size();
+                }
+              }
+              std::cout << args->file << ": valid pipeline, " << stages << " stages\n";
+            } catch (const mp::PipelineError& e) {
+              print_problems(args->file, e);
+              return kBadInput;
+            }
+            return kSuccess;
+          }};
+}
+
+std::string describe_option(const mp::OptionInfo& o) {
+  std::ostringstream out;
+  out << "  " << std::left << std::setw(14) << o.name << std::setw(22) << mp::to_string(o.type)
+      << (o.default_value ? "default " + o.default_value->dump() : std::string("required"));
+  if (o.positive) out << ", > 0";
+  if (o.min) out << ", min " << *o.min;
+  if (o.max) out << ", max " << *o.max;
+  if (!o.choices.empty()) {
+    out << ", one of";
+    for (const auto& c : o.choices) out << ' ' << c;
+  }
+  out << "\n      " << o.description << '\n';
+  return out.str();
+}
+
+Command add_stages_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("stages", "List the pipeline stages, or show one stage's options");
+  auto name = std::make_shared<std::string>();
+  cmd->add_option("NAME", *name, "Stage type");
+  return {cmd, [name]() -> int {
+            const auto& registry = mp::StageRegistry::builtin();
+            if (name->empty()) {
+              for (const mp::StageInfo& s : registry.stages())
+                std::cout << std::left << std::setw(14) << s.type << s.description << '\n';
+              return kSuccess;
+            }
+            const mp::StageInfo* s = registry.find(*name);
+            if (!s) {
+              print_error("unknown stage '" + *name + "' (did you mean '" + registry.closest(*name) +
+                          "'?)");
+              return kBadInput;
+            }
+            std::cout << s->type << ": " << s->description << "\ninputs: " << s->inputs
+                      << (s->inputs == 2 ? " (\"inputs\": [first, second])" : "") << "\noptions:"
+                      << (s->options.empty() ? " none\n" : "\n");
+            for (const mp::OptionInfo& o : s->options) std::cout << describe_option(o);
+            if (std::any_of(s->options.begin(), s->options.end(), [](const mp::OptionInfo& o) {
+                  return o.type == mp::OptionType::StructuringElement;
+                })) {
+              std::cout << "structuring element shapes:\n";
+              for (const SeShapeInfo& shape : structuring_element_shapes()) {
+                std::cout << "  " << shape.shape << ": " << shape.description << "\n";
+                for (const SeParameterInfo& p : shape.parameters)
+                  std::cout << "      " << std::left << std::setw(10) << p.key << std::setw(9)
+                            << p.type << (p.default_value.empty() ? "required" : "default " + p.default_value)
+                            << "  " << p.description << '\n';
+              }
+            }
+            return kSuccess;
+          }};
+}
+
+}  // namespace
+
+std::vector<Command> add_pipeline_commands(CLI::App& app) {
+  return {add_run_command(app), add_validate_command(app), add_stages_command(app)};
+}
+
+}  // namespace morphex::cli
