@@ -59,9 +59,9 @@ class ParameterReader {
     try {
       x = parse_exact_number(value);
     } catch (const std::exception&) {
-      fail(key, "expected a number, got '" + value + "'");
+      fail(key, "expected a number, got " + value);
     }
-    if (positive && x <= 0) fail(key, "expected a positive number, got '" + value + "'");
+    if (positive && x <= 0) fail(key, "expected a positive number, got " + value);
     return x;
   }
 
@@ -76,7 +76,7 @@ class ParameterReader {
     }
     if (used != value.size() || v < min || v > max)
       fail(key, "expected an integer from " + std::to_string(min) + " to " + std::to_string(max) +
-                    ", got '" + value + "'");
+                    ", got " + value);
     return int(v);
   }
 

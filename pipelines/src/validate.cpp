@@ -50,9 +50,10 @@ void substitute(nlohmann::json& value, const std::string& location, const Variab
       const auto it = variables.find(name);
       if (it != variables.end())
         out += it->second;
-      else if (std::find(deferred.begin(), deferred.end(), name) != deferred.end())
-        out += text.substr(open, close - open + 1);
       else
+        out += text.substr(open, close - open + 1);  // kept, so that no second error follows
+      if (it == variables.end() &&
+          std::find(deferred.begin(), deferred.end(), name) == deferred.end())
         problems.push_back({location, "unknown variable ${" + name + "} (set it with --set " +
                                           name + "=VALUE)"});
       pos = close + 1;

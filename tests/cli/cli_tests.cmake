@@ -53,3 +53,4 @@ set_tests_properties(package.consumer_build PROPERTIES
   FIXTURES_REQUIRED consumer_configured FIXTURES_SETUP consumer_built)
 set_tests_properties(package.consumer_run PROPERTIES FIXTURES_REQUIRED consumer_built)
 include(cli/cli_bool_tests.cmake)
+include(cli/cli_pipeline_tests.cmake)

@@ -25,7 +25,7 @@ struct StructuringElement {
 
 using SeParameters = std::vector<std::pair<std::string, std::string>>;  // key, value text
 
-// A bad structuring element: what() reads "ball: r: expected a positive number, got '-1'"; key()
+// A bad structuring element: what() reads "ball: r: expected a positive number, got -1"; key()
 // is the parameter at fault ("shape" for the shape itself) and problem() the rest, so callers can
 // point at their own location (a JSON path, a command-line option).
 class StructuringElementError : public std::invalid_argument {

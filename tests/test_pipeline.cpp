@@ -1,0 +1,227 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Pipelines: golden runs with exact volumes, a table of invalid pipelines with their exact error
+// text, variable substitution, and a multi-input run with one bad mesh among good ones.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "morphex/io.h"
+#include "morphex/pipeline.h"
+
+using namespace morphex;
+namespace mp = morphex::pipeline;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kData = MORPHEX_TEST_DATA_DIR;
+
+std::string fresh_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("morphex-pipeline-" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir.string();
+}
+
+mp::RunReport run_text(const std::string& text, const mp::RunOptions& options = {}) {
+  return mp::run(mp::parse_document(text, "p.json"), "p.json", options);
+}
+
+// The problems of an invalid pipeline, one text per line.
+std::vector<std::string> problems_of(const std::string& text, const mp::Variables& variables = {}) {
+  try {
+    mp::validate(mp::parse_document(text, "p.json"), "p.json", variables);
+  } catch (const mp::PipelineError& e) {
+    std::vector<std::string> out;
+    for (const auto& p : e.problems()) out.push_back(p.text());
+    return out;
+  }
+  return {};
+}
+
+const mp::StageReport& stage(const mp::InputReport& input, const std::string& tag) {
+  for (const auto& s : input.stages)
+    if (s.tag == tag) return s;
+  throw std::runtime_error("no stage tagged " + tag);
+}
+
+}  // namespace
+
+TEST(Pipeline, ChainedMorphologyAndBooleansGiveExactVolumes) {
+  const std::string out = fresh_dir("golden");
+  const mp::RunReport report = run_text(R"({"pipeline": [
+      {"type": "read", "path": ")" + kData + R"(/unit_cube.off", "tag": "in"},
+      {"type": "dilate", "se": {"shape": "cube", "r": "1/4"}, "tag": "grown"},
+      {"type": "erode", "se": "cube:r=1/4", "tag": "back"},
+      {"type": "translate", "inputs": ["in"], "offset": ["1/2", 0, 0], "tag": "moved"},
+      {"type": "union", "inputs": ["in", "moved"], "tag": "both"},
+      {"type": "difference", "inputs": ["grown", "in"], "tag": "shell"},
+      {"type": "scale", "inputs": ["in"], "factor": 2, "tag": "big"},
+      {"type": "rotate", "inputs": ["moved"], "axis": "z", "degrees": 90, "tag": "turned"},
+      {"type": "write", "inputs": ["shell"], "path": ")" + out + R"(/shell.off", "exact": true}]})");
+  ASSERT_TRUE(report.ok()) << report.inputs[0].error;
+  const mp::InputReport& r = report.inputs[0];
+  EXPECT_EQ(stage(r, "in").volume, "1");
+  EXPECT_EQ(stage(r, "grown").volume, "27/8");
+  EXPECT_EQ(stage(r, "back").volume, "1");  // a cube is open and closed for a smaller cube
+  EXPECT_EQ(stage(r, "both").volume, "3/2");
+  EXPECT_EQ(stage(r, "shell").volume, "19/8");
+  EXPECT_EQ(stage(r, "big").volume, "8");
+  EXPECT_EQ(stage(r, "turned").volume, "1");
+  EXPECT_EQ(stage(r, "turned").faces, 12u);
+  // the exact file holds exactly the shell
+  EXPECT_EQ(to_rational_string(signed_volume(read_mesh(out + "/shell.off"))), "19/8");
+}
+
+TEST(Pipeline, VariablesComeFromSetThenFromTheDocument) {
+  const std::string out = fresh_dir("variables");
+  const std::string text = R"({"variables": {"r": "1/4", "out_dir": "/nowhere"},
+    "pipeline": [{"type": "read", "path": "${input}"},
+                 {"type": "dilate", "se": {"shape": "cube", "r": "${r}"}},
+                 {"type": "write", "path": "${out_dir}/${stem}-grown.off"}]})";
+  mp::RunOptions options;
+  options.inputs = {kData + "/unit_cube.off"};
+  options.variables = {{"out_dir", out}};
+  const mp::RunReport report = run_text(text, options);
+  ASSERT_TRUE(report.ok()) << report.inputs[0].error;
+  EXPECT_EQ(report.inputs[0].stages.back().volume, "27/8");
+  EXPECT_TRUE(fs::exists(out + "/unit_cube-grown.off"));
+  options.variables["r"] = "1/2";
+  EXPECT_EQ(run_text(text, options).inputs[0].stages.back().volume, "8");
+}
+
+TEST(Pipeline, OneBadMeshAmongGoodOnesFailsAloneAndKeepsTheOthers) {
+  const std::string out = fresh_dir("multi");
+  mp::RunOptions options;
+  options.inputs = {kData + "/unit_cube.off", kData + "/open_cube.off",
+                    kData + "/third_cube_exact.off", kData + "/missing.off"};
+  const mp::RunReport report = run_text(R"({"pipeline": [
+      {"type": "read", "path": "${input}"},
+      {"type": "dilate", "se": "octahedron:r=1/8"},
+      {"type": "write", "path": ")" + out + R"(/${stem}.off"}]})", options);
+  ASSERT_EQ(report.inputs.size(), 4u);
+  EXPECT_FALSE(report.ok());
+  EXPECT_TRUE(report.inputs[0].ok);
+  EXPECT_TRUE(report.inputs[2].ok);
+  EXPECT_FALSE(report.inputs[1].ok);
+  EXPECT_EQ(report.inputs[1].error.rfind("pipeline[0] (read): " + kData +
+                                             "/open_cube.off: mesh is not closed: 4 border edges",
+                                         0),
+            0u)
+      << report.inputs[1].error;
+  EXPECT_NE(report.inputs[3].error.find("missing.off"), std::string::npos);
+  EXPECT_TRUE(fs::exists(out + "/unit_cube.off"));
+  EXPECT_TRUE(fs::exists(out + "/third_cube_exact.off"));
+  EXPECT_FALSE(fs::exists(out + "/open_cube.off"));
+  const nlohmann::json j = report.to_json();
+  EXPECT_EQ(j["inputs"][1]["name"], "open_cube");
+  EXPECT_EQ(j["inputs"][0]["stages"][1]["type"], "dilate");
+}
+
+TEST(Pipeline, SeveralInputsWritingOneFileAreRefused) {
+  mp::RunOptions options;
+  options.inputs = {kData + "/unit_cube.off", kData + "/third_cube_exact.off"};
+  try {
+    run_text(R"({"pipeline": [{"type": "read", "path": "${input}"},
+                              {"type": "write", "path": "/tmp/same.off"}]})",
+             options);
+    FAIL() << "expected a PipelineError";
+  } catch (const mp::PipelineError& e) {
+    EXPECT_EQ(e.problems().at(0).text(),
+              "pipeline[1].path: every input would write the same file /tmp/same.off (put "
+              "${stem} in the path)");
+  }
+}
+
+struct InvalidCase {
+  const char* name;
+  std::string json;
+  std::vector<std::string> expected;
+};
+
+class InvalidPipelines : public ::testing::TestWithParam<InvalidCase> {};
+
+TEST_P(InvalidPipelines, ReportEveryProblemWithItsLocation) {
+  EXPECT_EQ(problems_of(GetParam().json), GetParam().expected);
+}
+
+const std::string kRead = R"({"type": "read", "path": "a.off", "tag": "in"})";
+
+INSTANTIATE_TEST_SUITE_P(
+    Table, InvalidPipelines,
+    ::testing::Values(
+        InvalidCase{"empty", R"({"pipeline": []})",
+                    {"pipeline: expected a non-empty array of stages"}},
+        InvalidCase{"unknown_type", "[" + kRead + R"(, {"type": "dilation", "se": "cube:r=1"}])",
+                    {"pipeline[1].type: unknown stage 'dilation' (did you mean 'dilate'?)"}},
+        InvalidCase{"negative_radius",
+                    "[" + kRead + R"(, {"type": "open", "se": {"shape": "ball", "r": -1}}])",
+                    {"pipeline[1].se.r: expected a positive number, got -1"}},
+        InvalidCase{"unknown_and_missing_option",
+                    "[" + kRead + R"(, {"type": "dilate", "radius": 2}])",
+                    {"pipeline[1].radius: unknown option for 'dilate' (known: se)",
+                     "pipeline[1].se: missing (required by 'dilate')"}},
+        InvalidCase{"wrong_types",
+                    "[" + kRead +
+                        R"(, {"type": "write", "path": "b.off", "exact": "yes"},
+                             {"type": "translate", "inputs": "in", "offset": [1, "x", 3]},
+                             {"type": "rotate", "inputs": "in", "axis": "w", "degrees": 5}])",
+                    {"pipeline[1].exact: expected true or false, got \"yes\"",
+                     "pipeline[2].offset[1]: expected a number, got \"x\"",
+                     "pipeline[3].axis: expected one of x, y, z, got \"w\""}},
+        InvalidCase{"bad_shape", "[" + kRead + R"(, {"type": "dilate", "se": {"shape": "sphere"}}])",
+                    {"pipeline[1].se.shape: unknown structuring element shape 'sphere' (expected "
+                     "cube, box, octahedron, ball, cylinder or mesh)"}},
+        InvalidCase{"tags",
+                    "[" + kRead + R"(, {"type": "read", "path": "b.off", "tag": "in"},
+                             {"type": "union", "inputs": ["in", "nope"]},
+                             {"type": "difference", "inputs": ["in"]}])",
+                    {"pipeline[1].tag: duplicate tag 'in' (first used by pipeline[0])",
+                     "pipeline[2].inputs[1]: unknown tag 'nope'",
+                     "pipeline[3].inputs: 'difference' takes 2 inputs, got 1"}},
+        InvalidCase{"first_needs_input", R"([{"type": "dilate", "se": "cube:r=1"}])",
+                    {"pipeline[0].inputs: 'dilate' needs an input: it cannot come first"}},
+        InvalidCase{"cycle",
+                    "[" + kRead + R"(, {"type": "union", "inputs": ["in", "b"], "tag": "a"},
+                             {"type": "dilate", "inputs": ["a"], "se": "cube:r=1", "tag": "b"}])",
+                    {"pipeline[1].inputs: cycle: a -> b -> a"}},
+        InvalidCase{"overwrite_input", "[" + kRead + R"(, {"type": "write", "path": "a.off"}])",
+                    {"pipeline[1].path: would overwrite the input read by pipeline[0] (a.off)"}},
+        InvalidCase{"unknown_variable", R"([{"type": "read", "path": "${mesh}"}])",
+                    {"pipeline[0].path: unknown variable ${mesh} (set it with --set mesh=VALUE)"}},
+        InvalidCase{"top_level", R"({"pipline": [], "pipeline": [{"type": "read", "path": "a"}]})",
+                    {"pipline: unknown top-level key (expected \"pipeline\", and optionally "
+                     "\"description\" and \"variables\")"}}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+TEST(Pipeline, MalformedJsonNamesLineAndColumn) {
+  try {
+    mp::parse_document("{\"pipeline\": [\n  {\"type\": \"read\",, }\n]}", "p.json");
+    FAIL() << "expected a PipelineError";
+  } catch (const mp::PipelineError& e) {
+    EXPECT_EQ(e.problems().at(0).location, "p.json:2:19");  // the second comma
+    EXPECT_EQ(e.problems().at(0).message.rfind("malformed JSON: ", 0), 0u);
+  }
+}
+
+TEST(Pipeline, RegistryDocumentsEveryStage) {
+  const auto& registry = mp::StageRegistry::builtin();
+  for (const char* type : {"read", "write", "dilate", "erode", "open", "close", "union",
+                           "intersection", "difference", "minkowski", "translate", "scale",
+                           "rotate", "check"}) {
+    const mp::StageInfo* s = registry.find(type);
+    ASSERT_NE(s, nullptr) << type;
+    EXPECT_FALSE(s->description.empty()) << type;
+    for (const auto& o : s->options) EXPECT_FALSE(o.description.empty()) << type << "." << o.name;
+  }
+  EXPECT_EQ(registry.closest("erosion"), "erode");
+}
+
+TEST(Pipeline, ExamplesAreValid) {
+  for (const auto& entry : fs::directory_iterator(MORPHEX_SOURCE_DIR "/pipelines/examples")) {
+    if (entry.path().extension() != ".json") continue;
+    EXPECT_NO_THROW(mp::validate(mp::load_document(entry.path().string()), entry.path().string(),
+                                 {}, {"input", "stem"}))
+        << entry.path();
+  }
+}
