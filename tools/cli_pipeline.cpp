@@ -67,13 +67,28 @@ void print_problems(const std::string& file, const mp::PipelineError& e) {
     print_error(p.location.rfind(file, 0) == 0 ? p.text() : file + ": " + p.text());
 }
 
+void print_table(const mp::RunReport& report) {
+  std::cout << std::left << std::setw(20) << "input" << std::setw(16) << "stage" << std::setw(12)
+            << "type" << std::right << std::setw(9) << "faces" << std::setw(14) << "volume"
+            << std::setw(10) << "seconds" << '\n';
+  for (const mp::InputReport& input : report.inputs)
+    for (const mp::StageReport& s : input.stages)
+      std::cout << std::left << std::setw(20)
+                << std::filesystem::path(input.input).stem().string().substr(0, 19)
+                << std::setw(16) << s.tag.substr(0, 15) << std::setw(12) << s.type << std::right
+                << std::setw(9) << s.faces << std::setw(14) << std::setprecision(6)
+                << s.volume_approx << std::setw(10) << std::setprecision(3) << s.seconds << '\n';
+}
+
 Command add_run_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("run", "Run a JSON pipeline, once or over many input meshes");
   auto args = std::make_shared<PipelineArgs>();
   auto report_path = std::make_shared<std::string>();
+  auto table = std::make_shared<bool>(false);
   add_pipeline_options(cmd, *args);
   cmd->add_option("--report", *report_path, "Per-stage timings and sizes as JSON (FILE or '-')");
-  return {cmd, [args, report_path]() -> int {
+  cmd->add_flag("--table", *table, "Print every stage's size, volume and time on stdout");
+  return {cmd, [args, report_path, table]() -> int {
             mp::RunOptions options;
             if (!parse_variables(args->sets, options.variables)) return kBadInput;
             options.inputs = expand_inputs(args->inputs);
@@ -92,6 +107,7 @@ Command add_run_command(CLI::App& app) {
                 print_error((input.input.empty() ? args->file : input.input) + ": " + input.error);
               }
             if (!report_path->empty()) emit_json(report.to_json(), *report_path);
+            if (*report_path != "-" && *table) print_table(report);
             if (*report_path != "-")
               std::cout << args->file << ": " << report.inputs.size() << " run"
                         << (report.inputs.size() == 1 ? "" : "s") << ", "
