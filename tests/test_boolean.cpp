@@ -292,3 +292,27 @@ TEST(Boolean, VertexOnAFacetAndEdgeInAFacet) {
   // a tetrahedron lying on the top face with one edge along the face's diagonal
   check_identities(cube, translated(make_tetrahedron(), Kernel::Vector_3(-1, -1, 1)));
 }
+
+TEST(ManySolids, TreeUnionAndNaryUnionOfConvexSolidsAgreeExactly) {
+  // Three boxes crossing pairwise (their faces meet at triple points), touching and coplanar
+  // cubes, nested and disjoint ones, and crossing icospheres: both unions, same exact volume.
+  std::vector<Mesh> solids = {
+      make_box(Point(0, 0, 0), Point(4, 1, 1)),   make_box(Point(1, -1, 0), Point(2, 3, 2)),
+      make_box(Point(0, 0, -1), Point(3, 2, 1) ), make_cube(FT(1) / 2, Point(6, 0, 0)),
+      make_cube(FT(1) / 2, Point(7, 0, 0)),       make_cube(FT(1) / 4, Point(6, 0, 0)),
+      make_cube(FT(1), Point(-5, -5, -5)),        make_icosphere(1, FT(1)),
+      translated(make_icosphere(1, FT(1)), Vector(FT(1) / 3, FT(1) / 5, FT(1) / 7))};
+  UnionStats tree_stats, nary_stats;
+  const Mesh by_tree = compute_union(solids, &tree_stats);
+  const Mesh by_nary = compute_union_of_convex(solids, &nary_stats);
+  const MeshReport tree_report = check_mesh(by_tree), nary_report = check_mesh(by_nary);
+  EXPECT_TRUE(tree_report.valid_solid()) << describe_problems(tree_report);
+  EXPECT_TRUE(nary_report.valid_solid()) << describe_problems(nary_report);
+  EXPECT_EQ(tree_report.volume, nary_report.volume);
+  EXPECT_EQ(tree_report.components, nary_report.components);
+  EXPECT_GT(tree_stats.binary_unions, 0u);
+  EXPECT_GT(nary_stats.candidate_pairs, 0u);
+  // an independent closed form for the disjoint parts: the two touching cubes and the far cube
+  const Mesh far_part = compute_union({solids[3], solids[4], solids[5], solids[6]});
+  EXPECT_EQ(signed_volume(far_part), FT(2) + FT(8));
+}

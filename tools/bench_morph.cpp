@@ -2,11 +2,12 @@
 // bench_morph: morphex morphology against CGAL's minkowski_sum_3 (Nef polyhedra, exact) on the
 // same input in the same run, with exact volumes compared, wall time and peak memory.
 //
-//   bench_morph [--se SPEC] [--ops dilate,erode,open,close] [--peer] [--chain N] [--json FILE]
-//               INPUT...
+//   bench_morph [--se SPEC] [--ops dilate,erode,open,close] [--peer] [--nary] [--chain N]
+//               [--json FILE] INPUT...
 // INPUT is a mesh file or a generated mesh: torus:U,V (U*V*2 facets, non-convex), l-shape,
-// icosphere:L. --peer runs minkowski_sum_3 on every dilation; --chain N dilates N times in a row
-// and reports the first and the last step.
+// icosphere:L. --peer runs minkowski_sum_3 on every dilation; --nary also times the dilation with
+// the pieces united by the n-ary union instead of the binary-union tree (the default); --chain N
+// dilates N times in a row and reports the first and the last step.
 #include <sys/resource.h>
 
 #include "morphex/nef.h"  // Nef before minkowski_sum_3.h, which needs the Nef headers first
@@ -24,6 +25,7 @@
 #include "morphex/check.h"
 #include "morphex/generators.h"
 #include "morphex/io.h"
+#include "morphex/minkowski.h"
 #include "morphex/morphology.h"
 
 using namespace morphex;
@@ -68,7 +70,7 @@ std::vector<std::string> split(const std::string& text) {
 int main(int argc, char** argv) {
   std::string se_spec = "cube:r=1/20", json_path;
   std::vector<std::string> ops = {"dilate"}, inputs;
-  bool peer = false;
+  bool peer = false, nary = false;
   int chain = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -78,6 +80,8 @@ int main(int argc, char** argv) {
       ops = split(argv[++i]);
     else if (arg == "--peer")
       peer = true;
+    else if (arg == "--nary")
+      nary = true;
     else if (arg == "--chain" && i + 1 < argc)
       chain = std::stoi(argv[++i]);
     else if (arg == "--json" && i + 1 < argc)
@@ -127,6 +131,18 @@ int main(int argc, char** argv) {
         row["cgal_minkowski_sum_3_seconds"] = their_seconds;
         row["ratio"] = their_seconds / our_seconds;
         row["agree"] = agree;
+      }
+      if (nary && op == MorphologyOp::Dilate && se.convex) {
+        start = std::chrono::steady_clock::now();
+        Mesh shell = boundary_sum(a, se.mesh, true, nullptr, PieceUnion::NAry);
+        const Mesh by_nary = compute_union({std::move(shell), a});  // the SEs hold the origin
+        const double nary_seconds = seconds_since(start);
+        const bool agree = signed_volume(by_nary) == report.volume;
+        all_agree = all_agree && agree;
+        agreement += agree ? ", n-ary agrees" : ", N-ARY DIFFERS";
+        row["nary_union_seconds"] = nary_seconds;
+        std::cout << "  n-ary union of the pieces: " << nary_seconds << " s ("
+                  << nary_seconds / our_seconds << "x the tree's time)\n";
       }
       all_agree = all_agree && report.valid_solid();
       std::cout << std::left << std::setw(28) << input << std::setw(8) << op_name << std::right

@@ -82,6 +82,10 @@ enum class Label : std::uint8_t { Outside, Inside, CoplanarSame, CoplanarOpposit
 std::vector<Label> classify(const Mesh& mesh, const Mesh& other, int side, const Refined& refined,
                             const Intersection& x, ClassifyCounts& counts);
 
+// Turns kept triangles over shared points into a closed 2-manifold: non-manifold edges are paired
+// by exact radial order and each vertex gets one copy per fan.
+Mesh separate_non_manifold(const std::vector<Point>& points, std::vector<Triangle>& faces);
+
 // Step 7: selection, output, separation of non-manifold features.
 Mesh assemble(const Intersection& x, const Refined refined[2], const std::vector<Label> labels[2],
               BooleanOp op, std::vector<FaceOrigin>* provenance);

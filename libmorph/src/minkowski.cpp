@@ -91,6 +91,15 @@ bool convex_contains_origin(const Mesh& convex) {
 }
 
 Mesh sum_with_component(const Mesh& a, const Mesh& b, bool b_convex, MinkowskiStats* stats) {
+  if (b_convex && is_convex(a)) {
+    std::vector<Point> sums;
+    sums.reserve(a.points.size() * b.points.size());
+    for (const Point& p : a.points)
+      for (const Point& q : b.points) sums.push_back(p + (q - CGAL::ORIGIN));
+    Mesh hull = convex_hull(sums);
+    make_exact(hull);
+    return hull;
+  }
   Mesh shell = boundary_sum(a, b, b_convex, stats);
   // A + b0 for a point b0 of B; when B is convex and holds the origin, A itself.
   const bool origin_inside = b_convex && convex_contains_origin(b);
@@ -113,9 +122,10 @@ void require_valid(const Mesh& mesh, const char* which) {
 
 }  // namespace detail
 
-Mesh boundary_sum(const Mesh& surface, const Mesh& b, bool b_convex, MinkowskiStats* stats) {
+Mesh boundary_sum(const Mesh& surface, const Mesh& b, bool b_convex, MinkowskiStats* stats,
+                  PieceUnion method) {
   const auto start = std::chrono::steady_clock::now();
-  std::vector<Mesh> pieces;
+  std::vector<Mesh> pieces, copies;  // convex pieces; translated copies of a non-convex B
   if (b_convex) {
     pieces.resize(surface.triangles.size());
     tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t i) {
@@ -124,24 +134,36 @@ Mesh boundary_sum(const Mesh& surface, const Mesh& b, bool b_convex, MinkowskiSt
   } else {
     // f + B = (f + dB) u (p_f + B): pairs of triangles, plus B at every vertex of the surface.
     const std::size_t pairs = surface.triangles.size() * b.triangles.size();
-    pieces.resize(pairs + surface.points.size());
+    pieces.resize(pairs);
     tbb::parallel_for(std::size_t(0), pairs, [&](std::size_t i) {
       pieces[i] = triangle_pair_sum(surface, surface.triangles[i / b.triangles.size()], b,
                                     b.triangles[i % b.triangles.size()]);
     });
+    copies.resize(surface.points.size());
     tbb::parallel_for(std::size_t(0), surface.points.size(), [&](std::size_t v) {
-      pieces[pairs + v] = translated(b, surface.points[v] - CGAL::ORIGIN);
-      make_exact(pieces[pairs + v]);
+      copies[v] = translated(b, surface.points[v] - CGAL::ORIGIN);
+      make_exact(copies[v]);
     });
   }
   const double seconds_pieces = seconds_since(start);
   std::size_t triangles = 0;
   for (const Mesh& p : pieces) triangles += p.triangles.size();
-  const std::size_t count = pieces.size();
+  for (const Mesh& p : copies) triangles += p.triangles.size();
+  const std::size_t count = pieces.size() + copies.size();
 
   const auto union_start = std::chrono::steady_clock::now();
   UnionStats union_stats;
-  Mesh shell = compute_union(std::move(pieces), &union_stats);
+  Mesh shell;
+  if (method == PieceUnion::NAry) {
+    shell = compute_union_of_convex(std::move(pieces), &union_stats);
+    if (!copies.empty()) {
+      copies.push_back(std::move(shell));
+      shell = compute_union(std::move(copies), &union_stats);
+    }
+  } else {
+    for (Mesh& c : copies) pieces.push_back(std::move(c));
+    shell = compute_union(std::move(pieces), &union_stats);
+  }
   if (stats) {
     stats->pieces += count;
     stats->piece_triangles += triangles;

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Exact Minkowski sums of closed triangle meshes.
 //
-// For solids A, B (B connected) and any point b0 of B:
+// When A and B are both convex, A + B is the convex hull of the vertex sums, computed directly.
+// Otherwise, for solids A, B (B connected) and any point b0 of B:
 //   A + B = (A + b0)  u  (dA + B),         dA + B = union over facets f of A of (f + B).
 // For convex B each f + B = conv(f + B), a convex polytope from the vertex sums. For non-convex B,
 // f + B = (f + dB) u (p_f + B) for any point p_f of f, and f + dB = union over facets g of B of
@@ -25,9 +26,15 @@ struct MinkowskiStats {
 // A + B for closed solids. Throws std::invalid_argument if either is not a valid solid.
 Mesh minkowski_sum(const Mesh& a, const Mesh& b, MinkowskiStats* stats = nullptr);
 
+// How the convex pieces are united: the balanced tree of binary unions (compute_union, the
+// default: intermediate unions shed the overlap early) or one n-ary pass (compute_union_of_convex),
+// which bench_morph --nary measures: exact too, but several times slower on these heavily
+// overlapping pieces (every piece/piece pair is intersected and re-triangulated at once).
+enum class PieceUnion { BinaryTree, NAry };
+
 // dA + B: the union of the sums of every facet of `surface` with the solid b (the "offset shell"
 // behind dilation and erosion). `b_convex` selects the convex-hull route.
 Mesh boundary_sum(const Mesh& surface, const Mesh& b, bool b_convex,
-                  MinkowskiStats* stats = nullptr);
+                  MinkowskiStats* stats = nullptr, PieceUnion method = PieceUnion::BinaryTree);
 
 }  // namespace morphex
