@@ -42,5 +42,9 @@ Command add_check_command(CLI::App& app);
 Command add_bool_command(CLI::App& app);
 std::vector<Command> add_morphology_commands(CLI::App& app);
 std::vector<Command> add_pipeline_commands(CLI::App& app);
+std::vector<Command> add_retrieval_commands(CLI::App& app);
+
+// Expands glob patterns; plain paths are kept even if missing (reading reports them).
+std::vector<std::string> expand_inputs(const std::vector<std::string>& patterns);
 
 }  // namespace morphex::cli

@@ -44,24 +44,6 @@ bool parse_variables(const std::vector<std::string>& sets, mp::Variables& out) {
   return true;
 }
 
-// Expands glob patterns; plain paths are kept even if missing (the read stage reports them).
-std::vector<std::string> expand_inputs(const std::vector<std::string>& patterns) {
-  std::vector<std::string> out;
-  for (const std::string& p : patterns) {
-    if (p.find_first_of("*?[") == std::string::npos) {
-      out.push_back(p);
-      continue;
-    }
-    glob_t matches{};
-    if (glob(p.c_str(), 0, nullptr, &matches) == 0)
-      for (std::size_t i = 0; i < matches.gl_pathc; ++i) out.emplace_back(matches.gl_pathv[i]);
-    else
-      out.push_back(p);  // no match: reported as a missing file by the read stage
-    globfree(&matches);
-  }
-  return out;
-}
-
 void print_problems(const std::string& file, const mp::PipelineError& e) {
   for (const mp::Problem& p : e.problems())
     print_error(p.location.rfind(file, 0) == 0 ? p.text() : file + ": " + p.text());
@@ -200,6 +182,23 @@ Command add_stages_command(CLI::App& app) {
 }
 
 }  // namespace
+
+std::vector<std::string> expand_inputs(const std::vector<std::string>& patterns) {
+  std::vector<std::string> out;
+  for (const std::string& p : patterns) {
+    if (p.find_first_of("*?[") == std::string::npos) {
+      out.push_back(p);
+      continue;
+    }
+    glob_t matches{};
+    if (glob(p.c_str(), 0, nullptr, &matches) == 0)
+      for (std::size_t i = 0; i < matches.gl_pathc; ++i) out.emplace_back(matches.gl_pathv[i]);
+    else
+      out.push_back(p);  // no match: reported as a missing file by the read stage
+    globfree(&matches);
+  }
+  return out;
+}
 
 std::vector<Command> add_pipeline_commands(CLI::App& app) {
   return {add_run_command(app), add_validate_command(app), add_stages_command(app)};

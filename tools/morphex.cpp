@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   std::vector<Command> commands = {add_check_command(app), add_bool_command(app)};
   for (Command& c : add_morphology_commands(app)) commands.push_back(std::move(c));
   for (Command& c : add_pipeline_commands(app)) commands.push_back(std::move(c));
+  for (Command& c : add_retrieval_commands(app)) commands.push_back(std::move(c));
 
   try {
     app.parse(argc, argv);

@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "morphex/descriptors.h"
 #include "morphex/generators.h"
 #include "morphex/structuring_element.h"
 
@@ -15,6 +16,9 @@ FT exact_number(const nlohmann::json& value);
 // The JSON form {"shape": "ball", "r": 0.05, "level": 1} or the text form "ball:r=0.05,level=1".
 // Throws StructuringElementError (its key() names the member at fault).
 StructuringElement structuring_element(const nlohmann::json& value);
+
+// The describe stage's validated options as settings.
+DescriptorSettings descriptor_settings(const nlohmann::json& options);
 
 // Rotation about a coordinate axis by an angle in degrees, exactly orthogonal: multiples of 90
 // degrees are exact, other angles use the rational half-tangent nearest to a 1e-9 grid.

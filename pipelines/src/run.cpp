@@ -162,8 +162,13 @@ RunReport run(const nlohmann::json& document, const std::string& name, const Run
   Progress progress(options.progress, pipelines.size() * pipelines[0].stages.size());
   RunReport report;
   report.inputs.resize(pipelines.size());
+  std::mutex done_mutex;
   tbb::parallel_for(std::size_t(0), pipelines.size(), [&](std::size_t i) {
     report.inputs[i] = run_one(pipelines[i], options.inputs.empty() ? "" : inputs[i], progress);
+    if (options.on_input_done) {
+      std::lock_guard<std::mutex> lock(done_mutex);
+      options.on_input_done(report.inputs[i]);
+    }
   });
   report.seconds = seconds_since(start);
   return report;

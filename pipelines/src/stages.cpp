@@ -6,6 +6,7 @@
 
 #include "morphex/boolean.h"
 #include "morphex/check.h"
+#include "morphex/descriptors.h"
 #include "morphex/io.h"
 #include "morphex/minkowski.h"
 #include "morphex/morphology.h"
@@ -26,6 +27,8 @@ const char* to_string(OptionType type) {
       return "integer";
     case OptionType::Number:
       return "number";
+    case OptionType::NumberList:
+      return "[number, ...]";
     case OptionType::Vector3:
       return "[x, y, z]";
     case OptionType::StructuringElement:
@@ -61,6 +64,17 @@ StructuringElement structuring_element(const nlohmann::json& value) {
                                     "expected a number or a string, got " + v.dump());
   }
   return make_structuring_element(value["shape"].get<std::string>(), params);
+}
+
+DescriptorSettings descriptor_settings(const nlohmann::json& options) {
+  DescriptorSettings s;
+  s.radii.clear();
+  for (const auto& r : options.at("radii")) s.radii.push_back(CGAL::to_double(exact_number(r)));
+  s.closings = options.at("closings").get<bool>();
+  s.normalise_pose = options.at("pose").get<bool>();
+  s.d2_samples = options.at("d2_samples").get<int>();
+  s.seed = options.at("seed").get<std::uint64_t>();
+  return s;
 }
 
 Transformation rotation(const std::string& axis, const FT& degrees) {
@@ -192,6 +206,31 @@ void add_builtin_stages(StageRegistry& r) {
                                                  detail::exact_number(c.option("degrees"))));
            make_exact(m);
            return m;
+         }});
+  OptionInfo radii = optional("radii", OptionType::NumberList, {0.05, 0.1, 0.2},
+                              "cube half sides of the openings, in units of cbrt(volume), growing");
+  OptionInfo samples = optional("d2_samples", OptionType::Integer, 4096, "D2 point pairs");
+  samples.min = 16;
+  samples.max = 10000000;
+  OptionInfo seed = optional("seed", OptionType::Integer, 1, "D2 random seed");
+  seed.min = 0;
+  seed.max = 4294967295.0;
+  r.add({"describe",
+         "morphological descriptors (granulometry, pattern spectrum, anti-granulometry) and the "
+         "D2 baseline; passes the mesh on",
+         1,
+         {radii, optional("closings", OptionType::Bool, true, "also the anti-granulometry"),
+          optional("pose", OptionType::Bool, true, "normalise the pose (principal axes) first"),
+          samples, seed},
+         [](StageContext& c) {
+           const DescriptorSettings settings = detail::descriptor_settings(c.stage.options);
+           const Descriptors d = describe(*c.inputs[0], settings);
+           nlohmann::json vectors;
+           for (const std::string& kind : descriptor_kinds()) vectors[kind] = descriptor_vector(d, kind);
+           c.extra["descriptors"] = vectors;
+           c.extra["descriptor_settings"] = settings.to_string();
+           c.extra["scale_length"] = d.scale_length;
+           return *c.inputs[0];
          }});
   r.add({"check", "report validity, volume, genus and components; passes the mesh on", 1,
          {optional("require_valid", OptionType::Bool, true,

@@ -100,6 +100,22 @@ void check_option(const OptionInfo& option, const nlohmann::json& value,
       if (option.positive && x <= 0) expected("a positive number");
       return;
     }
+    case OptionType::NumberList: {
+      if (!value.is_array() || value.empty()) return expected("a non-empty array of numbers");
+      FT previous = 0;
+      for (std::size_t i = 0; i < value.size(); ++i) {
+        try {
+          const FT x = detail::exact_number(value[i]);
+          if (x <= previous)
+            problems.push_back({at(location, i), "expected a positive number larger than the one "
+                                                 "before, got " + value[i].dump()});
+          previous = x;
+        } catch (const std::exception&) {
+          problems.push_back({at(location, i), "expected a number, got " + value[i].dump()});
+        }
+      }
+      return;
+    }
     case OptionType::Vector3:
       if (!value.is_array() || value.size() != 3) return expected("an array of 3 numbers");
       for (std::size_t i = 0; i < 3; ++i) {

@@ -28,7 +28,7 @@ namespace morphex::pipeline {
 
 // ---- the stage registry ----------------------------------------------------------------------
 
-enum class OptionType { String, Path, Bool, Integer, Number, Vector3, StructuringElement };
+enum class OptionType { String, Path, Bool, Integer, Number, NumberList, Vector3, StructuringElement };
 const char* to_string(OptionType type);
 
 struct OptionInfo {
@@ -137,6 +137,9 @@ struct RunOptions {
   Variables variables;              // from --set
   std::vector<std::string> inputs;  // each run binds ${input} and ${stem}
   bool progress = false;            // a progress line on stderr
+  // Called once per input as soon as it finishes (from a worker thread, one call at a time), so a
+  // caller can commit results before the whole run ends.
+  std::function<void(const InputReport&)> on_input_done;
 };
 
 struct RunReport {

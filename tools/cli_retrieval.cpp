@@ -1,0 +1,372 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Descriptors and retrieval: `morphex describe`, `generate`, `index`, `query` and `evaluate`.
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+
+#include "cli_common.h"
+#include "index_db.h"
+#include "morphex/collection.h"
+#include "morphex/descriptors.h"
+#include "morphex/io.h"
+#include "morphex/pipeline.h"
+#include "morphex/retrieval.h"
+
+namespace morphex::cli {
+namespace {
+
+namespace mp = morphex::pipeline;
+namespace fs = std::filesystem;
+
+const char* kDefaultPipeline =
+    R"({"pipeline": [{"type": "read", "path": "${input}"}, {"type": "describe"}]})";
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The descriptors of the last describe stage of a finished input, by kind.
+std::map<std::string, std::vector<double>> descriptors_of(const mp::InputReport& input) {
+  std::map<std::string, std::vector<double>> out;
+  for (const mp::StageReport& s : input.stages)
+    if (s.type == "describe")
+      for (const auto& [kind, v] : s.extra["descriptors"].items())
+        out[kind] = v.get<std::vector<double>>();
+  return out;
+}
+
+Command add_describe_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("describe", "Morphological descriptors and D2 of a closed mesh");
+  struct Args {
+    std::string mesh;
+    bool json = false;
+    DescriptorSettings settings;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("MESH", args->mesh, "Closed mesh")->required();
+  cmd->add_flag("--json", args->json, "One JSON object on stdout");
+  cmd->add_option("--radii", args->settings.radii,
+                  "Cube half sides of the openings, in units of cbrt(volume)")
+      ->delimiter(',');
+  cmd->add_option("--d2-samples", args->settings.d2_samples, "D2 point pairs")
+      ->check(CLI::Range(16, 10000000));
+  cmd->add_option("--seed", args->settings.seed, "D2 random seed");
+  return {cmd, [args]() -> int {
+            const auto mesh = read_solid(args->mesh);
+            if (!mesh) return kBadInput;
+            const auto start = std::chrono::steady_clock::now();
+            const Descriptors d = describe(*mesh, args->settings);
+            nlohmann::json j = {{"name", fs::path(args->mesh).stem().string()},
+                                {"path", args->mesh},
+                                {"scale_length", d.scale_length},
+                                {"granulometry", d.granulometry},
+                                {"pattern_spectrum", d.pattern_spectrum},
+                                {"anti_granulometry", d.anti_granulometry},
+                                {"d2", d.d2},
+                                {"settings", args->settings.to_string()},
+                                {"seconds", seconds_since(start)}};
+            if (args->json) {
+              std::cout << j.dump() << std::endl;
+              return kSuccess;
+            }
+            std::cout << args->mesh << "  (L = cbrt(volume) = " << d.scale_length << ")\n";
+            for (const char* key : {"granulometry", "pattern_spectrum", "anti_granulometry", "d2"}) {
+              std::cout << std::left << std::setw(19) << key;
+              for (double v : j[key].get<std::vector<double>>()) std::cout << ' ' << std::setprecision(4) << v;
+              std::cout << '\n';
+            }
+            return kSuccess;
+          }};
+}
+
+Command add_generate_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "generate", "Write the procedural labelled collection (exact OFF files and labels.cla)");
+  struct Args {
+    std::string dir;
+    int per_family = 4;
+    std::uint64_t seed = 1;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("DIR", args->dir, "Output directory (created)")->required();
+  cmd->add_option("--per-class", args->per_family, "Meshes per family")->check(CLI::Range(1, 1000));
+  cmd->add_option("--seed", args->seed, "Random seed");
+  return {cmd, [args]() -> int {
+            fs::create_directories(args->dir);
+            const auto meshes = make_collection(args->per_family, args->seed);
+            WriteOptions exact;
+            exact.exact = true;
+            for (const LabelledMesh& m : meshes)
+              write_mesh(m.mesh, (fs::path(args->dir) / (m.name + ".off")).string(), exact);
+            const std::string labels = (fs::path(args->dir) / "labels.cla").string();
+            write_file_atomically(labels, [&](std::ostream& out) { out << to_cla(meshes); });
+            std::cout << "wrote " << meshes.size() << " meshes in " << collection_families().size()
+                      << " classes and " << labels << '\n';
+            return kSuccess;
+          }};
+}
+
+class ProgressBar {
+ public:
+  explicit ProgressBar(std::size_t total) : total_(total), enabled_(isatty(STDERR_FILENO) != 0) {}
+  void update(std::size_t done, std::size_t failed) {
+    if (!enabled_ || total_ == 0) return;
+    const double elapsed = seconds_since(start_);
+    const double eta = done > 0 ? elapsed / double(done) * double(total_ - done) : 0;
+    const int width = 30, filled = int(width * done / total_);
+    std::cerr << "\r\033[K[" << std::string(filled, '=') << std::string(width - filled, ' ')
+              << "] " << done << "/" << total_ << " meshes, " << failed << " failed, ETA "
+              << int(eta) / 60 << "m" << std::setw(2) << std::setfill('0') << int(eta) % 60
+              << std::setfill(' ') << "s" << (done == total_ ? "\n" : "") << std::flush;
+  }
+
+ private:
+  std::size_t total_;
+  bool enabled_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+Command add_index_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("index", "Describe meshes into a SQLite retrieval index");
+  struct Args {
+    std::vector<std::string> inputs, sets;
+    std::string db, pipeline;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("INPUT", args->inputs, "Meshes or quoted globs")->required();
+  cmd->add_option("--db", args->db, "Index file (SQLite), created if missing")->required();
+  cmd->add_option("--pipeline", args->pipeline,
+                  "Descriptor pipeline run on each ${input}; its last describe stage is stored "
+                  "(default: read, then describe with default settings)");
+  cmd->add_option("--set", args->sets, "Pipeline variable name=value (repeatable)");
+  return {cmd, [args]() -> int {
+            nlohmann::json document;
+            try {
+              document = args->pipeline.empty() ? mp::parse_document(kDefaultPipeline, "default")
+                                                : mp::load_document(args->pipeline);
+              const auto p = mp::validate(document, args->pipeline, {}, {"input", "stem"});
+              if (std::none_of(p.stages.begin(), p.stages.end(),
+                               [](const mp::Stage& s) { return s.type == "describe"; }))
+                throw mp::PipelineError(std::vector<mp::Problem>{{"pipeline", "an index pipeline needs a describe stage"}});
+            } catch (const mp::PipelineError& e) {
+              for (const auto& p : e.problems()) print_error(args->pipeline + ": " + p.text());
+              return kBadInput;
+            }
+            mp::RunOptions options;
+            std::string sets;
+            for (const std::string& s : args->sets) {
+              const auto eq = s.find('=');
+              if (eq == std::string::npos) {
+                print_error("--set " + s + ": expected name=value");
+                return kBadInput;
+              }
+              options.variables[s.substr(0, eq)] = s.substr(eq + 1);
+              sets += s + ";";
+            }
+            const std::string settings = document.dump() + "|" + sets;
+            IndexDb db(args->db);
+            db.set_meta("pipeline", document.dump());
+            db.set_meta("sets", nlohmann::json(options.variables).dump());
+
+            const auto start = std::chrono::steady_clock::now();
+            std::size_t skipped = 0, failed = 0, done = 0;
+            std::map<std::string, std::string> hashes;
+            for (const std::string& input : expand_inputs(args->inputs)) {
+              std::string hash;
+              try {
+                hash = content_hash(input);
+              } catch (const std::exception& e) {
+                ++failed;
+                print_error(input + ": cannot read the file");
+                db.store({0, fs::path(input).stem().string(), input, "", settings, "failed",
+                          "cannot read the file", {}},
+                         0, "", 0);
+                continue;
+              }
+              if (db.up_to_date(input, hash, settings)) {
+                ++skipped;
+                continue;
+              }
+              hashes[input] = hash;
+              options.inputs.push_back(input);
+            }
+            ProgressBar bar(options.inputs.size());
+            options.on_input_done = [&](const mp::InputReport& r) {
+              IndexedMesh m;
+              m.name = fs::path(r.input).stem().string();
+              m.path = r.input;
+              m.hash = hashes[r.input];
+              m.settings = settings;
+              m.status = r.ok ? "ok" : "failed";
+              m.error = r.error;
+              if (r.ok) m.descriptors = descriptors_of(r);
+              const std::size_t faces = r.stages.empty() ? 0 : r.stages.front().faces;
+              const std::string volume = r.stages.empty() ? "" : r.stages.front().volume;
+              db.store(m, faces, volume, r.seconds);
+              ++done;
+              if (!r.ok) {
+                ++failed;
+                print_error(r.input + ": " + r.error);
+              }
+              bar.update(done, failed);
+            };
+            if (!options.inputs.empty()) {
+              try {
+                mp::run(document, args->pipeline, options);
+              } catch (const mp::PipelineError& e) {
+                for (const auto& p : e.problems()) print_error(args->pipeline + ": " + p.text());
+                return kBadInput;
+              }
+            }
+            const double seconds = seconds_since(start);
+            std::cout << args->db << ": indexed " << done - (failed - (failed > done ? 0 : 0))
+                      << " meshes (" << skipped << " already up to date, " << failed
+                      << " failed) in " << std::setprecision(3) << seconds << " s";
+            if (done > 0) std::cout << ", " << std::setprecision(3) << 60.0 * done / seconds << " meshes/min";
+            std::cout << '\n';
+            return failed == 0 ? kSuccess : kFailed;
+          }};
+}
+
+Command add_query_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("query", "Nearest neighbours of a mesh in a retrieval index");
+  struct Args {
+    std::string db, mesh, descriptor = "granulometry";
+    std::size_t k = 10;
+    bool json = false;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("--db", args->db, "Index file")->required()->check(CLI::ExistingFile);
+  cmd->add_option("MESH", args->mesh, "A mesh file, or the name (stem) or path of an indexed mesh")
+      ->required();
+  cmd->add_option("-k", args->k, "Number of neighbours")->check(CLI::PositiveNumber);
+  cmd->add_option("--descriptor", args->descriptor, "granulometry, pattern_spectrum or d2 (L1 distance)")
+      ->check(CLI::IsMember(descriptor_kinds()));
+  cmd->add_flag("--json", args->json, "One JSON object on stdout");
+  return {cmd, [args]() -> int {
+            IndexDb db(args->db);
+            const std::vector<IndexedMesh> meshes = db.load();
+            std::vector<double> query;
+            long long exclude = -1;
+            const auto by_id = std::find_if(meshes.begin(), meshes.end(), [&](const IndexedMesh& m) {
+              return m.name == args->mesh || m.path == args->mesh;
+            });
+            if (!fs::exists(args->mesh) && by_id != meshes.end()) {
+              query = by_id->descriptors.at(args->descriptor);
+              exclude = by_id->id;
+            } else {
+              mp::RunOptions options;
+              options.inputs = {args->mesh};
+              const auto sets = db.meta("sets");
+              if (sets) options.variables = nlohmann::json::parse(*sets).get<mp::Variables>();
+              const std::string pipeline = db.meta("pipeline").value_or(kDefaultPipeline);
+              const mp::RunReport r = mp::run(nlohmann::json::parse(pipeline), args->db, options);
+              if (!r.ok()) {
+                print_error(args->mesh + ": " + r.inputs.front().error);
+                return kBadInput;
+              }
+              query = descriptors_of(r.inputs.front()).at(args->descriptor);
+            }
+            std::vector<std::pair<double, const IndexedMesh*>> ranked;
+            for (const IndexedMesh& m : meshes)
+              if (m.id != exclude && m.descriptors.count(args->descriptor))
+                ranked.emplace_back(l1_distance(query, m.descriptors.at(args->descriptor)), &m);
+            std::sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) {
+              return a.first != b.first ? a.first < b.first : a.second->name < b.second->name;
+            });
+            ranked.resize(std::min(ranked.size(), args->k));
+            nlohmann::json j = {{"query", args->mesh},
+                                {"descriptor", args->descriptor},
+                                {"distance", "L1"},
+                                {"neighbours", nlohmann::json::array()}};
+            for (const auto& [d, m] : ranked)
+              j["neighbours"].push_back({{"name", m->name}, {"path", m->path}, {"distance", d}});
+            if (args->json) {
+              std::cout << j.dump() << std::endl;
+            } else {
+              for (std::size_t i = 0; i < ranked.size(); ++i)
+                std::cout << std::setw(3) << i + 1 << "  " << std::left << std::setw(24)
+                          << ranked[i].second->name << std::right << std::setw(12)
+                          << std::setprecision(5) << ranked[i].first << "  "
+                          << ranked[i].second->path << '\n';
+            }
+            return kSuccess;
+          }};
+}
+
+Command add_evaluate_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("evaluate", "Retrieval scores of every stored descriptor");
+  struct Args {
+    std::string db, labels;
+    bool json = false;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("--db", args->db, "Index file")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--labels", args->labels, "Princeton .cla labels (model names = file stems)")
+      ->required();
+  cmd->add_flag("--json", args->json, "One JSON object on stdout");
+  return {cmd, [args]() -> int {
+            std::map<std::string, std::string> labels;
+            try {
+              labels = read_cla(args->labels);
+            } catch (const std::exception& e) {
+              print_error(e.what());
+              return kBadInput;
+            }
+            IndexDb db(args->db);
+            std::vector<IndexedMesh> meshes;
+            std::size_t unlabelled = 0;
+            for (IndexedMesh& m : db.load())
+              if (labels.count(m.name))
+                meshes.push_back(std::move(m));
+              else
+                ++unlabelled;
+            std::vector<std::string> names, classes;
+            for (const IndexedMesh& m : meshes) {
+              names.push_back(m.name);
+              classes.push_back(labels[m.name]);
+            }
+            nlohmann::json j = {{"models", meshes.size()}, {"unlabelled", unlabelled}, {"descriptors", nlohmann::json::object()}};
+            if (!args->json)
+              std::cout << std::left << std::setw(18) << "descriptor" << std::right << std::setw(18)
+                        << "Nearest Neighbor" << std::setw(12) << "First Tier" << std::setw(13)
+                        << "Second Tier" << std::setw(11) << "E-measure" << std::setw(8) << "DCG"
+                        << '\n';
+            for (const std::string& kind : descriptor_kinds()) {
+              if (std::any_of(meshes.begin(), meshes.end(),
+                              [&](const IndexedMesh& m) { return !m.descriptors.count(kind); }))
+                continue;
+              std::vector<std::vector<double>> distance(meshes.size(), std::vector<double>(meshes.size()));
+              for (std::size_t a = 0; a < meshes.size(); ++a)
+                for (std::size_t b = 0; b < meshes.size(); ++b)
+                  distance[a][b] = l1_distance(meshes[a].descriptors.at(kind), meshes[b].descriptors.at(kind));
+              const RetrievalScores s = evaluate_retrieval(names, classes, distance);
+              j["descriptors"][kind] = {{"nearest_neighbor", s.nearest_neighbor}, {"first_tier", s.first_tier},
+                                        {"second_tier", s.second_tier}, {"e_measure", s.e_measure},
+                                        {"dcg", s.dcg}, {"queries", s.queries}};
+              if (!args->json)
+                std::cout << std::left << std::setw(18) << kind << std::right << std::fixed
+                          << std::setprecision(3) << std::setw(18) << s.nearest_neighbor
+                          << std::setw(12) << s.first_tier << std::setw(13) << s.second_tier
+                          << std::setw(11) << s.e_measure << std::setw(8) << s.dcg << '\n'
+                          << std::defaultfloat;
+            }
+            if (args->json)
+              std::cout << j.dump() << std::endl;
+            else
+              std::cout << meshes.size() << " labelled models" << (unlabelled ? ", " + std::to_string(unlabelled) + " indexed models without a label skipped" : "") << '\n';
+            return kSuccess;
+          }};
+}
+
+}  // namespace
+
+std::vector<Command> add_retrieval_commands(CLI::App& app) {
+  return {add_describe_command(app), add_generate_command(app), add_index_command(app),
+          add_query_command(app), add_evaluate_command(app)};
+}
+
+}  // namespace morphex::cli

@@ -1,0 +1,176 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "index_db.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+
+namespace morphex::cli {
+namespace {
+
+// A prepared statement that finalises itself.
+class Statement {
+ public:
+  Statement(sqlite3* db, const std::string& sql) : db_(db) {
+    if (sqlite3_prepare_v2(db, sql.c_str(), -1, &stmt_, nullptr) != SQLITE_OK)
+      throw std::runtime_error(std::string("index database: ") + sqlite3_errmsg(db));
+  }
+  ~Statement() { sqlite3_finalize(stmt_); }
+  Statement& bind(int i, const std::string& v) {
+    sqlite3_bind_text(stmt_, i, v.c_str(), int(v.size()), SQLITE_TRANSIENT);
+    return *this;
+  }
+  Statement& bind(int i, double v) {
+    sqlite3_bind_double(stmt_, i, v);
+    return *this;
+  }
+  Statement& bind(int i, long long v) {
+    sqlite3_bind_int64(stmt_, i, v);
+    return *this;
+  }
+  bool step() {
+    const int rc = sqlite3_step(stmt_);
+    if (rc == SQLITE_ROW) return true;
+    if (rc == SQLITE_DONE) return false;
+    throw std::runtime_error(std::string("index database: ") + sqlite3_errmsg(db_));
+  }
+  std::string text(int col) const {
+    const auto* t = sqlite3_column_text(stmt_, col);
+    return t ? reinterpret_cast<const char*>(t) : "";
+  }
+  long long integer(int col) const { return sqlite3_column_int64(stmt_, col); }
+
+ private:
+  sqlite3* db_;
+  sqlite3_stmt* stmt_ = nullptr;
+};
+
+}  // namespace
+
+IndexDb::IndexDb(const std::string& path) : path_(path) {
+  if (sqlite3_open(path.c_str(), &db_) != SQLITE_OK) {
+    const std::string message = db_ ? sqlite3_errmsg(db_) : "out of memory";
+    sqlite3_close(db_);
+    throw std::runtime_error(path + ": cannot open the index database: " + message);
+  }
+  sqlite3_busy_timeout(db_, 5000);
+  exec("PRAGMA foreign_keys = ON");
+  exec("PRAGMA journal_mode = WAL");
+  exec("CREATE TABLE IF NOT EXISTS meta(key TEXT PRIMARY KEY, value TEXT NOT NULL)");
+  exec("CREATE TABLE IF NOT EXISTS meshes(id INTEGER PRIMARY KEY, name TEXT NOT NULL, "
+       "path TEXT NOT NULL UNIQUE, hash TEXT NOT NULL, settings TEXT NOT NULL, "
+       "status TEXT NOT NULL, error TEXT, faces INTEGER, volume TEXT, seconds REAL, "
+       "indexed_at TEXT DEFAULT CURRENT_TIMESTAMP)");
+  exec("CREATE TABLE IF NOT EXISTS descriptors(mesh_id INTEGER NOT NULL REFERENCES meshes(id) "
+       "ON DELETE CASCADE, kind TEXT NOT NULL, vector TEXT NOT NULL, PRIMARY KEY(mesh_id, kind))");
+}
+
+IndexDb::~IndexDb() { sqlite3_close(db_); }
+
+void IndexDb::exec(const std::string& sql) {
+  char* error = nullptr;
+  if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &error) != SQLITE_OK) {
+    const std::string message = error ? error : "unknown error";
+    sqlite3_free(error);
+    throw std::runtime_error(path_ + ": index database: " + message);
+  }
+}
+
+std::optional<std::string> IndexDb::meta(const std::string& key) {
+  Statement s(db_, "SELECT value FROM meta WHERE key = ?");
+  s.bind(1, key);
+  if (s.step()) return s.text(0);
+  return std::nullopt;
+}
+
+void IndexDb::set_meta(const std::string& key, const std::string& value) {
+  Statement s(db_, "INSERT INTO meta(key, value) VALUES(?, ?) "
+                   "ON CONFLICT(key) DO UPDATE SET value = excluded.value");
+  s.bind(1, key).bind(2, value).step();
+}
+
+bool IndexDb::up_to_date(const std::string& path, const std::string& hash,
+                         const std::string& settings) {
+  Statement s(db_, "SELECT 1 FROM meshes WHERE path = ? AND hash = ? AND settings = ? AND "
+                   "status = 'ok'");
+  s.bind(1, path).bind(2, hash).bind(3, settings);
+  return s.step();
+}
+
+void IndexDb::store(const IndexedMesh& mesh, std::size_t faces, const std::string& volume,
+                    double seconds) {
+  exec("BEGIN IMMEDIATE");
+  try {
+    Statement upsert(db_,
+                     "INSERT INTO meshes(name, path, hash, settings, status, error, faces, volume, "
+                     "seconds) VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT(path) DO UPDATE SET "
+                     "name = excluded.name, hash = excluded.hash, settings = excluded.settings, "
+                     "status = excluded.status, error = excluded.error, faces = excluded.faces, "
+                     "volume = excluded.volume, seconds = excluded.seconds, "
+                     "indexed_at = CURRENT_TIMESTAMP");
+    upsert.bind(1, mesh.name).bind(2, mesh.path).bind(3, mesh.hash).bind(4, mesh.settings);
+    upsert.bind(5, mesh.status).bind(6, mesh.error).bind(7, (long long)faces).bind(8, volume);
+    upsert.bind(9, seconds).step();
+    Statement id(db_, "SELECT id FROM meshes WHERE path = ?");
+    id.bind(1, mesh.path).step();
+    const long long mesh_id = id.integer(0);
+    Statement clear(db_, "DELETE FROM descriptors WHERE mesh_id = ?");
+    clear.bind(1, mesh_id).step();
+    for (const auto& [kind, vector] : mesh.descriptors) {
+      Statement insert(db_, "INSERT INTO descriptors(mesh_id, kind, vector) VALUES(?, ?, ?)");
+      insert.bind(1, mesh_id).bind(2, kind).bind(3, nlohmann::json(vector).dump()).step();
+    }
+    exec("COMMIT");
+  } catch (...) {
+    exec("ROLLBACK");
+    throw;
+  }
+}
+
+std::vector<IndexedMesh> IndexDb::load(bool only_ok) {
+  std::vector<IndexedMesh> out;
+  std::map<long long, std::size_t> position;
+  Statement meshes(db_, std::string("SELECT id, name, path, hash, settings, status, error FROM "
+                                    "meshes") +
+                            (only_ok ? " WHERE status = 'ok'" : "") + " ORDER BY name, path");
+  while (meshes.step()) {
+    IndexedMesh m;
+    m.id = meshes.integer(0);
+    m.name = meshes.text(1);
+    m.path = meshes.text(2);
+    m.hash = meshes.text(3);
+    m.settings = meshes.text(4);
+    m.status = meshes.text(5);
+    m.error = meshes.text(6);
+    position[m.id] = out.size();
+    out.push_back(std::move(m));
+  }
+  Statement descriptors(db_, "SELECT mesh_id, kind, vector FROM descriptors");
+  while (descriptors.step()) {
+    const auto it = position.find(descriptors.integer(0));
+    if (it == position.end()) continue;
+    out[it->second].descriptors[descriptors.text(1)] =
+        nlohmann::json::parse(descriptors.text(2)).get<std::vector<double>>();
+  }
+  return out;
+}
+
+std::string content_hash(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path + ": cannot open");
+  std::uint64_t h = 1469598103934665603ULL;
+  char buffer[65536];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    for (std::streamsize i = 0; i < in.gcount(); ++i) {
+      h ^= static_cast<unsigned char>(buffer[i]);
+      h *= 1099511628211ULL;
+    }
+  }
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+  return text;
+}
+
+}  // namespace morphex::cli

@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The retrieval index: one SQLite file. Tables:
+//   meta(key PRIMARY KEY, value)            "describe_options": the describe stage's options (JSON)
+//   meshes(id, name, path UNIQUE, hash, settings, status 'ok'|'failed', error, faces, volume,
+//          seconds, indexed_at)
+//   descriptors(mesh_id, kind, vector)       vector: a JSON array of doubles
+// Every mesh is committed in its own transaction, so a run killed midway keeps what it committed.
+#pragma once
+
+#include <sqlite3.h>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace morphex::cli {
+
+struct IndexedMesh {
+  long long id = 0;
+  std::string name, path, hash, settings, status, error;
+  std::map<std::string, std::vector<double>> descriptors;
+};
+
+class IndexDb {
+ public:
+  explicit IndexDb(const std::string& path);  // creates the schema; throws on failure
+  ~IndexDb();
+  IndexDb(const IndexDb&) = delete;
+  IndexDb& operator=(const IndexDb&) = delete;
+
+  std::optional<std::string> meta(const std::string& key);
+  void set_meta(const std::string& key, const std::string& value);
+  // True when `path` is indexed successfully with this content hash and these settings.
+  bool up_to_date(const std::string& path, const std::string& hash, const std::string& settings);
+  void store(const IndexedMesh& mesh, std::size_t faces, const std::string& volume, double seconds);
+  std::vector<IndexedMesh> load(bool only_ok = true);
+
+ private:
+  void exec(const std::string& sql);
+  sqlite3* db_ = nullptr;
+  std::string path_;
+};
+
+// 64-bit FNV-1a of the file's bytes, as 16 hex digits.
+std::string content_hash(const std::string& path);
+
+}  // namespace morphex::cli
