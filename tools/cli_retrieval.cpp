@@ -172,7 +172,7 @@ Command add_index_command(CLI::App& app) {
             db.set_meta("sets", nlohmann::json(options.variables).dump());
 
             const auto start = std::chrono::steady_clock::now();
-            std::size_t skipped = 0, failed = 0, done = 0;
+            std::size_t skipped = 0, failed = 0, done = 0, indexed = 0;
             std::map<std::string, std::string> hashes;
             for (const std::string& input : expand_inputs(args->inputs)) {
               std::string hash;
@@ -207,6 +207,7 @@ Command add_index_command(CLI::App& app) {
               const std::string volume = r.stages.empty() ? "" : r.stages.front().volume;
               db.store(m, faces, volume, r.seconds);
               ++done;
+              if (r.ok) ++indexed;
               if (!r.ok) {
                 ++failed;
                 print_error(r.input + ": " + r.error);
@@ -222,10 +223,11 @@ Command add_index_command(CLI::App& app) {
               }
             }
             const double seconds = seconds_since(start);
-            std::cout << args->db << ": indexed " << done - (failed - (failed > done ? 0 : 0))
-                      << " meshes (" << skipped << " already up to date, " << failed
+            std::cout << args->db << ": indexed " << indexed << " meshes (" << skipped << " already up to date, " << failed
                       << " failed) in " << std::setprecision(3) << seconds << " s";
-            if (done > 0) std::cout << ", " << std::setprecision(3) << 60.0 * done / seconds << " meshes/min";
+            if (done > 0)
+              std::cout << ", " << std::setprecision(3) << 60.0 * double(done) / seconds
+                        << " meshes/min";
             std::cout << '\n';
             return failed == 0 ? kSuccess : kFailed;
           }};

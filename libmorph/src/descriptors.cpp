@@ -82,29 +82,55 @@ std::string DescriptorSettings::to_string() const {
 
 Mesh normalise_pose(const Mesh& solid) {
   const DoubleMesh m = to_double(solid);
-  // Area-weighted covariance of the surface (triangle centroids, weights = areas).
+  // Covariance of the surface as a uniform area density: over a triangle abc of area A,
+  // integral of x x^T = A/12 (a a^T + b b^T + c c^T + (a+b+c)(a+b+c)^T).
   double total = 0;
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
   std::vector<std::pair<Eigen::Vector3d, double>> centroids;
   for (const Triangle& t : m.triangles) {
     Eigen::Vector3d p[3];
     for (int k = 0; k < 3; ++k) p[k] = Eigen::Vector3d(m.points[t[k]][0], m.points[t[k]][1], m.points[t[k]][2]);
     const double area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
-    centroids.push_back({(p[0] + p[1] + p[2]) / 3.0, area});
-    mean += area * centroids.back().first;
+    const Eigen::Vector3d sum = p[0] + p[1] + p[2];
+    centroids.push_back({sum / 3.0, area});
+    mean += area * sum / 3.0;
+    second += area / 12.0 *
+              (p[0] * p[0].transpose() + p[1] * p[1].transpose() + p[2] * p[2].transpose() +
+               sum * sum.transpose());
     total += area;
   }
   if (total <= 0) return solid;
   mean /= total;
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (const auto& [c, w] : centroids) covariance += w * (c - mean) * (c - mean).transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance / total);
+  const Eigen::Matrix3d covariance = second / total - mean * mean.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
   Eigen::Matrix3d axes;  // rows: principal axes, largest moment first
   for (int k = 0; k < 3; ++k) axes.row(k) = solver.eigenvectors().col(2 - k).transpose();
+  // Equal moments leave the axes free within their eigenspace (a cube, a square bar): there, keep
+  // the mesh's own axes, so that symmetric shapes are not turned at random.
+  const Eigen::Vector3d moments(solver.eigenvalues()[2], solver.eigenvalues()[1],
+                                solver.eigenvalues()[0]);
+  const auto same = [&](int i, int j) {
+    return std::abs(moments[i] - moments[j]) <= 1e-6 * std::abs(moments[0]);
+  };
+  if (same(0, 1) && same(1, 2)) {
+    axes.setIdentity();
+  } else if (same(0, 1) || same(1, 2)) {
+    const int single = same(0, 1) ? 2 : 0;  // the axis whose moment differs
+    const Eigen::Vector3d u = axes.row(single).transpose();
+    int least = 0;  // the coordinate axis least aligned with u spans the free plane best
+    for (int k = 1; k < 3; ++k)
+      if (std::abs(u[k]) < std::abs(u[least])) least = k;
+    const Eigen::Vector3d v = (Eigen::Vector3d::Unit(least) - u[least] * u).normalized();
+    const Eigen::Vector3d w = u.cross(v);
+    const int first = single == 0 ? 1 : 0;
+    axes.row(first) = v.transpose();
+    axes.row(first == 0 ? 1 : 2) = w.transpose();
+  }
   for (int k = 0; k < 2; ++k) {  // sign: the side with the heavier third moment is positive
     double skew = 0;
     for (const auto& [c, w] : centroids) skew += w * std::pow(axes.row(k).dot(c - mean), 3);
-    if (skew < 0) axes.row(k) = -axes.row(k);
+    if (skew < -1e-9 * std::pow(moments[0], 1.5)) axes.row(k) = -axes.row(k);
   }
   if (axes.determinant() < 0) axes.row(2) = -axes.row(2);  // a rotation, not a reflection
   Mesh turned = transformed(solid, rational_rotation(axes));

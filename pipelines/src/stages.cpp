@@ -207,7 +207,7 @@ void add_builtin_stages(StageRegistry& r) {
            make_exact(m);
            return m;
          }});
-  OptionInfo radii = optional("radii", OptionType::NumberList, {0.05, 0.1, 0.2},
+  OptionInfo radii = optional("radii", OptionType::NumberList, {0.1, 0.2, 0.35},
                               "cube half sides of the openings, in units of cbrt(volume), growing");
   OptionInfo samples = optional("d2_samples", OptionType::Integer, 4096, "D2 point pairs");
   samples.min = 16;

@@ -54,3 +54,4 @@ set_tests_properties(package.consumer_build PROPERTIES
 set_tests_properties(package.consumer_run PROPERTIES FIXTURES_REQUIRED consumer_built)
 include(cli/cli_bool_tests.cmake)
 include(cli/cli_pipeline_tests.cmake)
+include(cli/cli_retrieval_tests.cmake)

@@ -25,7 +25,7 @@
 namespace morphex {
 
 struct DescriptorSettings {
-  std::vector<double> radii = {0.05, 0.1, 0.2};  // cube half sides, in units of L
+  std::vector<double> radii = {0.1, 0.2, 0.35};  // cube half sides, in units of L
   bool closings = true;                          // also the anti-granulometry
   bool normalise_pose = true;
   int d2_samples = 4096;  // point pairs

@@ -1,0 +1,43 @@
+# `morphex describe|generate|index|query|evaluate`: the retrieval workflow end to end on a small
+# procedural collection, resumability, failure isolation, a copy found first, the metrics table.
+set(rdir ${PROJECT_BINARY_DIR}/cli-retrieval)
+set(quick ${data}/pipelines/quick-descriptors.json)
+morphex_cli_test(describe_cube 0 "\"granulometry\":\\[1.0,1.0,1.0\\].*\"name\":\"unit_cube\""
+  describe --json ${data}/unit_cube.off)
+morphex_cli_test(describe_open_mesh 2 "open_cube.off: mesh is not closed" describe ${data}/open_cube.off)
+add_test(NAME cli.retrieval_setup COMMAND ${CMAKE_COMMAND} -E rm -rf ${rdir})
+set_tests_properties(cli.retrieval_setup PROPERTIES FIXTURES_SETUP retrieval)
+morphex_cli_test(generate 0 "wrote 6 meshes in 6 classes" generate ${rdir}/coll --per-class 1 --seed 3)
+set_tests_properties(cli.generate PROPERTIES FIXTURES_REQUIRED retrieval)
+# a second collection member per class for the evaluation, and a copy of one mesh under a new name
+morphex_cli_test(generate_more 0 "wrote 12 meshes" generate ${rdir}/coll2 --per-class 2 --seed 3)
+set_tests_properties(cli.generate_more PROPERTIES FIXTURES_REQUIRED retrieval)
+morphex_cli_test(index_first 0 "indexed 3 meshes \\(0 already up to date, 0 failed\\)"
+  index ${rdir}/coll2/bar-0.off ${rdir}/coll2/ell-0.off ${rdir}/coll2/tee-0.off
+  --db ${rdir}/index.sqlite --pipeline ${quick})
+set_tests_properties(cli.index_first PROPERTIES DEPENDS cli.generate_more)
+# resumable: the second run skips what the first committed and does the rest
+morphex_cli_test(index_resume 0 "indexed 9 meshes \\(3 already up to date, 0 failed\\)"
+  index "${rdir}/coll2/*.off" --db ${rdir}/index.sqlite --pipeline ${quick})
+set_tests_properties(cli.index_resume PROPERTIES DEPENDS cli.index_first)
+# failure isolation: an open mesh is recorded as failed, the others are indexed, exit 1
+morphex_cli_test(index_bad_mesh 1 "indexed 2 meshes \\(0 already up to date, 1 failed\\).*open_cube.off: pipeline\\[0\\] \\(read\\).*not closed"
+  index ${data}/open_cube.off ${data}/unit_cube.off ${data}/third_cube_exact.off
+  --db ${rdir}/other.sqlite --pipeline ${quick})
+set_tests_properties(cli.index_bad_mesh PROPERTIES FIXTURES_REQUIRED retrieval)
+morphex_cli_test(index_no_describe 2 "needs a describe stage"
+  index ${data}/unit_cube.off --db ${rdir}/never.sqlite --pipeline ${PROJECT_SOURCE_DIR}/pipelines/examples/granulometry.json)
+# a renamed copy of an indexed mesh finds the original first, at distance 0
+add_test(NAME cli.copy_mesh COMMAND ${CMAKE_COMMAND} -E copy ${rdir}/coll2/frame-1.off ${rdir}/copy-of-frame.off)
+set_tests_properties(cli.copy_mesh PROPERTIES DEPENDS cli.index_resume)
+morphex_cli_test(query_copy_first 0 "\"neighbours\":\\[\\{\"distance\":0.0,\"name\":\"frame-1\""
+  query --db ${rdir}/index.sqlite ${rdir}/copy-of-frame.off -k 3 --json)
+set_tests_properties(cli.query_copy_first PROPERTIES DEPENDS cli.copy_mesh)
+morphex_cli_test(query_by_name 0 "\"query\":\"ell-1\"" query --db ${rdir}/index.sqlite ell-1 -k 2 --json --descriptor d2)
+set_tests_properties(cli.query_by_name PROPERTIES DEPENDS cli.index_resume)
+morphex_cli_test(evaluate 0 "Nearest Neighbor +First Tier +Second Tier +E-measure +DCG.*granulometry.*d2.*12 labelled models"
+  evaluate --db ${rdir}/index.sqlite --labels ${rdir}/coll2/labels.cla)
+set_tests_properties(cli.evaluate PROPERTIES DEPENDS cli.index_resume)
+morphex_cli_test(evaluate_bad_labels 2 "unit_cube.off: line 1: expected the header"
+  evaluate --db ${rdir}/index.sqlite --labels ${data}/unit_cube.off)
+set_tests_properties(cli.evaluate_bad_labels PROPERTIES DEPENDS cli.index_resume)
