@@ -31,16 +31,6 @@ DescriptorSettings quick() {
   return s;
 }
 
-// An exactly orthogonal rotation from the rational quaternion (a, b, c, d).
-Transformation quaternion(FT a, FT b, FT c, FT d) {
-  const FT n = a * a + b * b + c * c + d * d;
-  return Transformation((a * a + b * b - c * c - d * d) / n, 2 * (b * c - a * d) / n,
-                        2 * (b * d + a * c) / n, 2 * (b * c + a * d) / n,
-                        (a * a - b * b + c * c - d * d) / n, 2 * (c * d - a * b) / n,
-                        2 * (b * d - a * c) / n, 2 * (c * d + a * b) / n,
-                        (a * a - b * b - c * c + d * d) / n);
-}
-
 }  // namespace
 
 TEST(Retrieval, ScoresOfAHandCheckedExample) {
@@ -86,7 +76,7 @@ TEST(Descriptors, ScaledCopyHasTheSameGranulometry) {
 
 TEST(Descriptors, PoseNormalisationMakesRotatedCopiesAgree) {
   const Mesh a = l_shape();
-  const Mesh turned = transformed(a, quaternion(3, 1, -2, 5));
+  const Mesh turned = transformed(a, quaternion_rotation(3, 1, -2, 5));
   const Descriptors da = describe(a, quick()), dt = describe(turned, quick());
   for (std::size_t i = 0; i < 2; ++i) EXPECT_NEAR(da.granulometry[i], dt.granulometry[i], 1e-3);
   // Documented: without pose normalisation the cube SE sees the rotation.

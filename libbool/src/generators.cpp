@@ -78,6 +78,15 @@ Mesh make_icosphere(int level, const FT& radius) {
   return from_double(d);
 }
 
+Transformation quaternion_rotation(const FT& a, const FT& b, const FT& c, const FT& d) {
+  const FT n = a * a + b * b + c * c + d * d;
+  return Transformation((a * a + b * b - c * c - d * d) / n, 2 * (b * c - a * d) / n,
+                        2 * (b * d + a * c) / n, 2 * (b * c + a * d) / n,
+                        (a * a - b * b + c * c - d * d) / n, 2 * (c * d - a * b) / n,
+                        2 * (b * d - a * c) / n, 2 * (c * d + a * b) / n,
+                        (a * a - b * b - c * c + d * d) / n);
+}
+
 Mesh make_torus(int nu, int nv, double R, double r) {
   DoubleMesh d;
   const double tau = 6.283185307179586;

@@ -70,10 +70,7 @@ class Shapes {
       a = q(rng_), b = q(rng_), c = q(rng_), d = q(rng_);
       n = a * a + b * b + c * c + d * d;
     } while (n == 0);
-    const Transformation rotation(
-        (a * a + b * b - c * c - d * d) / n, 2 * (b * c - a * d) / n, 2 * (b * d + a * c) / n,
-        2 * (b * c + a * d) / n, (a * a - b * b + c * c - d * d) / n, 2 * (c * d - a * b) / n,
-        2 * (b * d - a * c) / n, 2 * (c * d + a * b) / n, (a * a - b * b - c * c + d * d) / n);
+    const Transformation rotation = quaternion_rotation(a, b, c, d);
     const FT s = between(0.5, 2);
     Mesh out = transformed(m, Transformation(CGAL::SCALING, s) * rotation);
     out = translated(out, Vector(between(-5, 5), between(-5, 5), between(-5, 5)));

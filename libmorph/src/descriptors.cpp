@@ -61,12 +61,7 @@ Transformation rational_rotation(const Eigen::Matrix3d& r) {
   const Eigen::Quaterniond q(r);
   const auto grid = [](double v) { return FT(std::round(v * 1048576.0)) / 1048576; };
   const FT a = grid(q.w()), b = grid(q.x()), c = grid(q.y()), d = grid(q.z());
-  const FT n = a * a + b * b + c * c + d * d;
-  return Transformation((a * a + b * b - c * c - d * d) / n, 2 * (b * c - a * d) / n,
-                        2 * (b * d + a * c) / n, 2 * (b * c + a * d) / n,
-                        (a * a - b * b + c * c - d * d) / n, 2 * (c * d - a * b) / n,
-                        2 * (b * d - a * c) / n, 2 * (c * d + a * b) / n,
-                        (a * a - b * b - c * c + d * d) / n);
+  return quaternion_rotation(a, b, c, d);
 }
 
 }  // namespace

@@ -30,6 +30,9 @@ std::pair<Mesh, Mesh> make_cubes_sharing_edge();
 std::pair<Mesh, Mesh> make_cubes_sharing_vertex();
 
 Mesh concatenate(const Mesh& a, const Mesh& b);  // disjoint union of the vertex and face lists
+// The rotation of the quaternion (a, b, c, d), not necessarily unit: R(q) / |q|^2 is exactly
+// orthogonal in rational arithmetic, so rational quaternions give exact rotations.
+Transformation quaternion_rotation(const FT& a, const FT& b, const FT& c, const FT& d);
 Mesh transformed(const Mesh& mesh, const Transformation& transformation);  // exact
 Mesh translated(const Mesh& mesh, const Vector& offset);                   // exact
 Mesh reversed(const Mesh& mesh);                                           // every face flipped
