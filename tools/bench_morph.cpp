@@ -159,15 +159,20 @@ int main(int argc, char** argv) {
     if (chain > 0) {
       Mesh current = a;
       std::vector<double> steps;
+      std::vector<std::size_t> facets;
       for (int i = 0; i < chain; ++i) {
+        facets.push_back(current.num_triangles());
         const auto start = std::chrono::steady_clock::now();
         current = dilation(current, se);
         steps.push_back(seconds_since(start));
       }
-      std::cout << "chain of " << chain << " dilations of " << input << ": first " << steps.front()
-                << " s, last " << steps.back() << " s, result " << current.num_triangles()
-                << " facets, valid " << check_mesh(current).valid_solid() << '\n';
-      rows.push_back({{"input", input}, {"chain", chain}, {"step_seconds", steps}});
+      std::cout << "chain of " << chain << " dilations of " << input << " (step: input facets, s):";
+      for (int i = 0; i < chain; ++i)
+        std::cout << ' ' << i + 1 << ": " << facets[i] << ", " << std::setprecision(3) << steps[i];
+      std::cout << "; result " << current.num_triangles() << " facets, valid "
+                << check_mesh(current).valid_solid() << '\n';
+      rows.push_back({{"input", input}, {"chain", chain}, {"step_seconds", steps},
+                      {"step_input_facets", facets}});
     }
   }
   if (!json_path.empty()) std::ofstream(json_path) << rows.dump(2) << '\n';
