@@ -2,6 +2,8 @@
 // Exact Booleans: a generated degenerate suite with exact identities and independent closed forms.
 #include <gtest/gtest.h>
 
+#include <tbb/global_control.h>
+
 #include <random>
 #include <sstream>
 
@@ -315,4 +317,31 @@ TEST(ManySolids, TreeUnionAndNaryUnionOfConvexSolidsAgreeExactly) {
   // an independent closed form for the disjoint parts: the two touching cubes and the far cube
   const Mesh far_part = compute_union({solids[3], solids[4], solids[5], solids[6]});
   EXPECT_EQ(signed_volume(far_part), FT(2) + FT(8));
+}
+
+TEST(Parallel, ResultsAreIdenticalForAnyNumberOfThreads) {
+  const Mesh a = make_icosphere(3, FT(1));
+  const Mesh b = transformed(translated(make_icosphere(3, FT(1)), Vector(FT(1) / 3, FT(1) / 5, 0)),
+                             quaternion_rotation(7, 1, 2, 3));
+  std::vector<Mesh> pieces;
+  for (int i = 0; i < 12; ++i)
+    pieces.push_back(make_cube(FT(1) / 2, Point(FT(i) / 3, FT(i % 3) / 4, FT(i % 2) / 5)));
+  auto run = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    std::vector<Mesh> out;
+    for (BooleanOp op : {BooleanOp::Union, BooleanOp::Intersection, BooleanOp::Difference})
+      out.push_back(compute_boolean(a, b, op).mesh);
+    out.push_back(compute_union(pieces));
+    return out;
+  };
+  const std::vector<Mesh> one = run(1), two = run(2), four = run(4);
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    EXPECT_FALSE(one[i].empty());
+    for (const std::vector<Mesh>* other : {&two, &four}) {
+      EXPECT_EQ(one[i].triangles, (*other)[i].triangles) << "result " << i;
+      ASSERT_EQ(one[i].points.size(), (*other)[i].points.size()) << "result " << i;
+      for (std::size_t p = 0; p < one[i].points.size(); ++p)
+        EXPECT_EQ(one[i].points[p], (*other)[i].points[p]) << "result " << i << " point " << p;
+    }
+  }
 }

@@ -9,6 +9,10 @@
 #include <CGAL/Projection_traits_yz_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+
 #include "boolean_internal.h"
 
 namespace morphex::detail {
@@ -65,27 +69,45 @@ int dominant_axis(const Point& a, const Point& b, const Point& c) {
 }
 
 Refined retriangulate(const Mesh& mesh, int side, const Intersection& x) {
-  Refined out;
-  out.triangles.reserve(mesh.num_triangles());
-  for (std::uint32_t t = 0; t < mesh.num_triangles(); ++t) {
+  // Cut facets are independent: their CDTs run in parallel, each into its own Refined, and are
+  // concatenated in facet order so that the result does not depend on the thread count.
+  std::vector<std::uint32_t> cut_facets;
+  cut_facets.reserve(x.cuts[side].size());
+  for (const auto& entry : x.cuts[side]) cut_facets.push_back(entry.first);
+  std::sort(cut_facets.begin(), cut_facets.end());
+  std::vector<Refined> pieces(cut_facets.size());
+  tbb::parallel_for(std::size_t(0), cut_facets.size(), [&](std::size_t i) {
+    const std::uint32_t t = cut_facets[i];
     const Triangle& f = mesh.triangles[t];
     const std::array<PointId, 3> corners{x.vertex_id[side][f[0]], x.vertex_id[side][f[1]],
                                          x.vertex_id[side][f[2]]};
-    const auto cut = x.cuts[side].find(t);
-    if (cut == x.cuts[side].end()) {
-      out.triangles.push_back({corners, t});
-      continue;
-    }
+    const FacetCut& cut = x.cuts[side].at(t);
     switch (dominant_axis(x.points[corners[0]], x.points[corners[1]], x.points[corners[2]])) {
       case 0:
-        FacetCdt<CGAL::Projection_traits_yz_3<Kernel>>::run(corners, cut->second, x, t, out);
+        FacetCdt<CGAL::Projection_traits_yz_3<Kernel>>::run(corners, cut, x, t, pieces[i]);
         break;
       case 1:
-        FacetCdt<CGAL::Projection_traits_xz_3<Kernel>>::run(corners, cut->second, x, t, out);
+        FacetCdt<CGAL::Projection_traits_xz_3<Kernel>>::run(corners, cut, x, t, pieces[i]);
         break;
       default:
-        FacetCdt<CGAL::Projection_traits_xy_3<Kernel>>::run(corners, cut->second, x, t, out);
+        FacetCdt<CGAL::Projection_traits_xy_3<Kernel>>::run(corners, cut, x, t, pieces[i]);
     }
+  });
+
+  Refined out;
+  out.triangles.reserve(mesh.num_triangles());
+  std::size_t next_cut = 0;
+  for (std::uint32_t t = 0; t < mesh.num_triangles(); ++t) {
+    if (next_cut < cut_facets.size() && cut_facets[next_cut] == t) {
+      Refined& piece = pieces[next_cut++];
+      out.triangles.insert(out.triangles.end(), piece.triangles.begin(), piece.triangles.end());
+      out.on_other_surface.insert(out.on_other_surface.end(), piece.on_other_surface.begin(),
+                                  piece.on_other_surface.end());
+      continue;
+    }
+    const Triangle& f = mesh.triangles[t];
+    out.triangles.push_back(
+        {{x.vertex_id[side][f[0]], x.vertex_id[side][f[1]], x.vertex_id[side][f[2]]}, t});
   }
   return out;
 }

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "morphex/check.h"
 
+#include <tbb/parallel_for.h>
+
 #include <CGAL/box_intersection_d.h>
 
 #include <algorithm>
@@ -141,14 +143,21 @@ MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
 
   // Self-intersections, with the tree for candidate pairs.
   if (options.self_intersections && nf > 1) {
+    // Triangles are tested in parallel, each against its later neighbours; the counts and the
+    // first pair (smallest i, then the tree's order) do not depend on the thread count.
     const TriangleTree tree(mesh);
-    for (std::uint32_t i = 0; i < nf; ++i)
+    std::vector<std::uint32_t> hits(nf, 0), first_j(nf, 0);
+    tbb::parallel_for(std::uint32_t(0), std::uint32_t(nf), [&](std::uint32_t i) {
       tree.for_each_overlap(tree.box(i), [&](std::uint32_t j) {
-        if (j <= i) return;
-        if (!triangles_intersect_improperly(mesh, i, j)) return;
-        if (!r.first_self_intersection) r.first_self_intersection = std::make_pair(i, j);
-        ++r.self_intersections;
+        if (j <= i || !triangles_intersect_improperly(mesh, i, j)) return;
+        if (hits[i]++ == 0) first_j[i] = j;
       });
+    });
+    for (std::uint32_t i = 0; i < nf; ++i) {
+      if (hits[i] == 0) continue;
+      if (!r.first_self_intersection) r.first_self_intersection = std::make_pair(i, first_j[i]);
+      r.self_intersections += hits[i];
+    }
   }
 
   // Outward: a shell nested in an even number of others bounds material (positive volume), in an
