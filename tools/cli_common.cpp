@@ -35,6 +35,8 @@ std::optional<Mesh> read_solid(const std::string& path) {
       return std::nullopt;
     }
     return mesh;
+  } catch (const std::bad_alloc&) {
+    throw;  // reported once, by main, as out of memory
   } catch (const std::exception& e) {
     print_error(e.what());
     return std::nullopt;

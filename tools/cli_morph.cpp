@@ -60,6 +60,8 @@ Command add_morphology_command(CLI::App& app, MorphologyOp op, const std::string
             StructuringElement se;
             try {
               se = parse_structuring_element(args->se);
+            } catch (const std::bad_alloc&) {
+              throw;  // reported by main as out of memory
             } catch (const std::exception& e) {
               print_error("--se " + args->se + ": " + e.what());
               return kBadInput;

@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // `morphex`: the command line of the morphex framework. Each subcommand lives in its own file.
+#include <signal.h>
+#include <sys/resource.h>
 #include <tbb/global_control.h>
+#include <unistd.h>
 
 #include <iostream>
 #include <memory>
@@ -8,6 +11,21 @@
 #include <vector>
 
 #include "cli_common.h"
+#include "morphex/io.h"
+
+namespace {
+
+// SIGINT/SIGTERM: outputs are only ever renamed into place when complete, so removing the
+// temporaries of writes in progress leaves nothing half-written; SQLite rolls back an open
+// transaction of `morphex index` on the next open.
+void on_interrupt(int signal) {
+  morphex::remove_pending_temporary_files();
+  const char message[] = "morphex: interrupted; no partial output was left\n";
+  [[maybe_unused]] const auto written = write(STDERR_FILENO, message, sizeof message - 1);
+  _exit(128 + signal);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace morphex::cli;
@@ -17,6 +35,17 @@ int main(int argc, char** argv) {
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
   app.add_option("--threads", threads, "Worker threads (default: all cores)")
       ->check(CLI::PositiveNumber);
+  morphex::InputLimits limits = morphex::input_limits();
+  std::uint64_t max_input_mb = limits.max_file_bytes >> 20, max_memory_mb = 0;
+  app.add_option("--max-faces", limits.max_faces, "Refuse input meshes with more faces")
+      ->default_val(limits.max_faces)
+      ->check(CLI::PositiveNumber);
+  app.add_option("--max-input-mb", max_input_mb, "Refuse input files larger than this (MiB)")
+      ->default_val(max_input_mb)
+      ->check(CLI::PositiveNumber);
+  app.add_option("--max-memory-mb", max_memory_mb,
+                 "Fail cleanly (exit 1, 'out of memory') instead of being killed when the process "
+                 "would use more address space than this (MiB; default: no limit)");
 
   std::vector<Command> commands = {add_check_command(app), add_bool_command(app)};
   for (Command& c : add_morphology_commands(app)) commands.push_back(std::move(c));
@@ -32,10 +61,22 @@ int main(int argc, char** argv) {
   }
 
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+  limits.max_file_bytes = max_input_mb << 20;
+  morphex::set_input_limits(limits);
+  if (max_memory_mb > 0) {
+    const rlimit cap{rlim_t(max_memory_mb) << 20, rlim_t(max_memory_mb) << 20};
+    setrlimit(RLIMIT_AS, &cap);
+  }
+  signal(SIGINT, on_interrupt);
+  signal(SIGTERM, on_interrupt);
   for (const Command& command : commands) {
     if (!command.app->parsed()) continue;
     try {
       return command.run();
+    } catch (const std::bad_alloc&) {
+      print_error("out of memory: the operation needs more memory than is available (see "
+                  "--max-memory-mb and --max-faces); no output was written");
+      return kFailed;
     } catch (const std::exception& e) {
       print_error(e.what());
       return kFailed;

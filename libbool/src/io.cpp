@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -576,10 +577,18 @@ Mesh read_ply(const std::string& content, const std::string& name) {
   return mesh;
 }
 
+std::atomic<std::uint64_t> max_file_bytes{InputLimits().max_file_bytes};
+std::atomic<std::uint64_t> max_faces{InputLimits().max_faces};
+
 std::string read_file(const std::string& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw InputError(path, "cannot open file: no such file");
   if (fs::is_directory(path, ec)) throw InputError(path, "cannot open file: is a directory");
+  const auto size = fs::file_size(path, ec);
+  if (!ec && size > max_file_bytes)
+    throw InputError(path, "file too large: " + std::to_string(size) + " bytes (limit " +
+                               std::to_string(max_file_bytes.load()) +
+                               "; raise it with --max-input-mb)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, std::string("cannot open file: ") + std::strerror(errno));
   std::ostringstream buffer;
@@ -607,11 +616,53 @@ Mesh read_mesh_from_string(const std::string& content, MeshFormat format, const 
 
 Mesh read_mesh(const std::string& path) {
   const MeshFormat format = format_from_path(path);
-  return read_mesh_from_string(read_file(path), format, path);
+  Mesh mesh = read_mesh_from_string(read_file(path), format, path);
+  if (mesh.num_triangles() > max_faces)
+    throw InputError(path, "too many faces: " + std::to_string(mesh.num_triangles()) + " (limit " +
+                               std::to_string(max_faces.load()) + "; raise it with --max-faces)");
+  return mesh;
 }
+
+void set_input_limits(const InputLimits& limits) {
+  max_file_bytes = limits.max_file_bytes;
+  max_faces = limits.max_faces;
+}
+
+InputLimits input_limits() { return {max_file_bytes.load(), max_faces.load()}; }
 
 // ---------------------------------------------------------------------------------------------
 // Writing
+
+namespace {
+// Temporary files of writes in progress, in fixed slots so that a signal handler can unlink them
+// without locks or allocation.
+constexpr int kSlots = 64;
+char pending_paths[kSlots][4096];
+std::atomic<bool> pending_used[kSlots];
+
+struct PendingTemporary {
+  int slot = -1;
+  explicit PendingTemporary(const std::string& path) {
+    if (path.size() >= sizeof pending_paths[0]) return;
+    for (int i = 0; i < kSlots; ++i) {
+      bool expected = false;
+      if (pending_used[i].compare_exchange_strong(expected, true)) {
+        std::memcpy(pending_paths[i], path.c_str(), path.size() + 1);
+        slot = i;
+        return;
+      }
+    }
+  }
+  ~PendingTemporary() {
+    if (slot >= 0) pending_used[slot] = false;
+  }
+};
+}  // namespace
+
+void remove_pending_temporary_files() noexcept {
+  for (int i = 0; i < kSlots; ++i)
+    if (pending_used[i]) unlink(pending_paths[i]);
+}
 
 void write_file_atomically(const std::string& path,
                            const std::function<void(std::ostream&)>& writer) {
@@ -622,6 +673,7 @@ void write_file_atomically(const std::string& path,
   if (fd < 0)
     throw std::runtime_error(path + ": cannot create a temporary file: " + std::strerror(errno));
   close(fd);
+  const PendingTemporary pending(tmp);
   try {
     {
       std::ofstream out(tmp, std::ios::binary | std::ios::trunc);

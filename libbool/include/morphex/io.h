@@ -4,6 +4,7 @@
 // vertex or face. Writers are atomic: a temporary file in the target's directory, then rename.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <iosfwd>
 #include <string>
@@ -18,8 +19,21 @@ enum class MeshFormat { Off, Obj, Stl, Ply };
 MeshFormat format_from_path(const std::string& path);
 
 Mesh read_mesh(const std::string& path);
+
+// Limits that protect a process from inputs it cannot hold: files larger than max_file_bytes are
+// refused before they are read, meshes with more than max_faces faces after reading. Process-wide.
+struct InputLimits {
+  std::uint64_t max_file_bytes = std::uint64_t(2) << 30;  // 2 GiB
+  std::uint64_t max_faces = 50'000'000;
+};
+void set_input_limits(const InputLimits& limits);
+InputLimits input_limits();
 // `name` is used in error messages in place of a file name.
 Mesh read_mesh_from_string(const std::string& content, MeshFormat format, const std::string& name);
+
+// Removes the temporary files of writes in progress. Async-signal-safe: a SIGINT handler calls it
+// before exiting, so an interrupted run leaves neither a half-written output nor a stray temporary.
+void remove_pending_temporary_files() noexcept;
 
 struct WriteOptions {
   bool exact = false;  // OFF with rational coordinates; only for .off
