@@ -1,93 +1,265 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// bench_bool A B [--rotate DEG] [--translate X Y Z] [--op union|intersection|difference]
-// Times morphex against CGAL corefinement (Epeck) on the same input in the same process, and
-// checks that both give the same exact volume. B is moved by an exact rational rotation about
-// the axis (1, 1, 1)-ish built from a Pythagorean-like tangent, then translated.
+// bench_bool: morphex Booleans against CGAL corefinement and CGAL Nef polyhedra (all exact, Epeck)
+// on the same input in the same run.
+//
+//   bench_bool [--op union|intersection|difference] [--max-level L] [--nef-max-faces N]
+//              [--json FILE] [--demo-dir DIR] [--only SUBSTRING]
+//   bench_bool A B [--rotate DEG] [--translate X Y Z] [--op OP]      (one pair from files)
+//
+// Cases: icosphere pairs crossing each other from level 2 up to --max-level (a scaling curve),
+// dense intersections (a sphere against a slightly rotated copy), coplanar contacts (a box grid
+// against a shifted grid, a mesh against itself), a coarse box against a fine sphere, and CGAL's
+// demo meshes against rotated copies. Each engine runs in a forked child, so the reported peak
+// memory (ru_maxrss of that child) is the engine's own; exact volumes must agree.
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
-#include <CGAL/Surface_mesh.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "morphex/boolean.h"
-#include "morphex/check.h"
 #include "morphex/generators.h"
 #include "morphex/io.h"
+#include "morphex/nef.h"
 #include "morphex/surface_mesh.h"
 
 using namespace morphex;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
 namespace {
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Exact rotation about z then x by the rational angle whose half-tangent is t: cos =
-// (1-t^2)/(1+t^2).
+// Exact rotation about z then x by the rational angle whose half-tangent is near tan(deg/2).
 Transformation rational_rotation(double degrees) {
   const FT t = FT(std::round(std::tan(degrees * 3.14159265358979 / 360) * 1000)) / 1000;
   const FT c = (1 - t * t) / (1 + t * t), s = 2 * t / (1 + t * t);
-  const Transformation rz(c, -s, 0, s, c, 0, 0, 0, 1);
-  const Transformation rx(1, 0, 0, 0, c, -s, 0, s, c);
-  return rx * rz;
+  return Transformation(1, 0, 0, 0, c, -s, 0, s, c) * Transformation(c, -s, 0, s, c, 0, 0, 0, 1);
 }
+
+struct Case {
+  std::string name;
+  Mesh a, b;
+};
+
+struct Run {
+  bool ok = false;
+  double seconds = 0, peak_mib = 0;
+  std::string volume;  // exact, as a rational string
+};
+
+// Runs `engine` in a child process. The engine times the operation itself (not the volume it
+// then computes for the check); time, exact volume and the child's peak memory come back.
+template <class Engine>
+Run in_child(Engine&& engine) {
+  int fds[2];
+  if (pipe(fds) != 0) return {};
+  const pid_t pid = fork();
+  if (pid == 0) {
+    close(fds[0]);
+    std::string message;
+    try {
+      const std::optional<std::pair<double, FT>> result = engine();
+      message = result ? std::to_string(result->first) + " " + to_rational_string(result->second)
+                       : "failed";
+    } catch (const std::exception& e) {
+      message = "failed";
+    }
+    [[maybe_unused]] auto w = write(fds[1], message.data(), message.size());
+    close(fds[1]);
+    _exit(0);
+  }
+  close(fds[1]);
+  std::string message;
+  char buffer[4096];
+  for (ssize_t n; (n = read(fds[0], buffer, sizeof buffer)) > 0;) message.append(buffer, std::size_t(n));
+  close(fds[0]);
+  int status = 0;
+  rusage usage{};
+  wait4(pid, &status, 0, &usage);
+  Run run;
+  if (message.empty() || message == "failed") return run;
+  const auto space = message.find(' ');
+  run.ok = true;
+  run.seconds = std::stod(message.substr(0, space));
+  run.volume = message.substr(space + 1);
+  run.peak_mib = double(usage.ru_maxrss) / 1024.0;
+  return run;
+}
+
+std::vector<Case> generated_cases(int max_level, const std::string& demo_dir) {
+  std::vector<Case> cases;
+  const Vector shift(FT(1) / 3, FT(1) / 5, FT(1) / 7);
+  for (int level = 2; level <= max_level; ++level)
+    cases.push_back({"icospheres L" + std::to_string(level), make_icosphere(level, FT(1)),
+                     translated(make_icosphere(level, FT(1)), shift)});
+  {
+    const Mesh s = make_icosphere(std::min(max_level, 4), FT(1));
+    Mesh turned = transformed(s, rational_rotation(1));
+    make_exact(turned);
+    cases.push_back({"dense: sphere vs 1-degree turn", s, turned});
+  }
+  {
+    Mesh grid, other;
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j) {
+        grid = concatenate(grid, make_box(Point(2 * i, 2 * j, 0), Point(2 * i + 1, 2 * j + 1, 1)));
+        other = concatenate(other, make_box(Point(2 * i + FT(1) / 2, 2 * j, 0),
+                                            Point(2 * i + FT(3) / 2, 2 * j + 1, 1)));
+      }
+    cases.push_back({"coplanar: box grid vs shifted grid", grid, other});
+    const Mesh s = make_icosphere(std::min(max_level, 4), FT(1));
+    cases.push_back({"coplanar: sphere vs itself", s, s});
+  }
+  cases.push_back({"coarse box vs fine sphere", make_box(Point(-2, -2, -FT(1) / 3), Point(2, 2, FT(1) / 3)),
+                   make_icosphere(std::min(max_level, 5), FT(1))});
+  for (const char* name : {"elephant", "eight", "blobby"}) {
+    const std::string path = demo_dir + "/" + name + ".off";
+    if (!std::filesystem::exists(path)) continue;
+    const Mesh m = read_mesh(path);
+    Mesh turned = translated(transformed(m, rational_rotation(10)), Vector(FT(1) / 100, FT(1) / 50, 0));
+    make_exact(turned);
+    cases.push_back({std::string(name) + " vs rotated copy", m, turned});
+  }
+  return cases;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 3) {
-    std::cerr << "usage: bench_bool A B [--rotate DEG] [--translate X Y Z] [--op OP]\n";
-    return 2;
-  }
-  Mesh a = read_mesh(argv[1]), b = read_mesh(argv[2]);
+  BooleanOp op = BooleanOp::Union;
+  int max_level = 5;
+  std::size_t nef_max_faces = 3000;
+  std::string json_path, only, a_path, b_path;
+  const char* home = std::getenv("HOME");
+  std::string demo_dir = std::string(home ? home : ".") + "/.cache/morphex/cgal-demo";
   double degrees = 0;
   Vector offset(0, 0, 0);
-  BooleanOp op = BooleanOp::Union;
-  for (int i = 3; i < argc; ++i) {
+  for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--rotate" && i + 1 < argc)
-      degrees = std::stod(argv[++i]);
-    else if (arg == "--translate" && i + 3 < argc) {
-      offset = Vector(std::stod(argv[i + 1]), std::stod(argv[i + 2]), std::stod(argv[i + 3]));
-      i += 3;
-    } else if (arg == "--op" && i + 1 < argc)
-      op = parse_boolean_op(argv[++i]);
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::invalid_argument(arg + " needs a value");
+      return argv[++i];
+    };
+    if (arg == "--op") op = parse_boolean_op(next());
+    else if (arg == "--max-level") max_level = std::stoi(next());
+    else if (arg == "--nef-max-faces") nef_max_faces = std::stoul(next());
+    else if (arg == "--json") json_path = next();
+    else if (arg == "--demo-dir") demo_dir = next();
+    else if (arg == "--only") only = next();
+    else if (arg == "--rotate") degrees = std::stod(next());
+    else if (arg == "--translate") {
+      const double x = std::stod(next()), y = std::stod(next()), z = std::stod(next());
+      offset = Vector(x, y, z);
+    } else if (arg.rfind("--", 0) != 0 && a_path.empty()) a_path = arg;
+    else if (arg.rfind("--", 0) != 0 && b_path.empty()) b_path = arg;
+    else {
+      std::cerr << "bench_bool: unknown argument " << arg << "\n";
+      return 2;
+    }
   }
-  if (degrees != 0) b = transformed(b, rational_rotation(degrees));
-  b = translated(b, offset);
-  make_exact(b);
-
-  auto start = std::chrono::steady_clock::now();
-  const BooleanResult r = compute_boolean(a, b, op);
-  const double ours = seconds_since(start);
-  if (!r.ok()) {
-    std::cerr << r.message << '\n';
-    return 1;
+  std::vector<Case> cases;
+  if (!a_path.empty()) {
+    if (b_path.empty()) b_path = a_path;
+    Mesh b = read_mesh(b_path);
+    if (degrees != 0) b = transformed(b, rational_rotation(degrees));
+    b = translated(b, offset);
+    make_exact(b);
+    cases.push_back({a_path + " vs " + b_path, read_mesh(a_path), b});
+  } else {
+    cases = generated_cases(max_level, demo_dir);
   }
-  const FT our_volume = signed_volume(r.mesh);
 
-  SurfaceMesh sa = to_surface_mesh(a), sb = to_surface_mesh(b), out;
-  start = std::chrono::steady_clock::now();
-  const bool ok = op == BooleanOp::Union ? PMP::corefine_and_compute_union(sa, sb, out)
-                  : op == BooleanOp::Intersection
-                      ? PMP::corefine_and_compute_intersection(sa, sb, out)
-                      : PMP::corefine_and_compute_difference(sa, sb, out);
-  const double theirs = seconds_since(start);
-  const bool agree = ok && PMP::volume(out) == our_volume;
-  const auto& s = r.stats.seconds;
-  std::cout << "input triangles " << a.num_triangles() << " + " << b.num_triangles() << ", "
-            << to_string(op) << ", cut facets " << r.stats.cut_facets_a + r.stats.cut_facets_b
-            << ", patches " << r.stats.patches << " (" << r.stats.patches_by_orientation_rule
-            << " by the orientation rule, " << r.stats.patches_by_ray_cast << " by ray cast)"
-            << "\nmorphex      " << ours << " s (validate " << s.validate << ", pairs " << s.pairs
-            << ", segments " << s.segments << ", retriangulate " << s.retriangulate << ", classify "
-            << s.classify << ", assemble " << s.assemble << ")"
-            << "\ncorefinement " << theirs << " s" << (ok ? "" : " (failed)")
-            << "\nratio (corefinement / morphex) " << theirs / ours
-            << "\nexact volumes agree: " << (agree ? "yes" : "NO") << " ("
-            << CGAL::to_double(our_volume) << ")\n";
-  return agree ? 0 : 1;
+  nlohmann::json rows = nlohmann::json::array();
+  bool all_agree = true;
+  std::cout << std::left << std::setw(36) << "case" << std::right << std::setw(9) << "faces"
+            << std::setw(10) << "morphex" << std::setw(10) << "coref" << std::setw(9) << "ratio"
+            << std::setw(10) << "Nef" << std::setw(9) << "ratio" << std::setw(12) << "tri/s"
+            << std::setw(14) << "MiB m/c/N" << "  volumes\n";
+  for (const Case& c : cases) {
+    if (!only.empty() && c.name.find(only) == std::string::npos) continue;
+    const std::size_t faces = c.a.num_triangles() + c.b.num_triangles();
+    using Result = std::optional<std::pair<double, FT>>;
+    const Run ours = in_child([&]() -> Result {
+      const auto start = std::chrono::steady_clock::now();
+      BooleanResult r = compute_boolean(c.a, c.b, op);  // validation and exact output included
+      const double seconds = seconds_since(start);
+      if (!r.ok()) return std::nullopt;
+      return std::make_pair(seconds, signed_volume(r.mesh));
+    });
+    const Run coref = in_child([&]() -> Result {
+      SurfaceMesh sa = to_surface_mesh(c.a), sb = to_surface_mesh(c.b), out;
+      const auto start = std::chrono::steady_clock::now();
+      const bool ok = op == BooleanOp::Union ? PMP::corefine_and_compute_union(sa, sb, out)
+                      : op == BooleanOp::Intersection
+                          ? PMP::corefine_and_compute_intersection(sa, sb, out)
+                          : PMP::corefine_and_compute_difference(sa, sb, out);
+      const double seconds = seconds_since(start);
+      if (!ok) return std::nullopt;
+      return std::make_pair(seconds, PMP::volume(out));
+    });
+    Run nef;
+    if (faces <= nef_max_faces)
+      nef = in_child([&]() -> Result {
+        const auto start = std::chrono::steady_clock::now();
+        const NefPolyhedron na = to_nef(c.a), nb = to_nef(c.b);
+        const NefPolyhedron r = op == BooleanOp::Union ? na + nb
+                                : op == BooleanOp::Intersection ? na * nb
+                                                                : na - nb;
+        const double seconds = seconds_since(start);  // conversions in: Nef needs them
+        return std::make_pair(seconds, signed_volume(from_nef(r)));
+      });
+    std::string agreement = ours.ok ? "" : "morphex FAILED";
+    if (ours.ok && coref.ok) agreement += ours.volume == coref.volume ? "=coref " : "DIFFER(coref) ";
+    if (ours.ok && nef.ok) agreement += ours.volume == nef.volume ? "=Nef" : "DIFFER(Nef)";
+    if (!coref.ok) agreement += " (coref failed)";
+    all_agree = all_agree && ours.ok && (!coref.ok || ours.volume == coref.volume) &&
+                (!nef.ok || ours.volume == nef.volume);
+    auto cell = [](const Run& r, double value) {
+      std::ostringstream out;
+      if (r.ok) out << std::setprecision(3) << value; else out << "-";
+      return out.str();
+    };
+    std::cout << std::left << std::setw(36) << c.name.substr(0, 35) << std::right << std::setw(9)
+              << faces << std::setw(10) << cell(ours, ours.seconds) << std::setw(10)
+              << cell(coref, coref.seconds) << std::setw(9)
+              << cell(coref, coref.seconds / ours.seconds) << std::setw(10)
+              << cell(nef, nef.seconds) << std::setw(9) << cell(nef, nef.seconds / ours.seconds)
+              << std::setw(12) << cell(ours, double(faces) / ours.seconds) << ' ' << std::setw(15)
+              << (cell(ours, ours.peak_mib) + "/" + cell(coref, coref.peak_mib) + "/" +
+                  cell(nef, nef.peak_mib))
+              << "  " << agreement << '\n';
+    nlohmann::json row = {{"case", c.name}, {"op", to_string(op)}, {"faces", faces},
+                          {"morphex_seconds", ours.seconds}, {"morphex_peak_mib", ours.peak_mib},
+                          {"agree", all_agree}};
+    if (coref.ok) {
+      row["corefinement_seconds"] = coref.seconds;
+      row["corefinement_peak_mib"] = coref.peak_mib;
+      row["ratio_corefinement"] = coref.seconds / ours.seconds;
+    }
+    if (nef.ok) {
+      row["nef_seconds"] = nef.seconds;
+      row["nef_peak_mib"] = nef.peak_mib;
+      row["ratio_nef"] = nef.seconds / ours.seconds;
+    }
+    rows.push_back(row);
+  }
+  if (!json_path.empty()) std::ofstream(json_path) << rows.dump(2) << '\n';
+  std::cout << "ratio = peer time / morphex time (above 1: morphex is faster); tri/s = input "
+               "triangles per second of morphex; MiB = peak memory of morphex / corefinement / Nef.\n"
+               "morphex times include input validation and exact output coordinates; corefinement's "
+               "output coordinates stay lazy (unevaluated) when its clock stops.\n";
+  return all_agree ? 0 : 1;
 }
