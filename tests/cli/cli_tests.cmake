@@ -68,3 +68,9 @@ morphex_cli_test(max_memory 1 "out of memory: the operation needs more memory"
   --max-memory-mb 5 dilate ${data}/unit_cube.off --se ball:r=1/10,level=2 -o ${PROJECT_BINARY_DIR}/never.off)
 add_test(NAME cli.sigint_leaves_no_output COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/interrupt.sh
   $<TARGET_FILE:morphex> ${data} ${PROJECT_BINARY_DIR}/cli-interrupt)
+
+# The benchmarks run and agree with their exact peers on a small case (timings are not asserted).
+add_test(NAME bench.bool_smoke COMMAND bench_bool --max-level 2 --only "icospheres L2")
+set_tests_properties(bench.bool_smoke PROPERTIES PASS_REGULAR_EXPRESSION "=coref =Nef")
+add_test(NAME bench.morph_smoke COMMAND bench_morph --se cube:r=1/4 --peer l-shape)
+set_tests_properties(bench.morph_smoke PROPERTIES PASS_REGULAR_EXPRESSION "agree with minkowski_sum_3")
