@@ -299,10 +299,14 @@ TEST(ManySolids, TreeUnionAndNaryUnionOfConvexSolidsAgreeExactly) {
   // Three boxes crossing pairwise (their faces meet at triple points), touching and coplanar
   // cubes, nested and disjoint ones, and crossing icospheres: both unions, same exact volume.
   std::vector<Mesh> solids = {
-      make_box(Point(0, 0, 0), Point(4, 1, 1)),   make_box(Point(1, -1, 0), Point(2, 3, 2)),
-      make_box(Point(0, 0, -1), Point(3, 2, 1) ), make_cube(FT(1) / 2, Point(6, 0, 0)),
-      make_cube(FT(1) / 2, Point(7, 0, 0)),       make_cube(FT(1) / 4, Point(6, 0, 0)),
-      make_cube(FT(1), Point(-5, -5, -5)),        make_icosphere(1, FT(1)),
+      make_box(Point(0, 0, 0), Point(4, 1, 1)),
+      make_box(Point(1, -1, 0), Point(2, 3, 2)),
+      make_box(Point(0, 0, -1), Point(3, 2, 1)),
+      make_cube(FT(1) / 2, Point(6, 0, 0)),
+      make_cube(FT(1) / 2, Point(7, 0, 0)),
+      make_cube(FT(1) / 4, Point(6, 0, 0)),
+      make_cube(FT(1), Point(-5, -5, -5)),
+      make_icosphere(1, FT(1)),
       translated(make_icosphere(1, FT(1)), Vector(FT(1) / 3, FT(1) / 5, FT(1) / 7))};
   UnionStats tree_stats, nary_stats;
   const Mesh by_tree = compute_union(solids, &tree_stats);

@@ -13,8 +13,8 @@
 #include "morphex/check.h"
 #include "morphex/generators.h"
 #include "morphex/io.h"
-#include "morphex/surface_mesh.h"
 #include "morphex/nef.h"
+#include "morphex/surface_mesh.h"
 
 using namespace morphex;
 namespace PMP = CGAL::Polygon_mesh_processing;
@@ -23,7 +23,9 @@ namespace {
 
 FT nef_volume(const Mesh& a, const Mesh& b, BooleanOp op) {
   const NefPolyhedron na = to_nef(a), nb = to_nef(b);
-  const NefPolyhedron r = op == BooleanOp::Union ? na + nb : op == BooleanOp::Intersection ? na * nb : na - nb;
+  const NefPolyhedron r = op == BooleanOp::Union          ? na + nb
+                          : op == BooleanOp::Intersection ? na * nb
+                                                          : na - nb;
   return signed_volume(from_nef(r));
 }
 

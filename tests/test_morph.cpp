@@ -28,9 +28,9 @@ FT volume_outside(const Mesh& a, const Mesh& b) {
 }
 
 Mesh l_shape() {
-  const BooleanResult r = compute_boolean(make_box(Point(0, 0, 0), Point(2, 1, 1)),
-                                          make_box(Point(0, 0, 0), Point(1, 2, 1)),
-                                          BooleanOp::Union);
+  const BooleanResult r =
+      compute_boolean(make_box(Point(0, 0, 0), Point(2, 1, 1)),
+                      make_box(Point(0, 0, 0), Point(1, 2, 1)), BooleanOp::Union);
   return r.mesh;
 }
 
@@ -103,8 +103,8 @@ TEST(Minkowski, BoxPlusBoxIsTheBoxWithSummedHalfSizes) {
   const Mesh a = make_box(Point(-1, -2, -3), Point(1, 2, 3));
   const StructuringElement b = parse_structuring_element("box:x=1/2,y=1/4,z=1/8");
   const Mesh sum = minkowski_sum(a, b.mesh);
-  const Mesh expected = make_box(Point(FT(-3) / 2, FT(-9) / 4, FT(-25) / 8),
-                                 Point(FT(3) / 2, FT(9) / 4, FT(25) / 8));
+  const Mesh expected =
+      make_box(Point(FT(-3) / 2, FT(-9) / 4, FT(-25) / 8), Point(FT(3) / 2, FT(9) / 4, FT(25) / 8));
   EXPECT_EQ(valid_volume(sum, "box + box"), valid_volume(expected, "expected"));
   EXPECT_EQ(volume_outside(sum, expected), 0);
   EXPECT_EQ(volume_outside(expected, sum), 0);
@@ -150,8 +150,8 @@ TEST(Morphology, ErosionOfABoxByABoxShrinksItsHalfSizes) {
   const Mesh a = make_box(Point(0, 0, 0), Point(4, 3, 2));
   const Mesh eroded = erosion(a, parse_structuring_element("box:x=1,y=1/2,z=1/4"));
   EXPECT_EQ(valid_volume(eroded, "eroded box"), FT(2) * 2 * FT(3) / 2);
-  EXPECT_EQ(volume_outside(eroded, make_box(Point(1, FT(1) / 2, FT(1) / 4),
-                                            Point(3, FT(5) / 2, FT(7) / 4))),
+  EXPECT_EQ(volume_outside(
+                eroded, make_box(Point(1, FT(1) / 2, FT(1) / 4), Point(3, FT(5) / 2, FT(7) / 4))),
             0);
 }
 
@@ -217,9 +217,9 @@ TEST(Morphology, SeveralComponentsAndGenusOne) {
   EXPECT_EQ(valid_volume(dilation(two, se), "two cubes dilated"), 2 * FT(27));
   EXPECT_EQ(valid_volume(erosion(two, se), "two cubes eroded"), 2 * FT(1));
   // a square ring (genus 1) dilated until its hole closes, eroded back: the closing fills it
-  const BooleanResult ring = compute_boolean(make_box(Point(0, 0, 0), Point(3, 3, 1)),
-                                             make_box(Point(1, 1, -1), Point(2, 2, 2)),
-                                             BooleanOp::Difference);
+  const BooleanResult ring =
+      compute_boolean(make_box(Point(0, 0, 0), Point(3, 3, 1)),
+                      make_box(Point(1, 1, -1), Point(2, 2, 2)), BooleanOp::Difference);
   ASSERT_TRUE(ring.ok());
   EXPECT_EQ(check_mesh(ring.mesh).genus, 1);
   const Mesh closed = closing(ring.mesh, parse_structuring_element("box:x=1/2,y=1/2,z=1/8"));

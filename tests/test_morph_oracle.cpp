@@ -49,9 +49,13 @@ Mesh l_shape() {
 
 }  // namespace
 
-TEST(MinkowskiOracle, LShape) { expect_same_dilation(l_shape(), "L-shape"); }
+TEST(MinkowskiOracle, LShape) {
+  expect_same_dilation(l_shape(), "L-shape");
+}
 
-TEST(MinkowskiOracle, Torus) { expect_same_dilation(make_torus(8, 4, 1.0, 0.4), "torus"); }
+TEST(MinkowskiOracle, Torus) {
+  expect_same_dilation(make_torus(8, 4, 1.0, 0.4), "torus");
+}
 
 TEST(MinkowskiOracle, StarAndCross) {
   const std::string dir = demo_dir();
@@ -64,8 +68,8 @@ TEST(MinkowskiOracle, StarAndCross) {
 TEST(MinkowskiOracle, NonConvexPlusNonConvex) {
   // both operands non-convex: the triangle-pair route against Nef's convex decomposition
   const Mesh l = l_shape();
-  const Mesh small_l = transformed(l, Transformation(FT(1) / 5, 0, 0, 0, FT(1) / 7, 0, 0, 0,
-                                                     FT(1) / 3));
+  const Mesh small_l =
+      transformed(l, Transformation(FT(1) / 5, 0, 0, 0, FT(1) / 7, 0, 0, 0, FT(1) / 3));
   const Mesh ours = minkowski_sum(l, small_l);
   const MeshReport report = check_mesh(ours);
   EXPECT_TRUE(report.valid_solid()) << describe_problems(report);

@@ -50,7 +50,8 @@ const mp::StageReport& stage(const mp::InputReport& input, const std::string& ta
 TEST(Pipeline, ChainedMorphologyAndBooleansGiveExactVolumes) {
   const std::string out = fresh_dir("golden");
   const mp::RunReport report = run_text(R"({"pipeline": [
-      {"type": "read", "path": ")" + kData + R"(/unit_cube.off", "tag": "in"},
+      {"type": "read", "path": ")" + kData +
+                                        R"(/unit_cube.off", "tag": "in"},
       {"type": "dilate", "se": {"shape": "cube", "r": "1/4"}, "tag": "grown"},
       {"type": "erode", "se": "cube:r=1/4", "tag": "back"},
       {"type": "translate", "inputs": ["in"], "offset": ["1/2", 0, 0], "tag": "moved"},
@@ -58,7 +59,8 @@ TEST(Pipeline, ChainedMorphologyAndBooleansGiveExactVolumes) {
       {"type": "difference", "inputs": ["grown", "in"], "tag": "shell"},
       {"type": "scale", "inputs": ["in"], "factor": 2, "tag": "big"},
       {"type": "rotate", "inputs": ["moved"], "axis": "z", "degrees": 90, "tag": "turned"},
-      {"type": "write", "inputs": ["shell"], "path": ")" + out + R"(/shell.off", "exact": true}]})");
+      {"type": "write", "inputs": ["shell"], "path": ")" +
+                                        out + R"(/shell.off", "exact": true}]})");
   ASSERT_TRUE(report.ok()) << report.inputs[0].error;
   const mp::InputReport& r = report.inputs[0];
   EXPECT_EQ(stage(r, "in").volume, "1");
@@ -98,16 +100,17 @@ TEST(Pipeline, OneBadMeshAmongGoodOnesFailsAloneAndKeepsTheOthers) {
   const mp::RunReport report = run_text(R"({"pipeline": [
       {"type": "read", "path": "${input}"},
       {"type": "dilate", "se": "octahedron:r=1/8"},
-      {"type": "write", "path": ")" + out + R"(/${stem}.off"}]})", options);
+      {"type": "write", "path": ")" + out + R"(/${stem}.off"}]})",
+                                        options);
   ASSERT_EQ(report.inputs.size(), 4u);
   EXPECT_FALSE(report.ok());
   EXPECT_TRUE(report.inputs[0].ok);
   EXPECT_TRUE(report.inputs[2].ok);
   EXPECT_FALSE(report.inputs[1].ok);
-  EXPECT_EQ(report.inputs[1].error.rfind("pipeline[0] (read): " + kData +
-                                             "/open_cube.off: mesh is not closed: 4 border edges",
-                                         0),
-            0u)
+  EXPECT_EQ(
+      report.inputs[1].error.rfind(
+          "pipeline[0] (read): " + kData + "/open_cube.off: mesh is not closed: 4 border edges", 0),
+      0u)
       << report.inputs[1].error;
   EXPECT_NE(report.inputs[3].error.find("missing.off"), std::string::npos);
   EXPECT_TRUE(fs::exists(out + "/unit_cube.off"));
@@ -150,9 +153,10 @@ const std::string kRead = R"({"type": "read", "path": "a.off", "tag": "in"})";
 INSTANTIATE_TEST_SUITE_P(
     Table, InvalidPipelines,
     ::testing::Values(
-        InvalidCase{"empty", R"({"pipeline": []})",
-                    {"pipeline: expected a non-empty array of stages"}},
-        InvalidCase{"unknown_type", "[" + kRead + R"(, {"type": "dilation", "se": "cube:r=1"}])",
+        InvalidCase{
+            "empty", R"({"pipeline": []})", {"pipeline: expected a non-empty array of stages"}},
+        InvalidCase{"unknown_type",
+                    "[" + kRead + R"(, {"type": "dilation", "se": "cube:r=1"}])",
                     {"pipeline[1].type: unknown stage 'dilation' (did you mean 'dilate'?)"}},
         InvalidCase{"negative_radius",
                     "[" + kRead + R"(, {"type": "open", "se": {"shape": "ball", "r": -1}}])",
@@ -169,7 +173,8 @@ INSTANTIATE_TEST_SUITE_P(
                     {"pipeline[1].exact: expected true or false, got \"yes\"",
                      "pipeline[2].offset[1]: expected a number, got \"x\"",
                      "pipeline[3].axis: expected one of x, y, z, got \"w\""}},
-        InvalidCase{"bad_shape", "[" + kRead + R"(, {"type": "dilate", "se": {"shape": "sphere"}}])",
+        InvalidCase{"bad_shape",
+                    "[" + kRead + R"(, {"type": "dilate", "se": {"shape": "sphere"}}])",
                     {"pipeline[1].se.shape: unknown structuring element shape 'sphere' (expected "
                      "cube, box, octahedron, ball, cylinder or mesh)"}},
         InvalidCase{"tags",
@@ -179,17 +184,21 @@ INSTANTIATE_TEST_SUITE_P(
                     {"pipeline[1].tag: duplicate tag 'in' (first used by pipeline[0])",
                      "pipeline[2].inputs[1]: unknown tag 'nope'",
                      "pipeline[3].inputs: 'difference' takes 2 inputs, got 1"}},
-        InvalidCase{"first_needs_input", R"([{"type": "dilate", "se": "cube:r=1"}])",
+        InvalidCase{"first_needs_input",
+                    R"([{"type": "dilate", "se": "cube:r=1"}])",
                     {"pipeline[0].inputs: 'dilate' needs an input: it cannot come first"}},
         InvalidCase{"cycle",
                     "[" + kRead + R"(, {"type": "union", "inputs": ["in", "b"], "tag": "a"},
                              {"type": "dilate", "inputs": ["a"], "se": "cube:r=1", "tag": "b"}])",
                     {"pipeline[1].inputs: cycle: a -> b -> a"}},
-        InvalidCase{"overwrite_input", "[" + kRead + R"(, {"type": "write", "path": "a.off"}])",
+        InvalidCase{"overwrite_input",
+                    "[" + kRead + R"(, {"type": "write", "path": "a.off"}])",
                     {"pipeline[1].path: would overwrite the input read by pipeline[0] (a.off)"}},
-        InvalidCase{"unknown_variable", R"([{"type": "read", "path": "${mesh}"}])",
+        InvalidCase{"unknown_variable",
+                    R"([{"type": "read", "path": "${mesh}"}])",
                     {"pipeline[0].path: unknown variable ${mesh} (set it with --set mesh=VALUE)"}},
-        InvalidCase{"top_level", R"({"pipline": [], "pipeline": [{"type": "read", "path": "a"}]})",
+        InvalidCase{"top_level",
+                    R"({"pipline": [], "pipeline": [{"type": "read", "path": "a"}]})",
                     {"pipline: unknown top-level key (expected \"pipeline\", and optionally "
                      "\"description\" and \"variables\")"}}),
     [](const auto& info) { return std::string(info.param.name); });
@@ -206,9 +215,9 @@ TEST(Pipeline, MalformedJsonNamesLineAndColumn) {
 
 TEST(Pipeline, RegistryDocumentsEveryStage) {
   const auto& registry = mp::StageRegistry::builtin();
-  for (const char* type : {"read", "write", "dilate", "erode", "open", "close", "union",
-                           "intersection", "difference", "minkowski", "translate", "scale",
-                           "rotate", "check"}) {
+  for (const char* type :
+       {"read", "write", "dilate", "erode", "open", "close", "union", "intersection", "difference",
+        "minkowski", "translate", "scale", "rotate", "check"}) {
     const mp::StageInfo* s = registry.find(type);
     ASSERT_NE(s, nullptr) << type;
     EXPECT_FALSE(s->description.empty()) << type;

@@ -18,8 +18,7 @@ namespace {
 
 Mesh l_shape() {
   return compute_boolean(make_box(Point(0, 0, 0), Point(2, FT(1) / 2, FT(1) / 2)),
-                         make_box(Point(0, 0, 0), Point(FT(1) / 2, 3, FT(1) / 2)),
-                         BooleanOp::Union)
+                         make_box(Point(0, 0, 0), Point(FT(1) / 2, 3, FT(1) / 2)), BooleanOp::Union)
       .mesh;
 }
 
@@ -43,8 +42,8 @@ TEST(Retrieval, ScoresOfAHandCheckedExample) {
   EXPECT_EQ(s.queries, 4u);
   EXPECT_DOUBLE_EQ(s.nearest_neighbor, 0.25);  // only b2 finds its class first
   EXPECT_DOUBLE_EQ(s.first_tier, 0.25);
-  EXPECT_DOUBLE_EQ(s.second_tier, 0.75);  // b1's class mate is third
-  EXPECT_DOUBLE_EQ(s.e_measure, 0.5);     // 3 results, 1 relevant: P = 1/3, R = 1
+  EXPECT_DOUBLE_EQ(s.second_tier, 0.75);                  // b1's class mate is third
+  EXPECT_DOUBLE_EQ(s.e_measure, 0.5);                     // 3 results, 1 relevant: P = 1/3, R = 1
   EXPECT_DOUBLE_EQ(s.dcg, (3 + 1 / std::log2(3.0)) / 4);  // ranks 2 count fully, rank 3 by 1/log2 3
 }
 

@@ -84,7 +84,8 @@ Run in_child(Engine&& engine) {
   close(fds[1]);
   std::string message;
   char buffer[4096];
-  for (ssize_t n; (n = read(fds[0], buffer, sizeof buffer)) > 0;) message.append(buffer, std::size_t(n));
+  for (ssize_t n; (n = read(fds[0], buffer, sizeof buffer)) > 0;)
+    message.append(buffer, std::size_t(n));
   close(fds[0]);
   int status = 0;
   rusage usage{};
@@ -123,13 +124,15 @@ std::vector<Case> generated_cases(int max_level, const std::string& demo_dir) {
     const Mesh s = make_icosphere(std::min(max_level, 4), FT(1));
     cases.push_back({"coplanar: sphere vs itself", s, s});
   }
-  cases.push_back({"coarse box vs fine sphere", make_box(Point(-2, -2, -FT(1) / 3), Point(2, 2, FT(1) / 3)),
+  cases.push_back({"coarse box vs fine sphere",
+                   make_box(Point(-2, -2, -FT(1) / 3), Point(2, 2, FT(1) / 3)),
                    make_icosphere(std::min(max_level, 5), FT(1))});
   for (const char* name : {"elephant", "eight", "blobby"}) {
     const std::string path = demo_dir + "/" + name + ".off";
     if (!std::filesystem::exists(path)) continue;
     const Mesh m = read_mesh(path);
-    Mesh turned = translated(transformed(m, rational_rotation(10)), Vector(FT(1) / 100, FT(1) / 50, 0));
+    Mesh turned =
+        translated(transformed(m, rational_rotation(10)), Vector(FT(1) / 100, FT(1) / 50, 0));
     make_exact(turned);
     cases.push_back({std::string(name) + " vs rotated copy", m, turned});
   }
@@ -153,18 +156,27 @@ int main(int argc, char** argv) {
       if (i + 1 >= argc) throw std::invalid_argument(arg + " needs a value");
       return argv[++i];
     };
-    if (arg == "--op") op = parse_boolean_op(next());
-    else if (arg == "--max-level") max_level = std::stoi(next());
-    else if (arg == "--nef-max-faces") nef_max_faces = std::stoul(next());
-    else if (arg == "--json") json_path = next();
-    else if (arg == "--demo-dir") demo_dir = next();
-    else if (arg == "--only") only = next();
-    else if (arg == "--rotate") degrees = std::stod(next());
+    if (arg == "--op")
+      op = parse_boolean_op(next());
+    else if (arg == "--max-level")
+      max_level = std::stoi(next());
+    else if (arg == "--nef-max-faces")
+      nef_max_faces = std::stoul(next());
+    else if (arg == "--json")
+      json_path = next();
+    else if (arg == "--demo-dir")
+      demo_dir = next();
+    else if (arg == "--only")
+      only = next();
+    else if (arg == "--rotate")
+      degrees = std::stod(next());
     else if (arg == "--translate") {
       const double x = std::stod(next()), y = std::stod(next()), z = std::stod(next());
       offset = Vector(x, y, z);
-    } else if (arg.rfind("--", 0) != 0 && a_path.empty()) a_path = arg;
-    else if (arg.rfind("--", 0) != 0 && b_path.empty()) b_path = arg;
+    } else if (arg.rfind("--", 0) != 0 && a_path.empty())
+      a_path = arg;
+    else if (arg.rfind("--", 0) != 0 && b_path.empty())
+      b_path = arg;
     else {
       std::cerr << "bench_bool: unknown argument " << arg << "\n";
       return 2;
@@ -187,7 +199,8 @@ int main(int argc, char** argv) {
   std::cout << std::left << std::setw(36) << "case" << std::right << std::setw(9) << "faces"
             << std::setw(10) << "morphex" << std::setw(10) << "coref" << std::setw(9) << "ratio"
             << std::setw(10) << "Nef" << std::setw(9) << "ratio" << std::setw(12) << "tri/s"
-            << std::setw(14) << "MiB m/c/N" << "  volumes\n";
+            << std::setw(14) << "MiB m/c/N"
+            << "  volumes\n";
   for (const Case& c : cases) {
     if (!only.empty() && c.name.find(only) == std::string::npos) continue;
     const std::size_t faces = c.a.num_triangles() + c.b.num_triangles();
@@ -215,21 +228,25 @@ int main(int argc, char** argv) {
       nef = in_child([&]() -> Result {
         const auto start = std::chrono::steady_clock::now();
         const NefPolyhedron na = to_nef(c.a), nb = to_nef(c.b);
-        const NefPolyhedron r = op == BooleanOp::Union ? na + nb
+        const NefPolyhedron r = op == BooleanOp::Union          ? na + nb
                                 : op == BooleanOp::Intersection ? na * nb
                                                                 : na - nb;
         const double seconds = seconds_since(start);  // conversions in: Nef needs them
         return std::make_pair(seconds, signed_volume(from_nef(r)));
       });
     std::string agreement = ours.ok ? "" : "morphex FAILED";
-    if (ours.ok && coref.ok) agreement += ours.volume == coref.volume ? "=coref " : "DIFFER(coref) ";
+    if (ours.ok && coref.ok)
+      agreement += ours.volume == coref.volume ? "=coref " : "DIFFER(coref) ";
     if (ours.ok && nef.ok) agreement += ours.volume == nef.volume ? "=Nef" : "DIFFER(Nef)";
     if (!coref.ok) agreement += " (coref failed)";
     all_agree = all_agree && ours.ok && (!coref.ok || ours.volume == coref.volume) &&
                 (!nef.ok || ours.volume == nef.volume);
     auto cell = [](const Run& r, double value) {
       std::ostringstream out;
-      if (r.ok) out << std::setprecision(3) << value; else out << "-";
+      if (r.ok)
+        out << std::setprecision(3) << value;
+      else
+        out << "-";
       return out.str();
     };
     std::cout << std::left << std::setw(36) << c.name.substr(0, 35) << std::right << std::setw(9)
@@ -241,8 +258,11 @@ int main(int argc, char** argv) {
               << (cell(ours, ours.peak_mib) + "/" + cell(coref, coref.peak_mib) + "/" +
                   cell(nef, nef.peak_mib))
               << "  " << agreement << '\n';
-    nlohmann::json row = {{"case", c.name}, {"op", to_string(op)}, {"faces", faces},
-                          {"morphex_seconds", ours.seconds}, {"morphex_peak_mib", ours.peak_mib},
+    nlohmann::json row = {{"case", c.name},
+                          {"op", to_string(op)},
+                          {"faces", faces},
+                          {"morphex_seconds", ours.seconds},
+                          {"morphex_peak_mib", ours.peak_mib},
                           {"agree", all_agree}};
     if (coref.ok) {
       row["corefinement_seconds"] = coref.seconds;
@@ -257,9 +277,10 @@ int main(int argc, char** argv) {
     rows.push_back(row);
   }
   if (!json_path.empty()) std::ofstream(json_path) << rows.dump(2) << '\n';
-  std::cout << "ratio = peer time / morphex time (above 1: morphex is faster); tri/s = input "
-               "triangles per second of morphex; MiB = peak memory of morphex / corefinement / Nef.\n"
-               "morphex times include input validation and exact output coordinates; corefinement's "
-               "output coordinates stay lazy (unevaluated) when its clock stops.\n";
+  std::cout
+      << "ratio = peer time / morphex time (above 1: morphex is faster); tri/s = input "
+         "triangles per second of morphex; MiB = peak memory of morphex / corefinement / Nef.\n"
+         "morphex times include input validation and exact output coordinates; corefinement's "
+         "output coordinates stay lazy (unevaluated) when its clock stops.\n";
   return all_agree ? 0 : 1;
 }

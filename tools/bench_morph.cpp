@@ -101,9 +101,9 @@ int main(int argc, char** argv) {
   nlohmann::json rows = nlohmann::json::array();
   bool all_agree = true;
   std::cout << std::left << std::setw(28) << "input" << std::setw(8) << "op" << std::right
-            << std::setw(8) << "facets" << std::setw(10) << "morphex s" << std::setw(10)
-            << "CGAL s" << std::setw(9) << "ratio" << std::setw(9) << "result" << std::setw(10)
-            << "peak MiB" << "  exact volumes\n";
+            << std::setw(8) << "facets" << std::setw(10) << "morphex s" << std::setw(10) << "CGAL s"
+            << std::setw(9) << "ratio" << std::setw(9) << "result" << std::setw(10) << "peak MiB"
+            << "  exact volumes\n";
   for (const std::string& input : inputs) {
     const Mesh a = load(input);
     for (const std::string& op_name : ops) {
@@ -113,8 +113,8 @@ int main(int argc, char** argv) {
       const Mesh ours = apply_morphology(op, a, se, &stats);
       const double our_seconds = seconds_since(start);
       const MeshReport report = check_mesh(ours);
-      nlohmann::json row = {{"input", input},        {"op", op_name},
-                            {"se", se.spec},         {"facets", a.num_triangles()},
+      nlohmann::json row = {{"input", input},         {"op", op_name},
+                            {"se", se.spec},          {"facets", a.num_triangles()},
                             {"seconds", our_seconds}, {"result_facets", ours.num_triangles()},
                             {"pieces", stats.pieces}, {"valid", report.valid_solid()},
                             {"peak_mib", peak_mib()}};
@@ -171,7 +171,9 @@ int main(int argc, char** argv) {
         std::cout << ' ' << i + 1 << ": " << facets[i] << ", " << std::setprecision(3) << steps[i];
       std::cout << "; result " << current.num_triangles() << " facets, valid "
                 << check_mesh(current).valid_solid() << '\n';
-      rows.push_back({{"input", input}, {"chain", chain}, {"step_seconds", steps},
+      rows.push_back({{"input", input},
+                      {"chain", chain},
+                      {"step_seconds", steps},
                       {"step_input_facets", facets}});
     }
   }

@@ -114,12 +114,13 @@ Command add_minkowski_command(CLI::App& app) {
 }  // namespace
 
 std::vector<Command> add_morphology_commands(CLI::App& app) {
-  return {add_morphology_command(app, MorphologyOp::Dilate, "Dilation A + B by a structuring element"),
-          add_morphology_command(app, MorphologyOp::Erode,
-                                 "Erosion {x : x + B inside A} by a structuring element"),
-          add_morphology_command(app, MorphologyOp::Open, "Opening: erosion, then dilation"),
-          add_morphology_command(app, MorphologyOp::Close, "Closing: dilation, then erosion"),
-          add_minkowski_command(app)};
+  return {
+      add_morphology_command(app, MorphologyOp::Dilate, "Dilation A + B by a structuring element"),
+      add_morphology_command(app, MorphologyOp::Erode,
+                             "Erosion {x : x + B inside A} by a structuring element"),
+      add_morphology_command(app, MorphologyOp::Open, "Opening: erosion, then dilation"),
+      add_morphology_command(app, MorphologyOp::Close, "Closing: dilation, then erosion"),
+      add_minkowski_command(app)};
 }
 
 }  // namespace morphex::cli

@@ -56,10 +56,10 @@ void print_table(const mp::RunReport& report) {
   for (const mp::InputReport& input : report.inputs)
     for (const mp::StageReport& s : input.stages)
       std::cout << std::left << std::setw(20)
-                << std::filesystem::path(input.input).stem().string().substr(0, 19)
-                << std::setw(16) << s.tag.substr(0, 15) << std::setw(12) << s.type << std::right
-                << std::setw(9) << s.faces << std::setw(14) << std::setprecision(6)
-                << s.volume_approx << std::setw(10) << std::setprecision(3) << s.seconds << '\n';
+                << std::filesystem::path(input.input).stem().string().substr(0, 19) << std::setw(16)
+                << s.tag.substr(0, 15) << std::setw(12) << s.type << std::right << std::setw(9)
+                << s.faces << std::setw(14) << std::setprecision(6) << s.volume_approx
+                << std::setw(10) << std::setprecision(3) << s.seconds << '\n';
 }
 
 Command add_run_command(CLI::App& app) {
@@ -93,8 +93,8 @@ Command add_run_command(CLI::App& app) {
             if (*report_path != "-")
               std::cout << args->file << ": " << report.inputs.size() << " run"
                         << (report.inputs.size() == 1 ? "" : "s") << ", "
-                        << report.inputs.size() - failed << " succeeded, " << failed
-                        << " failed, " << std::setprecision(3) << report.seconds << " s\n";
+                        << report.inputs.size() - failed << " succeeded, " << failed << " failed, "
+                        << std::setprecision(3) << report.seconds << " s\n";
             return failed == 0 ? kSuccess : kFailed;
           }};
 }
@@ -103,30 +103,31 @@ Command add_validate_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("validate", "Check a pipeline without running it");
   auto args = std::make_shared<PipelineArgs>();
   add_pipeline_options(cmd, *args);
-  return {cmd, [args]() -> int {
-            mp::Variables variables;
-            if (!parse_variables(args->sets, variables)) return kBadInput;
-            const auto inputs = expand_inputs(args->inputs);
-            try {
-              const nlohmann::json document = mp::load_document(args->file);
-              std::size_t stages = 0;
-              if (inputs.empty()) {
-                stages = mp::validate(document, args->file, variables, {"input", "stem"}).stages.size();
-              } else {
-                for (const std::string& input : inputs) {
-                  mp::Variables v = variables;
-                  v["input"] = input;
-                  v["stem"] = std::filesystem::path(input).stem().string();
-                  stages = mp::validate(document, args->file, v).stages.size();
-                }
-              }
-              std::cout << args->file << ": valid pipeline, " << stages << " stages\n";
-            } catch (const mp::PipelineError& e) {
-              print_problems(args->file, e);
-              return kBadInput;
+  return {
+      cmd, [args]() -> int {
+        mp::Variables variables;
+        if (!parse_variables(args->sets, variables)) return kBadInput;
+        const auto inputs = expand_inputs(args->inputs);
+        try {
+          const nlohmann::json document = mp::load_document(args->file);
+          std::size_t stages = 0;
+          if (inputs.empty()) {
+            stages = mp::validate(document, args->file, variables, {"input", "stem"}).stages.size();
+          } else {
+            for (const std::string& input : inputs) {
+              mp::Variables v = variables;
+              v["input"] = input;
+              v["stem"] = std::filesystem::path(input).stem().string();
+              stages = mp::validate(document, args->file, v).stages.size();
             }
-            return kSuccess;
-          }};
+          }
+          std::cout << args->file << ": valid pipeline, " << stages << " stages\n";
+        } catch (const mp::PipelineError& e) {
+          print_problems(args->file, e);
+          return kBadInput;
+        }
+        return kSuccess;
+      }};
 }
 
 std::string describe_option(const mp::OptionInfo& o) {
@@ -157,13 +158,13 @@ Command add_stages_command(CLI::App& app) {
             }
             const mp::StageInfo* s = registry.find(*name);
             if (!s) {
-              print_error("unknown stage '" + *name + "' (did you mean '" + registry.closest(*name) +
-                          "'?)");
+              print_error("unknown stage '" + *name + "' (did you mean '" +
+                          registry.closest(*name) + "'?)");
               return kBadInput;
             }
             std::cout << s->type << ": " << s->description << "\ninputs: " << s->inputs
-                      << (s->inputs == 2 ? " (\"inputs\": [first, second])" : "") << "\noptions:"
-                      << (s->options.empty() ? " none\n" : "\n");
+                      << (s->inputs == 2 ? " (\"inputs\": [first, second])" : "")
+                      << "\noptions:" << (s->options.empty() ? " none\n" : "\n");
             for (const mp::OptionInfo& o : s->options) std::cout << describe_option(o);
             if (std::any_of(s->options.begin(), s->options.end(), [](const mp::OptionInfo& o) {
                   return o.type == mp::OptionType::StructuringElement;
@@ -173,7 +174,8 @@ Command add_stages_command(CLI::App& app) {
                 std::cout << "  " << shape.shape << ": " << shape.description << "\n";
                 for (const SeParameterInfo& p : shape.parameters)
                   std::cout << "      " << std::left << std::setw(10) << p.key << std::setw(9)
-                            << p.type << (p.default_value.empty() ? "required" : "default " + p.default_value)
+                            << p.type
+                            << (p.default_value.empty() ? "required" : "default " + p.default_value)
                             << "  " << p.description << '\n';
               }
             }

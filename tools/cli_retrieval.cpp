@@ -54,32 +54,34 @@ Command add_describe_command(CLI::App& app) {
   cmd->add_option("--d2-samples", args->settings.d2_samples, "D2 point pairs")
       ->check(CLI::Range(16, 10000000));
   cmd->add_option("--seed", args->settings.seed, "D2 random seed");
-  return {cmd, [args]() -> int {
-            const auto mesh = read_solid(args->mesh);
-            if (!mesh) return kBadInput;
-            const auto start = std::chrono::steady_clock::now();
-            const Descriptors d = describe(*mesh, args->settings);
-            nlohmann::json j = {{"name", fs::path(args->mesh).stem().string()},
-                                {"path", args->mesh},
-                                {"scale_length", d.scale_length},
-                                {"granulometry", d.granulometry},
-                                {"pattern_spectrum", d.pattern_spectrum},
-                                {"anti_granulometry", d.anti_granulometry},
-                                {"d2", d.d2},
-                                {"settings", args->settings.to_string()},
-                                {"seconds", seconds_since(start)}};
-            if (args->json) {
-              std::cout << j.dump() << std::endl;
-              return kSuccess;
-            }
-            std::cout << args->mesh << "  (L = cbrt(volume) = " << d.scale_length << ")\n";
-            for (const char* key : {"granulometry", "pattern_spectrum", "anti_granulometry", "d2"}) {
-              std::cout << std::left << std::setw(19) << key;
-              for (double v : j[key].get<std::vector<double>>()) std::cout << ' ' << std::setprecision(4) << v;
-              std::cout << '\n';
-            }
-            return kSuccess;
-          }};
+  return {
+      cmd, [args]() -> int {
+        const auto mesh = read_solid(args->mesh);
+        if (!mesh) return kBadInput;
+        const auto start = std::chrono::steady_clock::now();
+        const Descriptors d = describe(*mesh, args->settings);
+        nlohmann::json j = {{"name", fs::path(args->mesh).stem().string()},
+                            {"path", args->mesh},
+                            {"scale_length", d.scale_length},
+                            {"granulometry", d.granulometry},
+                            {"pattern_spectrum", d.pattern_spectrum},
+                            {"anti_granulometry", d.anti_granulometry},
+                            {"d2", d.d2},
+                            {"settings", args->settings.to_string()},
+                            {"seconds", seconds_since(start)}};
+        if (args->json) {
+          std::cout << j.dump() << std::endl;
+          return kSuccess;
+        }
+        std::cout << args->mesh << "  (L = cbrt(volume) = " << d.scale_length << ")\n";
+        for (const char* key : {"granulometry", "pattern_spectrum", "anti_granulometry", "d2"}) {
+          std::cout << std::left << std::setw(19) << key;
+          for (double v : j[key].get<std::vector<double>>())
+            std::cout << ' ' << std::setprecision(4) << v;
+          std::cout << '\n';
+        }
+        return kSuccess;
+      }};
 }
 
 Command add_generate_command(CLI::App& app) {
@@ -117,10 +119,10 @@ class ProgressBar {
     const double elapsed = seconds_since(start_);
     const double eta = done > 0 ? elapsed / double(done) * double(total_ - done) : 0;
     const int width = 30, filled = int(width * done / total_);
-    std::cerr << "\r\033[K[" << std::string(filled, '=') << std::string(width - filled, ' ')
-              << "] " << done << "/" << total_ << " meshes, " << failed << " failed, ETA "
-              << int(eta) / 60 << "m" << std::setw(2) << std::setfill('0') << int(eta) % 60
-              << std::setfill(' ') << "s" << (done == total_ ? "\n" : "") << std::flush;
+    std::cerr << "\r\033[K[" << std::string(filled, '=') << std::string(width - filled, ' ') << "] "
+              << done << "/" << total_ << " meshes, " << failed << " failed, ETA " << int(eta) / 60
+              << "m" << std::setw(2) << std::setfill('0') << int(eta) % 60 << std::setfill(' ')
+              << "s" << (done == total_ ? "\n" : "") << std::flush;
   }
 
  private:
@@ -150,7 +152,8 @@ Command add_index_command(CLI::App& app) {
               const auto p = mp::validate(document, args->pipeline, {}, {"input", "stem"});
               if (std::none_of(p.stages.begin(), p.stages.end(),
                                [](const mp::Stage& s) { return s.type == "describe"; }))
-                throw mp::PipelineError(std::vector<mp::Problem>{{"pipeline", "an index pipeline needs a describe stage"}});
+                throw mp::PipelineError(std::vector<mp::Problem>{
+                    {"pipeline", "an index pipeline needs a describe stage"}});
             } catch (const mp::PipelineError& e) {
               for (const auto& p : e.problems()) print_error(args->pipeline + ": " + p.text());
               return kBadInput;
@@ -181,8 +184,14 @@ Command add_index_command(CLI::App& app) {
               } catch (const std::exception& e) {
                 ++failed;
                 print_error(input + ": cannot read the file");
-                db.store({0, fs::path(input).stem().string(), input, "", settings, "failed",
-                          "cannot read the file", {}},
+                db.store({0,
+                          fs::path(input).stem().string(),
+                          input,
+                          "",
+                          settings,
+                          "failed",
+                          "cannot read the file",
+                          {}},
                          0, "", 0);
                 continue;
               }
@@ -223,8 +232,9 @@ Command add_index_command(CLI::App& app) {
               }
             }
             const double seconds = seconds_since(start);
-            std::cout << args->db << ": indexed " << indexed << " meshes (" << skipped << " already up to date, " << failed
-                      << " failed) in " << std::setprecision(3) << seconds << " s";
+            std::cout << args->db << ": indexed " << indexed << " meshes (" << skipped
+                      << " already up to date, " << failed << " failed) in " << std::setprecision(3)
+                      << seconds << " s";
             if (done > 0)
               std::cout << ", " << std::setprecision(3) << 60.0 * double(done) / seconds
                         << " meshes/min";
@@ -245,7 +255,8 @@ Command add_query_command(CLI::App& app) {
   cmd->add_option("MESH", args->mesh, "A mesh file, or the name (stem) or path of an indexed mesh")
       ->required();
   cmd->add_option("-k", args->k, "Number of neighbours")->check(CLI::PositiveNumber);
-  cmd->add_option("--descriptor", args->descriptor, "granulometry, pattern_spectrum or d2 (L1 distance)")
+  cmd->add_option("--descriptor", args->descriptor,
+                  "granulometry, pattern_spectrum or d2 (L1 distance)")
       ->check(CLI::IsMember(descriptor_kinds()));
   cmd->add_flag("--json", args->json, "One JSON object on stdout");
   return {cmd, [args]() -> int {
@@ -253,9 +264,9 @@ Command add_query_command(CLI::App& app) {
             const std::vector<IndexedMesh> meshes = db.load();
             std::vector<double> query;
             long long exclude = -1;
-            const auto by_id = std::find_if(meshes.begin(), meshes.end(), [&](const IndexedMesh& m) {
-              return m.name == args->mesh || m.path == args->mesh;
-            });
+            const auto by_id = std::find_if(
+                meshes.begin(), meshes.end(),
+                [&](const IndexedMesh& m) { return m.name == args->mesh || m.path == args->mesh; });
             if (!fs::exists(args->mesh) && by_id != meshes.end()) {
               query = by_id->descriptors.at(args->descriptor);
               exclude = by_id->id;
@@ -331,7 +342,9 @@ Command add_evaluate_command(CLI::App& app) {
               names.push_back(m.name);
               classes.push_back(labels[m.name]);
             }
-            nlohmann::json j = {{"models", meshes.size()}, {"unlabelled", unlabelled}, {"descriptors", nlohmann::json::object()}};
+            nlohmann::json j = {{"models", meshes.size()},
+                                {"unlabelled", unlabelled},
+                                {"descriptors", nlohmann::json::object()}};
             if (!args->json)
               std::cout << std::left << std::setw(18) << "descriptor" << std::right << std::setw(18)
                         << "Nearest Neighbor" << std::setw(12) << "First Tier" << std::setw(13)
@@ -341,14 +354,19 @@ Command add_evaluate_command(CLI::App& app) {
               if (std::any_of(meshes.begin(), meshes.end(),
                               [&](const IndexedMesh& m) { return !m.descriptors.count(kind); }))
                 continue;
-              std::vector<std::vector<double>> distance(meshes.size(), std::vector<double>(meshes.size()));
+              std::vector<std::vector<double>> distance(meshes.size(),
+                                                        std::vector<double>(meshes.size()));
               for (std::size_t a = 0; a < meshes.size(); ++a)
                 for (std::size_t b = 0; b < meshes.size(); ++b)
-                  distance[a][b] = l1_distance(meshes[a].descriptors.at(kind), meshes[b].descriptors.at(kind));
+                  distance[a][b] =
+                      l1_distance(meshes[a].descriptors.at(kind), meshes[b].descriptors.at(kind));
               const RetrievalScores s = evaluate_retrieval(names, classes, distance);
-              j["descriptors"][kind] = {{"nearest_neighbor", s.nearest_neighbor}, {"first_tier", s.first_tier},
-                                        {"second_tier", s.second_tier}, {"e_measure", s.e_measure},
-                                        {"dcg", s.dcg}, {"queries", s.queries}};
+              j["descriptors"][kind] = {{"nearest_neighbor", s.nearest_neighbor},
+                                        {"first_tier", s.first_tier},
+                                        {"second_tier", s.second_tier},
+                                        {"e_measure", s.e_measure},
+                                        {"dcg", s.dcg},
+                                        {"queries", s.queries}};
               if (!args->json)
                 std::cout << std::left << std::setw(18) << kind << std::right << std::fixed
                           << std::setprecision(3) << std::setw(18) << s.nearest_neighbor
@@ -359,7 +377,11 @@ Command add_evaluate_command(CLI::App& app) {
             if (args->json)
               std::cout << j.dump() << std::endl;
             else
-              std::cout << meshes.size() << " labelled models" << (unlabelled ? ", " + std::to_string(unlabelled) + " indexed models without a label skipped" : "") << '\n';
+              std::cout << meshes.size() << " labelled models"
+                        << (unlabelled ? ", " + std::to_string(unlabelled) +
+                                             " indexed models without a label skipped"
+                                       : "")
+                        << '\n';
             return kSuccess;
           }};
 }

@@ -59,15 +59,19 @@ IndexDb::IndexDb(const std::string& path) : path_(path) {
   exec("PRAGMA foreign_keys = ON");
   exec("PRAGMA journal_mode = WAL");
   exec("CREATE TABLE IF NOT EXISTS meta(key TEXT PRIMARY KEY, value TEXT NOT NULL)");
-  exec("CREATE TABLE IF NOT EXISTS meshes(id INTEGER PRIMARY KEY, name TEXT NOT NULL, "
-       "path TEXT NOT NULL UNIQUE, hash TEXT NOT NULL, settings TEXT NOT NULL, "
-       "status TEXT NOT NULL, error TEXT, faces INTEGER, volume TEXT, seconds REAL, "
-       "indexed_at TEXT DEFAULT CURRENT_TIMESTAMP)");
-  exec("CREATE TABLE IF NOT EXISTS descriptors(mesh_id INTEGER NOT NULL REFERENCES meshes(id) "
-       "ON DELETE CASCADE, kind TEXT NOT NULL, vector TEXT NOT NULL, PRIMARY KEY(mesh_id, kind))");
+  exec(
+      "CREATE TABLE IF NOT EXISTS meshes(id INTEGER PRIMARY KEY, name TEXT NOT NULL, "
+      "path TEXT NOT NULL UNIQUE, hash TEXT NOT NULL, settings TEXT NOT NULL, "
+      "status TEXT NOT NULL, error TEXT, faces INTEGER, volume TEXT, seconds REAL, "
+      "indexed_at TEXT DEFAULT CURRENT_TIMESTAMP)");
+  exec(
+      "CREATE TABLE IF NOT EXISTS descriptors(mesh_id INTEGER NOT NULL REFERENCES meshes(id) "
+      "ON DELETE CASCADE, kind TEXT NOT NULL, vector TEXT NOT NULL, PRIMARY KEY(mesh_id, kind))");
 }
 
-IndexDb::~IndexDb() { sqlite3_close(db_); }
+IndexDb::~IndexDb() {
+  sqlite3_close(db_);
+}
 
 void IndexDb::exec(const std::string& sql) {
   char* error = nullptr;
@@ -86,15 +90,17 @@ std::optional<std::string> IndexDb::meta(const std::string& key) {
 }
 
 void IndexDb::set_meta(const std::string& key, const std::string& value) {
-  Statement s(db_, "INSERT INTO meta(key, value) VALUES(?, ?) "
-                   "ON CONFLICT(key) DO UPDATE SET value = excluded.value");
+  Statement s(db_,
+              "INSERT INTO meta(key, value) VALUES(?, ?) "
+              "ON CONFLICT(key) DO UPDATE SET value = excluded.value");
   s.bind(1, key).bind(2, value).step();
 }
 
 bool IndexDb::up_to_date(const std::string& path, const std::string& hash,
                          const std::string& settings) {
-  Statement s(db_, "SELECT 1 FROM meshes WHERE path = ? AND hash = ? AND settings = ? AND "
-                   "status = 'ok'");
+  Statement s(db_,
+              "SELECT 1 FROM meshes WHERE path = ? AND hash = ? AND settings = ? AND "
+              "status = 'ok'");
   s.bind(1, path).bind(2, hash).bind(3, settings);
   return s.step();
 }

@@ -74,8 +74,9 @@ int main(int argc, char** argv) {
     try {
       return command.run();
     } catch (const std::bad_alloc&) {
-      print_error("out of memory: the operation needs more memory than is available (see "
-                  "--max-memory-mb and --max-faces); no output was written");
+      print_error(
+          "out of memory: the operation needs more memory than is available (see "
+          "--max-memory-mb and --max-faces); no output was written");
       return kFailed;
     } catch (const std::exception& e) {
       print_error(e.what());

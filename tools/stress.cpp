@@ -58,7 +58,8 @@ class RandomSolids {
     const int kind = pick(0, 3);
     if (kind == 1) out = transformed(out, quaternion_rotation(1, 0, 0, 1));  // 90 degrees about z
     if (kind >= 2)
-      out = transformed(out, quaternion_rotation(pick(-3, 3), pick(-3, 3), pick(-3, 3), pick(1, 3)));
+      out =
+          transformed(out, quaternion_rotation(pick(-3, 3), pick(-3, 3), pick(-3, 3), pick(1, 3)));
     out = translated(out, Vector(grid(-4, 4), grid(-4, 4), grid(-4, 4)));
     make_exact(out);
     return out;
@@ -110,8 +111,10 @@ int main(int argc, char** argv) {
     if (failure.empty()) {
       const FT va = signed_volume(a), vb = signed_volume(b), vu = signed_volume(r[0].mesh),
                vi = signed_volume(r[1].mesh), vd = signed_volume(r[2].mesh);
-      if (vu + vi != va + vb) failure = "vol(A u B) + vol(A n B) != vol(A) + vol(B)";
-      else if (vd != va - vi) failure = "vol(A - B) != vol(A) - vol(A n B)";
+      if (vu + vi != va + vb)
+        failure = "vol(A u B) + vol(A n B) != vol(A) + vol(B)";
+      else if (vd != va - vi)
+        failure = "vol(A - B) != vol(A) - vol(A n B)";
     }
     if (failure.empty() && c % 20 == 0) {
       StructuringElement se;
@@ -133,9 +136,11 @@ int main(int argc, char** argv) {
       exact.exact = true;
       write_mesh(a, stem + "-a.off", exact);
       write_mesh(b, stem + "-b.off", exact);
-      std::ofstream(stem + ".txt") << failure << "\nreplay: morphex bool union|intersection|"
-                                   << "difference " << stem << "-a.off " << stem << "-b.off -o r.off\n";
-      std::cerr << "case " << c << " (seed " << seed << "): " << failure << " -> " << stem << "-*\n";
+      std::ofstream(stem + ".txt")
+          << failure << "\nreplay: morphex bool union|intersection|"
+          << "difference " << stem << "-a.off " << stem << "-b.off -o r.off\n";
+      std::cerr << "case " << c << " (seed " << seed << "): " << failure << " -> " << stem
+                << "-*\n";
     }
   }
   const double seconds =

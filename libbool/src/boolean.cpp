@@ -93,7 +93,8 @@ BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
 
   result.mesh =
       detail::assemble(x, refined, labels, op, options.provenance ? &result.provenance : nullptr);
-  if (options.merge_coplanar && !options.provenance) result.mesh = merge_coplanar_faces(result.mesh);
+  if (options.merge_coplanar && !options.provenance)
+    result.mesh = merge_coplanar_faces(result.mesh);
   make_exact(result.mesh);
   stats.seconds.assemble = clock.lap();
   return result;

@@ -80,11 +80,10 @@ Mesh make_icosphere(int level, const FT& radius) {
 
 Transformation quaternion_rotation(const FT& a, const FT& b, const FT& c, const FT& d) {
   const FT n = a * a + b * b + c * c + d * d;
-  return Transformation((a * a + b * b - c * c - d * d) / n, 2 * (b * c - a * d) / n,
-                        2 * (b * d + a * c) / n, 2 * (b * c + a * d) / n,
-                        (a * a - b * b + c * c - d * d) / n, 2 * (c * d - a * b) / n,
-                        2 * (b * d - a * c) / n, 2 * (c * d + a * b) / n,
-                        (a * a - b * b - c * c + d * d) / n);
+  return Transformation(
+      (a * a + b * b - c * c - d * d) / n, 2 * (b * c - a * d) / n, 2 * (b * d + a * c) / n,
+      2 * (b * c + a * d) / n, (a * a - b * b + c * c - d * d) / n, 2 * (c * d - a * b) / n,
+      2 * (b * d - a * c) / n, 2 * (c * d + a * b) / n, (a * a - b * b - c * c + d * d) / n);
 }
 
 Mesh make_torus(int nu, int nv, double R, double r) {

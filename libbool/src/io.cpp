@@ -628,7 +628,9 @@ void set_input_limits(const InputLimits& limits) {
   max_faces = limits.max_faces;
 }
 
-InputLimits input_limits() { return {max_file_bytes.load(), max_faces.load()}; }
+InputLimits input_limits() {
+  return {max_file_bytes.load(), max_faces.load()};
+}
 
 // ---------------------------------------------------------------------------------------------
 // Writing

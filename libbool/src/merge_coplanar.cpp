@@ -25,7 +25,9 @@ namespace {
 
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 
-std::uint64_t key(VertexIndex a, VertexIndex b) { return (std::uint64_t(a) << 32) | b; }
+std::uint64_t key(VertexIndex a, VertexIndex b) {
+  return (std::uint64_t(a) << 32) | b;
+}
 
 // The region's new triangles, or nullopt when the region must stay as it is.
 template <class Traits>
@@ -85,8 +87,8 @@ std::optional<std::vector<Triangle>> triangulate_region(
     next_level = std::move(crossing);
   }
   const auto orient = Traits().orientation_2_object();
-  const bool flip = orient(mesh.points[seed[0]], mesh.points[seed[1]], mesh.points[seed[2]]) ==
-                    CGAL::NEGATIVE;
+  const bool flip =
+      orient(mesh.points[seed[0]], mesh.points[seed[1]], mesh.points[seed[2]]) == CGAL::NEGATIVE;
   std::vector<Triangle> out;
   for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
     if (depth[f] % 2 == 0) continue;
@@ -264,7 +266,8 @@ Mesh merge_coplanar_faces(const Mesh& solid) {
       result.points.push_back(p[v]);
     }
   result.triangles.reserve(out.size());
-  for (const Triangle& t : out) result.triangles.push_back({new_index[t[0]], new_index[t[1]], new_index[t[2]]});
+  for (const Triangle& t : out)
+    result.triangles.push_back({new_index[t[0]], new_index[t[1]], new_index[t[2]]});
   return result;
 }
 

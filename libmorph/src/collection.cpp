@@ -57,7 +57,7 @@ class Shapes {
     if (name == "steps") {
       const FT w = between(0.6, 1), d = between(0.4, 0.6);
       return unite({box(0, 0, 0, w, 3 * d, d), box(0, d, d, w, 3 * d, 2 * d),
-                     box(0, 2 * d, 2 * d, w, 3 * d, 3 * d)});
+                    box(0, 2 * d, 2 * d, w, 3 * d, 3 * d)});
     }
     throw std::invalid_argument("unknown shape family '" + name + "'");
   }
@@ -94,7 +94,8 @@ std::vector<LabelledMesh> make_collection(int per_family, std::uint64_t seed,
   std::vector<LabelledMesh> out;
   for (const std::string& family : families.empty() ? collection_families() : families)
     for (int k = 0; k < per_family; ++k)
-      out.push_back({family + "-" + std::to_string(k), family, shapes.posed(shapes.family(family))});
+      out.push_back(
+          {family + "-" + std::to_string(k), family, shapes.posed(shapes.family(family))});
   return out;
 }
 

@@ -51,7 +51,8 @@ Eigen::Vector3d random_point(const SurfaceSample& s, std::mt19937_64& rng) {
     y = 1 - y;
   }
   Eigen::Vector3d out;
-  for (int k = 0; k < 3; ++k) out[k] = s.a[t][k] + x * (s.b[t][k] - s.a[t][k]) + y * (s.c[t][k] - s.a[t][k]);
+  for (int k = 0; k < 3; ++k)
+    out[k] = s.a[t][k] + x * (s.b[t][k] - s.a[t][k]) + y * (s.c[t][k] - s.a[t][k]);
   return out;
 }
 
@@ -85,7 +86,8 @@ Mesh normalise_pose(const Mesh& solid) {
   std::vector<std::pair<Eigen::Vector3d, double>> centroids;
   for (const Triangle& t : m.triangles) {
     Eigen::Vector3d p[3];
-    for (int k = 0; k < 3; ++k) p[k] = Eigen::Vector3d(m.points[t[k]][0], m.points[t[k]][1], m.points[t[k]][2]);
+    for (int k = 0; k < 3; ++k)
+      p[k] = Eigen::Vector3d(m.points[t[k]][0], m.points[t[k]][1], m.points[t[k]][2]);
     const double area = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
     const Eigen::Vector3d sum = p[0] + p[1] + p[2];
     centroids.push_back({sum / 3.0, area});
@@ -173,7 +175,9 @@ Descriptors describe(const Mesh& solid, const DescriptorSettings& settings) {
   return d;
 }
 
-std::vector<std::string> descriptor_kinds() { return {"granulometry", "pattern_spectrum", "d2"}; }
+std::vector<std::string> descriptor_kinds() {
+  return {"granulometry", "pattern_spectrum", "d2"};
+}
 
 std::vector<double> descriptor_vector(const Descriptors& d, const std::string& kind) {
   if (kind == "granulometry") {

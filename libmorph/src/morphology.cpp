@@ -80,8 +80,7 @@ Mesh erode_valid(const Mesh& a, const std::vector<SePart>& parts, MinkowskiStats
     const Mesh minus_b = reflected(b.mesh);
     const Mesh shell = boundary_sum(a, minus_b, b.convex, &stats);
     const bool origin_inside = b.convex && detail::convex_contains_origin(b.mesh);
-    const Mesh moved =
-        origin_inside ? a : translated(a, CGAL::ORIGIN - b.mesh.points.front());
+    const Mesh moved = origin_inside ? a : translated(a, CGAL::ORIGIN - b.mesh.points.front());
     Mesh eroded = binary(moved, shell, BooleanOp::Difference);
     ++stats.binary_unions;
     result = i == 0 ? std::move(eroded) : binary(result, eroded, BooleanOp::Intersection);
@@ -99,7 +98,8 @@ Mesh timed(const Mesh& a, MorphologyStats* stats, Body&& body) {
   if (stats) {
     stats->pieces += minkowski.pieces;
     stats->binary_unions += minkowski.binary_unions;
-    stats->seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats->seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   return result;
 }

@@ -155,8 +155,7 @@ Mesh make_prism(const FT& r, const FT& height, int segments) {
 const std::vector<SeShapeInfo>& structuring_element_shapes() {
   static const std::vector<SeShapeInfo> shapes = {
       {"cube", "axis-aligned cube", with_offset({{"r", "number", "", "half side"}})},
-      {"box",
-       "axis-aligned box",
+      {"box", "axis-aligned box",
        with_offset({{"x", "number", "", "half size along x"},
                     {"y", "number", "", "half size along y"},
                     {"z", "number", "", "half size along z"}})},
@@ -254,8 +253,8 @@ Mesh convex_hull(const std::vector<Point>& points) {
   // CGAL writes lower-dimensional hulls as points, segments or polygons: only solids go on.
   std::size_t second = 1, third = 2;
   while (second < points.size() && points[second] == points[0]) ++second;
-  while (third < points.size() && (second >= points.size() ||
-                                   CGAL::collinear(points[0], points[second], points[third])))
+  while (third < points.size() &&
+         (second >= points.size() || CGAL::collinear(points[0], points[second], points[third])))
     ++third;
   if (third >= points.size()) return hull;
   if (std::none_of(points.begin(), points.end(), [&](const Point& p) {

@@ -98,7 +98,9 @@ InputReport run_one(const Pipeline& pipeline, const std::string& input, Progress
   return report;
 }
 
-std::string stem_of(const std::string& path) { return std::filesystem::path(path).stem().string(); }
+std::string stem_of(const std::string& path) {
+  return std::filesystem::path(path).stem().string();
+}
 
 }  // namespace
 

@@ -49,9 +49,11 @@ FT exact_number(const nlohmann::json& value) {
 StructuringElement structuring_element(const nlohmann::json& value) {
   if (value.is_string()) return parse_structuring_element(value.get<std::string>());
   if (!value.is_object())
-    throw StructuringElementError("", "", "expected an object such as {\"shape\": \"ball\", \"r\": 0.05}");
+    throw StructuringElementError("", "",
+                                  "expected an object such as {\"shape\": \"ball\", \"r\": 0.05}");
   if (!value.contains("shape") || !value["shape"].is_string())
-    throw StructuringElementError("", "shape", "missing (a string: cube, box, octahedron, ball, cylinder or mesh)");
+    throw StructuringElementError(
+        "", "shape", "missing (a string: cube, box, octahedron, ball, cylinder or mesh)");
   SeParameters params;
   for (const auto& [key, v] : value.items()) {
     if (key == "shape") continue;
@@ -107,7 +109,8 @@ OptionInfo required(std::string name, OptionType type, std::string description) 
   return o;
 }
 
-OptionInfo optional(std::string name, OptionType type, nlohmann::json value, std::string description) {
+OptionInfo optional(std::string name, OptionType type, nlohmann::json value,
+                    std::string description) {
   OptionInfo o = required(std::move(name), type, std::move(description));
   o.default_value = std::move(value);
   return o;
@@ -131,7 +134,9 @@ Mesh morphology_stage(StageContext& c, MorphologyOp op) {
 }
 
 void add_builtin_stages(StageRegistry& r) {
-  r.add({"read", "read a closed mesh (OFF, OBJ, STL, PLY) and check that it is a valid solid", 0,
+  r.add({"read",
+         "read a closed mesh (OFF, OBJ, STL, PLY) and check that it is a valid solid",
+         0,
          {required("path", OptionType::Path, "mesh file")},
          [](StageContext& c) {
            const std::string path = c.option("path").get<std::string>();
@@ -140,7 +145,9 @@ void add_builtin_stages(StageRegistry& r) {
            if (!report.valid_solid()) throw InputError(path, describe_problems(report));
            return mesh;
          }});
-  r.add({"write", "write the mesh atomically (format from the extension); passes it on", 1,
+  r.add({"write",
+         "write the mesh atomically (format from the extension); passes it on",
+         1,
          {required("path", OptionType::Path, "output file; missing directories are created"),
           optional("exact", OptionType::Bool, false,
                    "lossless exact OFF (rational coordinates) instead of doubles")},
@@ -160,15 +167,18 @@ void add_builtin_stages(StageRegistry& r) {
       {MorphologyOp::Open, "opening: erosion then dilation (removes what B cannot fit in)"},
       {MorphologyOp::Close, "closing: dilation then erosion (fills what B cannot enter)"}};
   for (const auto& [op, description] : morphology)
-    r.add({to_string(op), description, 1,
-           {required("se", OptionType::StructuringElement,
-                     "structuring element, {\"shape\": ..., parameters} or \"shape:key=value,...\"")},
-           [op = op](StageContext& c) { return morphology_stage(c, op); }});
+    r.add(
+        {to_string(op),
+         description,
+         1,
+         {required("se", OptionType::StructuringElement,
+                   "structuring element, {\"shape\": ..., parameters} or \"shape:key=value,...\"")},
+         [op = op](StageContext& c) { return morphology_stage(c, op); }});
   for (BooleanOp op : {BooleanOp::Union, BooleanOp::Intersection, BooleanOp::Difference})
     r.add({to_string(op),
-           op == BooleanOp::Difference ? "exact Boolean difference of two inputs (first minus second)"
-                                       : std::string("exact Boolean ") + to_string(op) +
-                                             " of two inputs",
+           op == BooleanOp::Difference
+               ? "exact Boolean difference of two inputs (first minus second)"
+               : std::string("exact Boolean ") + to_string(op) + " of two inputs",
            2,
            {},
            [op](StageContext& c) { return boolean_stage(c, op); }});
@@ -178,12 +188,15 @@ void add_builtin_stages(StageRegistry& r) {
            c.extra["pieces"] = stats.pieces;
            return sum;
          }});
-  r.add({"translate", "move the mesh by an exact offset", 1,
+  r.add({"translate",
+         "move the mesh by an exact offset",
+         1,
          {required("offset", OptionType::Vector3, "[x, y, z]")},
          [](StageContext& c) {
            const auto& v = c.option("offset");
-           return translated(*c.inputs[0], Vector(detail::exact_number(v[0]), detail::exact_number(v[1]),
-                                                  detail::exact_number(v[2])));
+           return translated(*c.inputs[0],
+                             Vector(detail::exact_number(v[0]), detail::exact_number(v[1]),
+                                    detail::exact_number(v[2])));
          }});
   OptionInfo factor = required("factor", OptionType::Number, "uniform scale factor");
   factor.positive = true;
@@ -226,13 +239,16 @@ void add_builtin_stages(StageRegistry& r) {
            const DescriptorSettings settings = detail::descriptor_settings(c.stage.options);
            const Descriptors d = describe(*c.inputs[0], settings);
            nlohmann::json vectors;
-           for (const std::string& kind : descriptor_kinds()) vectors[kind] = descriptor_vector(d, kind);
+           for (const std::string& kind : descriptor_kinds())
+             vectors[kind] = descriptor_vector(d, kind);
            c.extra["descriptors"] = vectors;
            c.extra["descriptor_settings"] = settings.to_string();
            c.extra["scale_length"] = d.scale_length;
            return *c.inputs[0];
          }});
-  r.add({"check", "report validity, volume, genus and components; passes the mesh on", 1,
+  r.add({"check",
+         "report validity, volume, genus and components; passes the mesh on",
+         1,
          {optional("require_valid", OptionType::Bool, true,
                    "fail this input when the mesh is not a valid solid")},
          [](StageContext& c) {
@@ -271,8 +287,8 @@ std::string StageRegistry::closest(const std::string& type) const {
       row[0] = i;
       for (std::size_t j = 1; j <= s.type.size(); ++j) {
         const std::size_t up = row[j];
-        row[j] = std::min({row[j] + 1, row[j - 1] + 1,
-                           diagonal + (type[i - 1] == s.type[j - 1] ? 0 : 1)});
+        row[j] = std::min(
+            {row[j] + 1, row[j - 1] + 1, diagonal + (type[i - 1] == s.type[j - 1] ? 0 : 1)});
         diagonal = up;
       }
     }

@@ -20,7 +20,9 @@ std::string join(const std::vector<Problem>& problems) {
   return out;
 }
 
-std::string at(const std::string& base, const std::string& key) { return base + "." + key; }
+std::string at(const std::string& base, const std::string& key) {
+  return base + "." + key;
+}
 std::string at(const std::string& base, std::size_t index) {
   return base + "[" + std::to_string(index) + "]";
 }
@@ -29,7 +31,8 @@ std::string at(const std::string& base, std::size_t index) {
 void substitute(nlohmann::json& value, const std::string& location, const Variables& variables,
                 const std::vector<std::string>& deferred, std::vector<Problem>& problems) {
   if (value.is_object()) {
-    for (auto& [key, member] : value.items()) substitute(member, at(location, key), variables, deferred, problems);
+    for (auto& [key, member] : value.items())
+      substitute(member, at(location, key), variables, deferred, problems);
   } else if (value.is_array()) {
     for (std::size_t i = 0; i < value.size(); ++i)
       substitute(value[i], at(location, i), variables, deferred, problems);
@@ -54,8 +57,8 @@ void substitute(nlohmann::json& value, const std::string& location, const Variab
         out += text.substr(open, close - open + 1);  // kept, so that no second error follows
       if (it == variables.end() &&
           std::find(deferred.begin(), deferred.end(), name) == deferred.end())
-        problems.push_back({location, "unknown variable ${" + name + "} (set it with --set " +
-                                          name + "=VALUE)"});
+        problems.push_back(
+            {location, "unknown variable ${" + name + "} (set it with --set " + name + "=VALUE)"});
       pos = close + 1;
     }
     value = out + text.substr(std::min(pos, text.size()));
@@ -70,11 +73,11 @@ void check_option(const OptionInfo& option, const nlohmann::json& value,
   switch (option.type) {
     case OptionType::String:
     case OptionType::Path:
-      if (!value.is_string() || (option.type == OptionType::Path && value.get<std::string>().empty()))
+      if (!value.is_string() ||
+          (option.type == OptionType::Path && value.get<std::string>().empty()))
         return expected(option.type == OptionType::Path ? "a file path" : "a string");
-      if (!option.choices.empty() &&
-          std::find(option.choices.begin(), option.choices.end(), value.get<std::string>()) ==
-              option.choices.end()) {
+      if (!option.choices.empty() && std::find(option.choices.begin(), option.choices.end(),
+                                               value.get<std::string>()) == option.choices.end()) {
         std::string list;
         for (const auto& c : option.choices) list += (list.empty() ? "" : ", ") + c;
         return expected("one of " + list);
@@ -107,8 +110,10 @@ void check_option(const OptionInfo& option, const nlohmann::json& value,
         try {
           const FT x = detail::exact_number(value[i]);
           if (x <= previous)
-            problems.push_back({at(location, i), "expected a positive number larger than the one "
-                                                 "before, got " + value[i].dump()});
+            problems.push_back({at(location, i),
+                                "expected a positive number larger than the one "
+                                "before, got " +
+                                    value[i].dump()});
           previous = x;
         } catch (const std::exception&) {
           problems.push_back({at(location, i), "expected a number, got " + value[i].dump()});
@@ -130,8 +135,9 @@ void check_option(const OptionInfo& option, const nlohmann::json& value,
       try {
         detail::structuring_element(value);
       } catch (const StructuringElementError& e) {
-        problems.push_back({value.is_object() && !e.key().empty() ? at(location, e.key()) : location,
-                            e.problem()});
+        problems.push_back(
+            {value.is_object() && !e.key().empty() ? at(location, e.key()) : location,
+             e.problem()});
       } catch (const std::exception& e) {  // an unreadable mesh:path=FILE
         problems.push_back({value.is_object() ? at(location, "path") : location, e.what()});
       }
@@ -160,8 +166,9 @@ nlohmann::json parse_document(const std::string& text, const std::string& name) 
     std::string what = e.what();
     const auto colon = what.find("]: ");  // drop nlohmann's "[json.exception.parse_error.101]"
     if (colon != std::string::npos) what = what.substr(colon + 3);
-    throw PipelineError(std::vector<Problem>{{name + ":" + std::to_string(line) + ":" + std::to_string(column),
-                          "malformed JSON: " + what}});
+    throw PipelineError(
+        std::vector<Problem>{{name + ":" + std::to_string(line) + ":" + std::to_string(column),
+                              "malformed JSON: " + what}});
   }
 }
 
@@ -202,8 +209,9 @@ Pipeline validate(const nlohmann::json& document, const std::string& name,
                                 "expected a string or a number, got " + default_value.dump()});
         }
       } else if (key != "pipeline" && key != "description") {
-        problems.push_back({key, "unknown top-level key (expected \"pipeline\", and optionally "
-                                 "\"description\" and \"variables\")"});
+        problems.push_back({key,
+                            "unknown top-level key (expected \"pipeline\", and optionally "
+                            "\"description\" and \"variables\")"});
       }
     }
   }
@@ -235,7 +243,8 @@ Pipeline validate(const nlohmann::json& document, const std::string& name,
     stage.tag = stage.type + "#" + std::to_string(i);
     if (raw.contains("tag")) {
       if (!raw["tag"].is_string() || raw["tag"].get<std::string>().empty()) {
-        problems.push_back({at(here, "tag"), "expected a non-empty string, got " + raw["tag"].dump()});
+        problems.push_back(
+            {at(here, "tag"), "expected a non-empty string, got " + raw["tag"].dump()});
       } else {
         stage.tag = raw["tag"].get<std::string>();
         const auto [it, inserted] = tag_index.emplace(stage.tag, i);
@@ -252,7 +261,8 @@ Pipeline validate(const nlohmann::json& document, const std::string& name,
                                                 [](const auto& t) { return t.is_string(); }))
         for (const auto& t : inputs) input_tags[i].push_back(t.get<std::string>());
       else
-        problems.push_back({at(here, "inputs"), "expected a tag or an array of tags, got " + inputs.dump()});
+        problems.push_back(
+            {at(here, "inputs"), "expected a tag or an array of tags, got " + inputs.dump()});
     }
     if (stage.info) {
       for (const auto& [key, value] : raw.items()) {
@@ -262,10 +272,10 @@ Pipeline validate(const nlohmann::json& document, const std::string& name,
         if (option == stage.info->options.end()) {
           std::string known;
           for (const auto& o : stage.info->options) known += (known.empty() ? "" : ", ") + o.name;
-          problems.push_back({at(here, key), "unknown option for '" + stage.type + "' (" +
-                                                 (known.empty() ? "it takes no options"
-                                                                : "known: " + known) +
-                                                 ")"});
+          problems.push_back(
+              {at(here, key), "unknown option for '" + stage.type + "' (" +
+                                  (known.empty() ? "it takes no options" : "known: " + known) +
+                                  ")"});
           continue;
         }
         check_option(*option, value, at(here, key), problems);
@@ -292,14 +302,16 @@ Pipeline validate(const nlohmann::json& document, const std::string& name,
       if (wanted == 1 && i > 0)
         stage.inputs.push_back(i - 1);
       else if (wanted > 0)
-        problems.push_back({at(here, "inputs"),
-                            wanted == 1 ? "'" + stage.type + "' needs an input: it cannot come first"
-                                        : "'" + stage.type + "' needs \"inputs\" with 2 tags"});
+        problems.push_back(
+            {at(here, "inputs"), wanted == 1
+                                     ? "'" + stage.type + "' needs an input: it cannot come first"
+                                     : "'" + stage.type + "' needs \"inputs\" with 2 tags"});
       continue;
     }
     if (int(input_tags[i].size()) != wanted) {
-      problems.push_back({at(here, "inputs"), "'" + stage.type + "' takes " + std::to_string(wanted) +
-                                                  " input" + (wanted == 1 ? "" : "s") + ", got " +
+      problems.push_back({at(here, "inputs"), "'" + stage.type + "' takes " +
+                                                  std::to_string(wanted) + " input" +
+                                                  (wanted == 1 ? "" : "s") + ", got " +
                                                   std::to_string(input_tags[i].size())});
       continue;
     }
@@ -322,7 +334,8 @@ Pipeline validate(const nlohmann::json& document, const std::string& name,
       std::string cycle;
       const auto from = std::find(path.begin(), path.end(), s);
       for (auto it = from; it != path.end(); ++it) cycle += pipeline.stages[*it].tag + " -> ";
-      problems.push_back({at(at("pipeline", s), "inputs"), "cycle: " + cycle + pipeline.stages[s].tag});
+      problems.push_back(
+          {at(at("pipeline", s), "inputs"), "cycle: " + cycle + pipeline.stages[s].tag});
       cyclic = true;
       return;
     }
@@ -342,9 +355,9 @@ Pipeline validate(const nlohmann::json& document, const std::string& name,
     for (const Stage& r : pipeline.stages)
       if (r.type == "read" && r.options.contains("path") &&
           (r.options["path"] == out || same_file(r.options["path"].get<std::string>(), out)))
-        problems.push_back({at(at("pipeline", w.index), "path"),
-                            "would overwrite the input read by " + at("pipeline", r.index) + " (" +
-                                out + ")"});
+        problems.push_back(
+            {at(at("pipeline", w.index), "path"),
+             "would overwrite the input read by " + at("pipeline", r.index) + " (" + out + ")"});
   }
   if (!problems.empty()) throw PipelineError(std::move(problems));
   return pipeline;

@@ -76,7 +76,7 @@ BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
 Mesh merge_coplanar_faces(const Mesh& solid);
 
 struct UnionStats {
-  std::size_t binary_unions = 0;   // compute_boolean calls made
+  std::size_t binary_unions = 0;    // compute_boolean calls made
   std::size_t disjoint_merges = 0;  // unions of operands with disjoint boxes, done by concatenation
   std::size_t candidate_pairs = 0, patches = 0;  // compute_union_of_convex
 };

@@ -17,9 +17,9 @@
 namespace morphex {
 
 struct StructuringElement {
-  std::string shape;  // cube, box, octahedron, ball, cylinder or mesh
-  std::string spec;   // the text form it was made from, normalised (for reports)
-  Mesh mesh;          // closed, outward oriented, exact
+  std::string shape;   // cube, box, octahedron, ball, cylinder or mesh
+  std::string spec;    // the text form it was made from, normalised (for reports)
+  Mesh mesh;           // closed, outward oriented, exact
   bool convex = true;  // decided exactly (the hull has the same volume)
 };
 

@@ -28,7 +28,16 @@ namespace morphex::pipeline {
 
 // ---- the stage registry ----------------------------------------------------------------------
 
-enum class OptionType { String, Path, Bool, Integer, Number, NumberList, Vector3, StructuringElement };
+enum class OptionType {
+  String,
+  Path,
+  Bool,
+  Integer,
+  Number,
+  NumberList,
+  Vector3,
+  StructuringElement
+};
 const char* to_string(OptionType type);
 
 struct OptionInfo {
@@ -87,10 +96,10 @@ class PipelineError : public std::runtime_error {
 using Variables = std::map<std::string, std::string>;
 
 struct Stage {
-  std::size_t index;                     // position in the "pipeline" array
-  std::string type, tag;                 // tag defaults to "<type>#<index>"
-  std::vector<std::size_t> inputs;       // indices of the stages it reads
-  nlohmann::json options;                // validated, defaults filled in, variables substituted
+  std::size_t index;                // position in the "pipeline" array
+  std::string type, tag;            // tag defaults to "<type>#<index>"
+  std::vector<std::size_t> inputs;  // indices of the stages it reads
+  nlohmann::json options;           // validated, defaults filled in, variables substituted
   const StageInfo* info = nullptr;
 };
 
@@ -109,8 +118,8 @@ nlohmann::json load_document(const std::string& path);
 // Validates a document with the given variables bound, filling defaults. Variables named in
 // `deferred` (such as "input" while no input is known) may stay unsubstituted.
 // Throws PipelineError listing every problem.
-Pipeline validate(const nlohmann::json& document, const std::string& name, const Variables& variables,
-                  const std::vector<std::string>& deferred = {},
+Pipeline validate(const nlohmann::json& document, const std::string& name,
+                  const Variables& variables, const std::vector<std::string>& deferred = {},
                   const StageRegistry& registry = StageRegistry::builtin());
 
 // ---- execution ---------------------------------------------------------------------------------
