@@ -1,9 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Agreement with independent exact methods on the same input: CGAL Nef polyhedra and CGAL
 // corefinement (both Epeck) must give exactly the volume morphex gives.
-#include <CGAL/Polygon_mesh_processing/corefinement.h>
-#include <CGAL/Polygon_mesh_processing/measure.h>
-#include <CGAL/Surface_mesh.h>
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -13,35 +10,20 @@
 #include "morphex/check.h"
 #include "morphex/generators.h"
 #include "morphex/io.h"
-#include "morphex/nef.h"
-#include "morphex/surface_mesh.h"
+#include "peers.h"
 
 using namespace morphex;
-namespace PMP = CGAL::Polygon_mesh_processing;
 
 namespace {
 
 FT nef_volume(const Mesh& a, const Mesh& b, BooleanOp op) {
-  const NefPolyhedron na = to_nef(a), nb = to_nef(b);
-  const NefPolyhedron r = op == BooleanOp::Union          ? na + nb
-                          : op == BooleanOp::Intersection ? na * nb
-                                                          : na - nb;
-  return signed_volume(from_nef(r));
+  return peers::nef_boolean(a, b, op).volume;
 }
 
 // CGAL corefinement refuses some degenerate outputs; it is an oracle only where it succeeds.
 std::optional<FT> corefinement_volume(const Mesh& a, const Mesh& b, BooleanOp op) {
-  SurfaceMesh sa = to_surface_mesh(a), sb = to_surface_mesh(b), out;
-  bool ok = false;
-  try {
-    ok = op == BooleanOp::Union          ? PMP::corefine_and_compute_union(sa, sb, out)
-         : op == BooleanOp::Intersection ? PMP::corefine_and_compute_intersection(sa, sb, out)
-                                         : PMP::corefine_and_compute_difference(sa, sb, out);
-  } catch (const std::exception&) {
-    ok = false;
-  }
-  if (!ok) return std::nullopt;
-  return PMP::volume(out);
+  if (const auto r = peers::corefinement_boolean(a, b, op)) return r->volume;
+  return std::nullopt;
 }
 
 void expect_agreement(const Mesh& a, const Mesh& b, const std::string& name) {

@@ -255,3 +255,19 @@ TEST(BadInput, NonNumericTokens) {
   EXPECT_CONTAINS(error_for("word.off", "OFF\n3 1 0\n0 0 0\n1 zero 0\n0 1 0\n3 0 1 2\n"), "line 4");
   EXPECT_CONTAINS(error_for("count.off", "OFF\nthree 1 0\n"), "vertex count");
 }
+
+TEST(BadInput, EndlessDeviceStopsAtTheSizeLimit) {
+  // A device has no size to check before reading: the reader must stop at the limit by itself.
+  TempDir dir;
+  const std::string path = dir.file("zero.off");
+  fs::create_symlink("/dev/zero", path);
+  const InputLimits saved = input_limits();
+  set_input_limits({/*max_file_bytes=*/1 << 20, saved.max_faces});
+  try {
+    read_mesh(path);
+    ADD_FAILURE() << "no error for an endless input";
+  } catch (const InputError& e) {
+    EXPECT_CONTAINS(e.what(), "zero.off: file too large");
+  }
+  set_input_limits(saved);
+}

@@ -11,8 +11,6 @@
 // against a shifted grid, a mesh against itself), a coarse box against a fine sphere, and CGAL's
 // demo meshes against rotated copies. Each engine runs in a forked child, so the reported peak
 // memory (ru_maxrss of that child) is the engine's own; exact volumes must agree.
-#include <CGAL/Polygon_mesh_processing/corefinement.h>
-#include <CGAL/Polygon_mesh_processing/measure.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -30,11 +28,10 @@
 #include "morphex/boolean.h"
 #include "morphex/generators.h"
 #include "morphex/io.h"
-#include "morphex/nef.h"
-#include "morphex/surface_mesh.h"
+#include "peers.h"
+
 
 using namespace morphex;
-namespace PMP = CGAL::Polygon_mesh_processing;
 
 namespace {
 
@@ -213,26 +210,15 @@ int main(int argc, char** argv) {
       return std::make_pair(seconds, signed_volume(r.mesh));
     });
     const Run coref = in_child([&]() -> Result {
-      SurfaceMesh sa = to_surface_mesh(c.a), sb = to_surface_mesh(c.b), out;
-      const auto start = std::chrono::steady_clock::now();
-      const bool ok = op == BooleanOp::Union ? PMP::corefine_and_compute_union(sa, sb, out)
-                      : op == BooleanOp::Intersection
-                          ? PMP::corefine_and_compute_intersection(sa, sb, out)
-                          : PMP::corefine_and_compute_difference(sa, sb, out);
-      const double seconds = seconds_since(start);
-      if (!ok) return std::nullopt;
-      return std::make_pair(seconds, PMP::volume(out));
+      if (const auto r = peers::corefinement_boolean(c.a, c.b, op))
+        return std::make_pair(r->seconds, r->volume);
+      return std::nullopt;
     });
     Run nef;
     if (faces <= nef_max_faces)
       nef = in_child([&]() -> Result {
-        const auto start = std::chrono::steady_clock::now();
-        const NefPolyhedron na = to_nef(c.a), nb = to_nef(c.b);
-        const NefPolyhedron r = op == BooleanOp::Union          ? na + nb
-                                : op == BooleanOp::Intersection ? na * nb
-                                                                : na - nb;
-        const double seconds = seconds_since(start);  // conversions in: Nef needs them
-        return std::make_pair(seconds, signed_volume(from_nef(r)));
+        const peers::PeerResult r = peers::nef_boolean(c.a, c.b, op);  // conversions in
+        return std::make_pair(r.seconds, r.volume);
       });
     std::string agreement = ours.ok ? "" : "morphex FAILED";
     if (ours.ok && coref.ok)

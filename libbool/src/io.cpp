@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cctype>
 #include <cerrno>
@@ -114,6 +115,11 @@ struct Line {
   std::vector<std::string> tokens;
 };
 
+// <cctype> takes an int that must be an unsigned char value: bytes above 127 would be UB.
+bool is_digit(char c) {
+  return c >= '0' && c <= '9';
+}
+
 std::vector<std::string> split(const std::string& s) {
   std::vector<std::string> out;
   std::size_t i = 0;
@@ -170,7 +176,7 @@ FT number(const std::string& token, const std::string& name, std::size_t line) {
 
 std::uint64_t count(const std::string& token, const std::string& name, std::size_t line,
                     const char* what) {
-  if (token.empty() || !std::all_of(token.begin(), token.end(), ::isdigit) || token.size() > 18)
+  if (token.empty() || !std::all_of(token.begin(), token.end(), is_digit) || token.size() > 18)
     throw InputError(name, std::string("invalid ") + what + " '" + token + "'" + at_line(line));
   return std::stoull(token);
 }
@@ -238,7 +244,7 @@ Mesh read_off(const std::string& content, const std::string& name) {
     polygon.clear();
     for (std::uint64_t k = 1; k <= n; ++k) {
       const std::string& t = line.tokens[k];
-      if (t.empty() || !std::all_of(t.begin(), t.end(), ::isdigit) || t.size() > 10 ||
+      if (t.empty() || !std::all_of(t.begin(), t.end(), is_digit) || t.size() > 10 ||
           std::stoull(t) >= nv)
         throw InputError(name, "face " + std::to_string(f) + " has vertex index '" + t +
                                    "' out of range [0, " + std::to_string(nv) + ")" +
@@ -414,6 +420,10 @@ std::size_t ply_size(const std::string& type) {
   return 0;
 }
 
+bool is_ply_float(const std::string& type) {
+  return type == "float" || type == "float32" || type == "double" || type == "float64";
+}
+
 class PlyBinary {
  public:
   PlyBinary(const std::string& content, std::size_t pos, bool big_endian, const std::string& name)
@@ -503,6 +513,9 @@ Mesh read_ply(const std::string& content, const std::string& name) {
           throw InputError(name, "malformed property" + at_line(number));
         if (ply_size(p.type) == 0 || (p.list && ply_size(p.list_count_type) == 0))
           throw InputError(name, "unknown PLY type in property '" + text + "'" + at_line(number));
+        if (p.list && is_ply_float(p.list_count_type))
+          throw InputError(name, "PLY list count must be an integer type in property '" + text +
+                                     "'" + at_line(number));
         elements.back().properties.push_back(p);
       }
     }
@@ -510,9 +523,12 @@ Mesh read_ply(const std::string& content, const std::string& name) {
   if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
     throw InputError(name, "unsupported PLY format '" + format + "'");
   const bool ascii = format == "ascii";
+  // Every element takes at least one byte (or one token), so the counts are bounded by the size;
+  // checked one by one so that a sum of huge counts cannot wrap around.
   std::uint64_t declared = 0;
-  for (const auto& e : elements) declared += e.count;
-  if (declared > content.size() - data + 1)
+  const std::uint64_t available = content.size() - data + 1;
+  for (const auto& e : elements) declared = std::min(available + 1, declared + e.count);
+  if (declared > available)
     throw InputError(name,
                      "truncated file: header announces " + std::to_string(declared) + " elements");
 
@@ -543,7 +559,7 @@ Mesh read_ply(const std::string& content, const std::string& name) {
       for (const PlyProperty& p : e.properties) {
         if (p.list) {
           const double n = next_value(p.list_count_type);
-          if (n < 0 || n > 1e6)
+          if (!(n >= 0 && n <= 1e6) || n != std::floor(n))
             throw InputError(name, "invalid list size in " + e.name + " " + std::to_string(i));
           polygon.clear();
           for (int k = 0; k < int(n); ++k) {
@@ -591,9 +607,18 @@ std::string read_file(const std::string& path) {
                                "; raise it with --max-input-mb)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, std::string("cannot open file: ") + std::strerror(errno));
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
+  // Read in chunks under the same limit: a device or pipe (mesh:path=/dev/zero, <(cmd)) has no
+  // size to check beforehand and may never end.
+  std::string content;
+  std::array<char, 1 << 16> chunk;
+  while (in.read(chunk.data(), chunk.size()) || in.gcount() > 0) {
+    content.append(chunk.data(), static_cast<std::size_t>(in.gcount()));
+    if (content.size() > max_file_bytes)
+      throw InputError(path, "file too large: more than " + std::to_string(max_file_bytes.load()) +
+                                 " bytes (raise the limit with --max-input-mb)");
+  }
+  if (in.bad()) throw InputError(path, std::string("cannot read file: ") + std::strerror(errno));
+  return content;
 }
 
 }  // namespace

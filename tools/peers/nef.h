@@ -8,7 +8,7 @@
 
 #include <map>
 
-#include "morphex/surface_mesh.h"
+#include "surface_mesh.h"
 
 namespace morphex {
 
