@@ -213,6 +213,17 @@ TEST(Pipeline, MalformedJsonNamesLineAndColumn) {
   }
 }
 
+TEST(Pipeline, NumberTooLargeForADoubleIsMalformedJsonWithItsPosition) {
+  // Found by fuzzing: nlohmann reports it as out_of_range, without a position.
+  try {
+    mp::parse_document("{\"pipeline\": [\n  {\"type\": \"scale\", \"factor\": 1e999}]}", "p.json");
+    FAIL() << "expected a PipelineError";
+  } catch (const mp::PipelineError& e) {
+    EXPECT_EQ(e.problems().at(0).location, "p.json:2:31");  // the 1 of 1e999
+    EXPECT_EQ(e.problems().at(0).message, "malformed JSON: number overflow parsing '1e999'");
+  }
+}
+
 TEST(Pipeline, RegistryDocumentsEveryStage) {
   const auto& registry = mp::StageRegistry::builtin();
   for (const char* type :

@@ -33,7 +33,9 @@ std::vector<SeParameterInfo> with_offset(std::vector<SeParameterInfo> params) {
 class ParameterReader {
  public:
   ParameterReader(const SeShapeInfo& info, const SeParameters& given) : info_(info) {
-    for (const auto& [key, value] : given) {
+    for (const auto& parameter : given) {
+      const std::string& key = parameter.first;
+      const std::string& value = parameter.second;
       const auto known = std::find_if(info.parameters.begin(), info.parameters.end(),
                                       [&](const SeParameterInfo& p) { return p.key == key; });
       if (known == info.parameters.end()) {

@@ -151,11 +151,10 @@ PipelineError::PipelineError(std::vector<Problem> problems)
     : std::runtime_error(join(problems)), problems_(std::move(problems)) {}
 
 nlohmann::json parse_document(const std::string& text, const std::string& name) {
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  // "file:line:column" of a byte offset (1-based, as nlohmann reports it).
+  const auto location = [&](std::size_t byte) {
     std::size_t line = 1, column = 1;
-    for (std::size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
+    for (std::size_t i = 0; i + 1 < byte && i < text.size(); ++i) {
       if (text[i] == '\n') {
         ++line;
         column = 1;
@@ -163,12 +162,30 @@ nlohmann::json parse_document(const std::string& text, const std::string& name) 
         ++column;
       }
     }
+    return name + ":" + std::to_string(line) + ":" + std::to_string(column);
+  };
+  const auto message = [](const nlohmann::json::exception& e) {
     std::string what = e.what();
-    const auto colon = what.find("]: ");  // drop nlohmann's "[json.exception.parse_error.101]"
-    if (colon != std::string::npos) what = what.substr(colon + 3);
-    throw PipelineError(
-        std::vector<Problem>{{name + ":" + std::to_string(line) + ":" + std::to_string(column),
-                              "malformed JSON: " + what}});
+    const auto colon = what.find("] ");  // drop nlohmann's "[json.exception.parse_error.101]"
+    if (colon != std::string::npos) what = what.substr(colon + 2);
+    if (what.rfind("parse error at ", 0) == 0) what = what.substr(what.find(": ") + 2);
+    return "malformed JSON: " + what;
+  };
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw PipelineError(std::vector<Problem>{{location(e.byte), message(e)}});
+  } catch (const nlohmann::json::exception& e) {
+    // A number too large for a double ("number overflow parsing '1e999'") carries no position:
+    // point at the first occurrence of the token it quotes.
+    const std::string what = e.what();
+    const auto open = what.find('\''), close = what.rfind('\'');
+    std::size_t byte = 0;
+    if (open != std::string::npos && close > open) {
+      const auto at = text.find(what.substr(open + 1, close - open - 1));
+      if (at != std::string::npos) byte = at + 1;
+    }
+    throw PipelineError(std::vector<Problem>{{byte ? location(byte) : name, message(e)}});
   }
 }
 
@@ -265,7 +282,9 @@ Pipeline validate(const nlohmann::json& document, const std::string& name,
             {at(here, "inputs"), "expected a tag or an array of tags, got " + inputs.dump()});
     }
     if (stage.info) {
-      for (const auto& [key, value] : raw.items()) {
+      for (const auto& item : raw.items()) {
+        const std::string& key = item.key();
+        const nlohmann::json& value = item.value();
         if (key == "type" || key == "tag" || key == "inputs") continue;
         const auto option = std::find_if(stage.info->options.begin(), stage.info->options.end(),
                                          [&](const OptionInfo& o) { return o.name == key; });
