@@ -38,9 +38,15 @@ endforeach()
 # installed tree: the packaging contract of the README.
 add_test(NAME package.install COMMAND ${CMAKE_COMMAND} --install ${PROJECT_BINARY_DIR}
          --prefix ${PROJECT_BINARY_DIR}/test-install)
+set(consumer_flags)
+if(MORPHEX_SANITIZE)
+  # A sanitized library needs the sanitizer runtime in whatever links it.
+  set(consumer_flags -DCMAKE_EXE_LINKER_FLAGS=-fsanitize=${MORPHEX_SANITIZE})
+endif()
 add_test(NAME package.consumer_configure COMMAND ${CMAKE_COMMAND}
   -S ${CMAKE_CURRENT_SOURCE_DIR}/consumer -B ${PROJECT_BINARY_DIR}/consumer-build
-  -DCMAKE_PREFIX_PATH=${PROJECT_BINARY_DIR}/test-install -DCMAKE_BUILD_TYPE=Release)
+  -DCMAKE_PREFIX_PATH=${PROJECT_BINARY_DIR}/test-install -DCMAKE_BUILD_TYPE=Release
+  ${consumer_flags})
 add_test(NAME package.consumer_build COMMAND ${CMAKE_COMMAND}
   --build ${PROJECT_BINARY_DIR}/consumer-build)
 add_test(NAME package.consumer_run COMMAND ${PROJECT_BINARY_DIR}/consumer-build/consumer
@@ -60,6 +66,12 @@ include(cli/cli_retrieval_tests.cmake)
 add_test(NAME stress.booleans_and_morphology COMMAND stress --seed 1 --count 1000
   --out ${PROJECT_BINARY_DIR}/stress-failures)
 set_tests_properties(stress.booleans_and_morphology PROPERTIES TIMEOUT 900)
+if(MORPHEX_SANITIZE)
+  # The sanitizer pass skips the 1,000 cases above (tests/slow-tests.txt) and runs other ones.
+  add_test(NAME stress.sanitized COMMAND stress --seed 2 --count 100
+    --out ${PROJECT_BINARY_DIR}/stress-failures)
+  set_tests_properties(stress.sanitized PROPERTIES TIMEOUT 1200)
+endif()
 
 # Limits and interruption (issue 8): clear refusals, and SIGINT leaves no partial output.
 morphex_cli_test(max_faces 2 "unit_cube.off: too many faces: 12 \\(limit 5; raise it with --max-faces\\)"
