@@ -30,7 +30,6 @@
 #include "morphex/io.h"
 #include "peers.h"
 
-
 using namespace morphex;
 
 namespace {

@@ -12,7 +12,6 @@
 
 #include "peers.h"
 
-
 #include <chrono>
 #include <fstream>
 #include <iomanip>
