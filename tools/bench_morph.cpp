@@ -10,8 +10,6 @@
 // dilates N times in a row and reports the first and the last step.
 #include <sys/resource.h>
 
-#include "peers.h"
-
 #include <chrono>
 #include <fstream>
 #include <iomanip>
@@ -25,6 +23,7 @@
 #include "morphex/io.h"
 #include "morphex/minkowski.h"
 #include "morphex/morphology.h"
+#include "peers.h"
 
 using namespace morphex;
 
