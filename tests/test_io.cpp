@@ -271,3 +271,17 @@ TEST(BadInput, EndlessDeviceStopsAtTheSizeLimit) {
   }
   set_input_limits(saved);
 }
+
+TEST(BadInput, PlyCountsThatCannotBeTrusted) {
+  // Element counts whose sum wraps around 64 bits must not pass the size check.
+  std::string header = "ply\nformat ascii 1.0\n";
+  for (int i = 0; i < 20; ++i) header += "element e" + std::to_string(i) + " 999999999999999999\n";
+  EXPECT_CONTAINS(error_for("wrap.ply", header + "end_header\n0\n"), "truncated");
+  // A list count is an integer; as a float it could be NaN or 2.5.
+  EXPECT_CONTAINS(error_for("float-count.ply",
+                            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                            "property float y\nproperty float z\nelement face 1\n"
+                            "property list float int vertex_indices\nend_header\n"
+                            "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+                  "list count must be an integer type");
+}

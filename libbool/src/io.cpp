@@ -529,8 +529,8 @@ Mesh read_ply(const std::string& content, const std::string& name) {
   const std::uint64_t available = content.size() - data + 1;
   for (const auto& e : elements) declared = std::min(available + 1, declared + e.count);
   if (declared > available)
-    throw InputError(name,
-                     "truncated file: header announces " + std::to_string(declared) + " elements");
+    throw InputError(name, "truncated file: header announces more elements than its " +
+                               std::to_string(available - 1) + " data bytes can hold");
 
   Mesh mesh;
   std::uint64_t vertex_count = 0;
