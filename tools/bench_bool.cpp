@@ -3,14 +3,16 @@
 // on the same input in the same run.
 //
 //   bench_bool [--op union|intersection|difference] [--max-level L] [--nef-max-faces N]
-//              [--json FILE] [--demo-dir DIR] [--only SUBSTRING]
+//              [--json FILE] [--demo-dir DIR] [--only SUBSTRING] [--phases]
+//              [--no-peers]   (morphex alone, for profiling)
 //   bench_bool A B [--rotate DEG] [--translate X Y Z] [--op OP]      (one pair from files)
 //
 // Cases: icosphere pairs crossing each other from level 2 up to --max-level (a scaling curve),
 // dense intersections (a sphere against a slightly rotated copy), coplanar contacts (a box grid
 // against a shifted grid, a mesh against itself), a coarse box against a fine sphere, and CGAL's
 // demo meshes against rotated copies. Each engine runs in a forked child, so the reported peak
-// memory (ru_maxrss of that child) is the engine's own; exact volumes must agree.
+// memory (ru_maxrss of that child) is the engine's own; exact volumes must agree. --phases adds
+// morphex's time per phase (the profile that guides the speed work) to the table and the JSON.
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -26,6 +28,7 @@
 #include <string>
 
 #include "morphex/boolean.h"
+#include "morphex/check.h"
 #include "morphex/generators.h"
 #include "morphex/io.h"
 #include "peers.h"
@@ -142,6 +145,7 @@ int main(int argc, char** argv) {
   int max_level = 5;
   std::size_t nef_max_faces = 3000;
   std::string json_path, only, a_path, b_path;
+  bool phases = false, peers_too = true;
   const char* home = std::getenv("HOME");
   std::string demo_dir = std::string(home ? home : ".") + "/.cache/morphex/cgal-demo";
   double degrees = 0;
@@ -164,6 +168,10 @@ int main(int argc, char** argv) {
       demo_dir = next();
     else if (arg == "--only")
       only = next();
+    else if (arg == "--phases")
+      phases = true;
+    else if (arg == "--no-peers")
+      peers_too = false;
     else if (arg == "--rotate")
       degrees = std::stod(next());
     else if (arg == "--translate") {
@@ -193,7 +201,7 @@ int main(int argc, char** argv) {
   nlohmann::json rows = nlohmann::json::array();
   bool all_agree = true;
   std::cout << std::left << std::setw(36) << "case" << std::right << std::setw(9) << "faces"
-            << std::setw(10) << "morphex" << std::setw(10) << "coref" << std::setw(9) << "ratio"
+            << std::setw(10) << "morphex" << std::setw(9) << "check" << std::setw(10) << "coref" << std::setw(9) << "ratio"
             << std::setw(10) << "Nef" << std::setw(9) << "ratio" << std::setw(12) << "tri/s"
             << std::setw(14) << "MiB m/c/N"
             << "  volumes\n";
@@ -201,30 +209,43 @@ int main(int argc, char** argv) {
     if (!only.empty() && c.name.find(only) == std::string::npos) continue;
     const std::size_t faces = c.a.num_triangles() + c.b.num_triangles();
     using Result = std::optional<std::pair<double, FT>>;
+    // The operation is timed on inputs taken as valid, as corefinement takes them; the validity
+    // check that compute_boolean runs by default is timed on its own (the "check" column).
     const Run ours = in_child([&]() -> Result {
+      BooleanOptions trusted;
+      trusted.validate_inputs = false;
       const auto start = std::chrono::steady_clock::now();
-      BooleanResult r = compute_boolean(c.a, c.b, op);  // validation and exact output included
+      BooleanResult r = compute_boolean(c.a, c.b, op, trusted);  // exact output included
       const double seconds = seconds_since(start);
       if (!r.ok()) return std::nullopt;
       return std::make_pair(seconds, signed_volume(r.mesh));
     });
+    const Run check = in_child([&]() -> Result {
+      const auto start = std::chrono::steady_clock::now();
+      const bool valid = check_mesh(c.a).valid_solid() && check_mesh(c.b).valid_solid();
+      const double seconds = seconds_since(start);
+      if (!valid) return std::nullopt;
+      return std::make_pair(seconds, FT(0));
+    });
     const Run coref = in_child([&]() -> Result {
+      if (!peers_too) return std::nullopt;
       if (const auto r = peers::corefinement_boolean(c.a, c.b, op))
         return std::make_pair(r->seconds, r->volume);
       return std::nullopt;
     });
     Run nef;
-    if (faces <= nef_max_faces)
+    if (peers_too && faces <= nef_max_faces)
       nef = in_child([&]() -> Result {
         const peers::PeerResult r = peers::nef_boolean(c.a, c.b, op);  // conversions in
         return std::make_pair(r.seconds, r.volume);
       });
     std::string agreement = ours.ok ? "" : "morphex FAILED";
+    if (!check.ok) agreement += "INVALID INPUT ";
     if (ours.ok && coref.ok)
       agreement += ours.volume == coref.volume ? "=coref " : "DIFFER(coref) ";
     if (ours.ok && nef.ok) agreement += ours.volume == nef.volume ? "=Nef" : "DIFFER(Nef)";
     if (!coref.ok) agreement += " (coref failed)";
-    all_agree = all_agree && ours.ok && (!coref.ok || ours.volume == coref.volume) &&
+    all_agree = all_agree && ours.ok && check.ok && (!coref.ok || ours.volume == coref.volume) &&
                 (!nef.ok || ours.volume == nef.volume);
     auto cell = [](const Run& r, double value) {
       std::ostringstream out;
@@ -235,7 +256,8 @@ int main(int argc, char** argv) {
       return out.str();
     };
     std::cout << std::left << std::setw(36) << c.name.substr(0, 35) << std::right << std::setw(9)
-              << faces << std::setw(10) << cell(ours, ours.seconds) << std::setw(10)
+              << faces << std::setw(10) << cell(ours, ours.seconds) << std::setw(9)
+              << cell(check, check.seconds) << std::setw(10)
               << cell(coref, coref.seconds) << std::setw(9)
               << cell(coref, coref.seconds / ours.seconds) << std::setw(10)
               << cell(nef, nef.seconds) << std::setw(9) << cell(nef, nef.seconds / ours.seconds)
@@ -248,6 +270,7 @@ int main(int argc, char** argv) {
                           {"faces", faces},
                           {"morphex_seconds", ours.seconds},
                           {"morphex_peak_mib", ours.peak_mib},
+                          {"morphex_check_seconds", check.seconds},
                           {"agree", all_agree}};
     if (coref.ok) {
       row["corefinement_seconds"] = coref.seconds;
@@ -259,13 +282,32 @@ int main(int argc, char** argv) {
       row["nef_peak_mib"] = nef.peak_mib;
       row["ratio_nef"] = nef.seconds / ours.seconds;
     }
+    if (phases) {
+      // A separate in-process run: the timed child above stays free of this bookkeeping.
+      const BooleanResult r = compute_boolean(c.a, c.b, op);
+      const PhaseSeconds& p = r.stats.seconds;
+      const std::pair<const char*, double> parts[] = {
+          {"validate", p.validate}, {"pairs", p.pairs},       {"segments", p.segments},
+          {"retriangulate", p.retriangulate}, {"classify", p.classify}, {"assemble", p.assemble}};
+      std::cout << "    phases:";
+      for (const auto& [name, seconds] : parts) {
+        std::cout << ' ' << name << ' ' << std::setprecision(3) << seconds;
+        row["morphex_phase_seconds"][name] = seconds;
+      }
+      std::cout << " | pairs " << r.stats.candidate_pairs << " intersecting "
+                << r.stats.intersecting_pairs << " cut " << r.stats.cut_facets_a << "+"
+                << r.stats.cut_facets_b << " points " << r.stats.intersection_points
+                << " patches " << r.stats.patches << " (ray cast " << r.stats.patches_by_ray_cast
+                << ")\n";
+    }
     rows.push_back(row);
   }
   if (!json_path.empty()) std::ofstream(json_path) << rows.dump(2) << '\n';
   std::cout
       << "ratio = peer time / morphex time (above 1: morphex is faster); tri/s = input "
          "triangles per second of morphex; MiB = peak memory of morphex / corefinement / Nef.\n"
-         "morphex times include input validation and exact output coordinates; corefinement's "
-         "output coordinates stay lazy (unevaluated) when its clock stops.\n";
+         "morphex times the operation on trusted inputs, as corefinement does, with exact output "
+         "coordinates; check = morphex's validity check of both inputs, which compute_boolean "
+         "runs by default; corefinement's output coordinates stay lazy when its clock stops.\n";
   return all_agree ? 0 : 1;
 }

@@ -4,9 +4,6 @@
 // that drops the dominant axis of the facet's normal: an exact projection (it only selects
 // coordinates) that keeps the facet non-degenerate.
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
-#include <CGAL/Projection_traits_xy_3.h>
-#include <CGAL/Projection_traits_xz_3.h>
-#include <CGAL/Projection_traits_yz_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <tbb/parallel_for.h>
@@ -14,6 +11,7 @@
 #include <algorithm>
 
 #include "boolean_internal.h"
+#include "projection_traits.h"
 
 namespace morphex::detail {
 
@@ -84,13 +82,13 @@ Refined retriangulate(const Mesh& mesh, int side, const Intersection& x) {
     const FacetCut& cut = x.cuts[side].at(t);
     switch (dominant_axis(x.points[corners[0]], x.points[corners[1]], x.points[corners[2]])) {
       case 0:
-        FacetCdt<CGAL::Projection_traits_yz_3<Kernel>>::run(corners, cut, x, t, pieces[i]);
+        FacetCdt<FilteredProjectionTraits<0>>::run(corners, cut, x, t, pieces[i]);
         break;
       case 1:
-        FacetCdt<CGAL::Projection_traits_xz_3<Kernel>>::run(corners, cut, x, t, pieces[i]);
+        FacetCdt<FilteredProjectionTraits<1>>::run(corners, cut, x, t, pieces[i]);
         break;
       default:
-        FacetCdt<CGAL::Projection_traits_xy_3<Kernel>>::run(corners, cut, x, t, pieces[i]);
+        FacetCdt<FilteredProjectionTraits<2>>::run(corners, cut, x, t, pieces[i]);
     }
   });
 

@@ -17,46 +17,70 @@
 #include <tuple>
 
 #include "boolean_internal.h"
+#include "point_index.h"
 
 namespace morphex::detail {
 
 namespace {
 
-struct LessXYZ {
-  bool operator()(const Point& p, const Point& q) const {
-    return CGAL::compare_xyz(p, q) == CGAL::SMALLER;
-  }
-};
-
 class PointStore {
  public:
-  explicit PointStore(Intersection& x) : x_(x) {}
-  PointId id(const Point& p) {
-    auto [it, inserted] = index_.emplace(p, PointId(x_.points.size()));
-    if (inserted) x_.points.push_back(p);
-    return it->second;
-  }
+  explicit PointStore(Intersection& x) : x_(x), index_(x.points) {}
+  PointId id(const Point& p) { return index_.id(p); }
   std::size_t size() const { return x_.points.size(); }
 
  private:
   Intersection& x_;
-  std::map<Point, PointId, LessXYZ> index_;
+  PointIndex index_;
 };
 
-Kernel::Triangle_3 triangle(const Mesh& m, std::uint32_t t) {
+// A triangle as references to its mesh's points. CGAL's lazy Triangle_3 would allocate a node
+// per triangle and per vertex access, and copy exact coordinates on every exact fallback.
+struct Corners {
+  const Point* p[3];
+  const Point& operator[](int i) const { return *p[i]; }
+  Kernel::Triangle_3 lazy() const { return {*p[0], *p[1], *p[2]}; }
+};
+
+Corners triangle(const Mesh& m, std::uint32_t t) {
   const Triangle& f = m.triangles[t];
-  return {m.points[f[0]], m.points[f[1]], m.points[f[2]]};
+  return {{&m.points[f[0]], &m.points[f[1]], &m.points[f[2]]}};
+}
+
+// The sign of an expression of points, evaluated on their interval approximations and, only
+// when those cannot decide, on their exact coordinates: a filtered predicate without lazy nodes.
+template <class Expression, class... Points>
+CGAL::Sign filtered_sign(const Expression& expression, const Points&... points) {
+  {
+    CGAL::Protect_FPU_rounding<true> rounding;
+    const CGAL::Uncertain<CGAL::Sign> s = CGAL::sign(expression(CGAL::approx(points)...));
+    if (CGAL::is_certain(s)) return CGAL::get_certain(s);
+  }
+  return CGAL::sign(expression(CGAL::exact(points)...));
+}
+
+// sign(((a1 - a0) x (a2 - a0)) x ((b1 - b0) x (b2 - b0)) . (q - p)): the order of p and q along
+// the common line of the two planes, oriented by Na x Nb.
+CGAL::Sign along_common_line(const Corners& ta, const Corners& tb, const Point& p, const Point& q) {
+  return filtered_sign(
+      [](const auto& a0, const auto& a1, const auto& a2, const auto& b0, const auto& b1,
+         const auto& b2, const auto& p, const auto& q) {
+        return CGAL::cross_product(CGAL::cross_product(a1 - a0, a2 - a0),
+                                   CGAL::cross_product(b1 - b0, b2 - b0)) *
+               (q - p);
+      },
+      ta[0], ta[1], ta[2], tb[0], tb[1], tb[2], p, q);
 }
 
 // All three vertices of `t` strictly on one side of the plane of `other`.
-bool separated_by_plane(const Kernel::Triangle_3& t, const Kernel::Triangle_3& other) {
+bool separated_by_plane(const Corners& t, const Corners& other) {
   const auto s0 = CGAL::orientation(other[0], other[1], other[2], t[0]);
   if (s0 == CGAL::COPLANAR) return false;
   return CGAL::orientation(other[0], other[1], other[2], t[1]) == s0 &&
          CGAL::orientation(other[0], other[1], other[2], t[2]) == s0;
 }
 
-bool on_an_edge(const Kernel::Triangle_3& t, const Point& p, const Point& q) {
+bool on_an_edge(const Corners& t, const Point& p, const Point& q) {
   for (int i = 0; i < 3; ++i)
     if (CGAL::collinear(t[i], t[(i + 1) % 3], p) && CGAL::collinear(t[i], t[(i + 1) % 3], q))
       return true;
@@ -66,18 +90,31 @@ bool on_an_edge(const Kernel::Triangle_3& t, const Point& p, const Point& q) {
 // Step 4, the seed's rule: with s = sign((Na x Nb) . (p2 - p1)), the interior of B lies on the
 // left of (p1, p2) in ta when s > 0, and the interior of A on the left of (p1, p2) in tb when
 // s < 0. Only for transversal segments: on an edge, the local picture involves more facets.
-void orient_transversal(const Kernel::Triangle_3& ta, const Kernel::Triangle_3& tb,
-                        const Kernel::Segment_3& s, PointId p1, PointId p2, FacetCut& ca,
+void orient_transversal(const Corners& ta, const Corners& tb,
+                        const Point& from, const Point& to, PointId p1, PointId p2, FacetCut& ca,
                         FacetCut& cb) {
-  if (p1 == p2 || on_an_edge(ta, s.source(), s.target()) || on_an_edge(tb, s.source(), s.target()))
-    return;
-  const Kernel::Vector_3 na = CGAL::normal(ta[0], ta[1], ta[2]);
-  const Kernel::Vector_3 nb = CGAL::normal(tb[0], tb[1], tb[2]);
-  const auto sign = CGAL::sign(CGAL::cross_product(na, nb) * (s.target() - s.source()));
+  if (p1 == p2 || on_an_edge(ta, from, to) || on_an_edge(tb, from, to)) return;
+  const auto sign = along_common_line(ta, tb, from, to);
   if (sign == CGAL::ZERO) return;
   const bool positive = sign == CGAL::POSITIVE;
   ca.transversal.push_back(positive ? OrientedSegment{p1, p2} : OrientedSegment{p2, p1});
   cb.transversal.push_back(positive ? OrientedSegment{p2, p1} : OrientedSegment{p1, p2});
+}
+
+// The point where segment pq crosses the plane of t, when p and q are strictly on opposite
+// sides: with d(x) = ((t1 - t0) x (t2 - t0)) . (x - t0), it is (d(p) q - d(q) p) / (d(p) - d(q)).
+// Computed once on the exact coordinates and stored evaluated, so that neither the predicates
+// that meet it later nor the exact output walk a lazy construction graph.
+Point plane_crossing(const Corners& t, const Point& p, const Point& q) {
+  using EK = Kernel::Exact_kernel;
+  const EK::Point_3 &t0 = CGAL::exact(t[0]), &t1 = CGAL::exact(t[1]), &t2 = CGAL::exact(t[2]);
+  const EK::Point_3 &ep = CGAL::exact(p), &eq = CGAL::exact(q);
+  const EK::Vector_3 n = CGAL::cross_product(t1 - t0, t2 - t0);
+  const EK::FT dp = n * (ep - t0), dq = n * (eq - t0);
+  const EK::FT denominator = dp - dq;
+  return point_from_exact(EK::Point_3((dp * eq.x() - dq * ep.x()) / denominator,
+                                      (dp * eq.y() - dq * ep.y()) / denominator,
+                                      (dp * eq.z() - dq * ep.z()) / denominator));
 }
 
 // One end of the chord a triangle cuts on the other triangle's plane.
@@ -92,12 +129,11 @@ class EdgePlaneCrossings {
  public:
   EdgePlaneCrossings(PointStore& store) : store_(store) {}
   ChordEnd get(int side, VertexIndex u, VertexIndex v, std::uint32_t other_facet, const Point& pu,
-               const Point& pv, const Kernel::Triangle_3& other) {
+               const Point& pv, const Corners& other) {
     const auto key = std::make_tuple(side, std::min(u, v), std::max(u, v), other_facet);
     const auto it = memo_.find(key);
     if (it != memo_.end()) return it->second;
-    const auto crossing = CGAL::intersection(other.supporting_plane(), Kernel::Segment_3(pu, pv));
-    const Point p = boost::get<Point>(*crossing);  // the signs guarantee a single point
+    const Point p = plane_crossing(other, pu, pv);
     const ChordEnd end{store_.id(p), p};
     memo_.emplace(key, end);
     return end;
@@ -110,9 +146,9 @@ class EdgePlaneCrossings {
 
 // The chord t cuts on the plane of `other` from the signs of t's vertices against that plane:
 // vertices on the plane are ends as they are; edges whose ends have opposite signs are crossed.
-std::vector<ChordEnd> chord(int side, const Triangle& f, const Kernel::Triangle_3& t,
+std::vector<ChordEnd> chord(int side, const Triangle& f, const Corners& t,
                             const CGAL::Orientation (&signs)[3], std::uint32_t other_facet,
-                            const Kernel::Triangle_3& other, const Intersection& x,
+                            const Corners& other, const Intersection& x,
                             EdgePlaneCrossings& crossings) {
   std::vector<ChordEnd> ends;
   for (int i = 0; i < 3; ++i) {
@@ -145,7 +181,7 @@ Intersection intersect(const Mesh& a, const Mesh& b,
 
   EdgePlaneCrossings crossings(store);
   for (const auto& [ia, ib] : pairs) {
-    const Kernel::Triangle_3 ta = triangle(a, ia), tb = triangle(b, ib);
+    const Corners ta = triangle(a, ia), tb = triangle(b, ib);
     if (separated_by_plane(ta, tb) || separated_by_plane(tb, ta)) continue;
     CGAL::Orientation sa[3], sb[3];
     for (int i = 0; i < 3; ++i) {
@@ -158,10 +194,8 @@ Intersection intersect(const Mesh& a, const Mesh& b,
       // Both chords lie on the line of the two planes: their overlap along it is ta n tb.
       const std::vector<ChordEnd> ca_ends = chord(0, a.triangles[ia], ta, sa, ib, tb, x, crossings);
       const std::vector<ChordEnd> cb_ends = chord(1, b.triangles[ib], tb, sb, ia, ta, x, crossings);
-      const Kernel::Vector_3 direction =
-          CGAL::cross_product(CGAL::normal(ta[0], ta[1], ta[2]), CGAL::normal(tb[0], tb[1], tb[2]));
       auto order = [&](const ChordEnd& p, const ChordEnd& q) {  // sign of q - p along the line
-        return p.id == q.id ? CGAL::ZERO : CGAL::sign(direction * (q.point - p.point));
+        return p.id == q.id ? CGAL::ZERO : along_common_line(ta, tb, p.point, q.point);
       };
       auto sorted = [&](const std::vector<ChordEnd>& e) {
         const ChordEnd& last = e.back();
@@ -183,11 +217,11 @@ Intersection intersect(const Mesh& a, const Mesh& b,
       } else {
         add_segment(ca, lo.id, hi.id);
         add_segment(cb, lo.id, hi.id);
-        orient_transversal(ta, tb, Kernel::Segment_3(lo.point, hi.point), lo.id, hi.id, ca, cb);
+        orient_transversal(ta, tb, lo.point, hi.point, lo.id, hi.id, ca, cb);
       }
       continue;
     }
-    const auto result = CGAL::intersection(ta, tb);
+    const auto result = CGAL::intersection(ta.lazy(), tb.lazy());
     if (!result) continue;
     ++x.intersecting_pairs;
     FacetCut& ca = x.cuts[0][ia];
@@ -200,7 +234,7 @@ Intersection intersect(const Mesh& a, const Mesh& b,
       const PointId p = store.id(s->source()), q = store.id(s->target());
       add_segment(ca, p, q);
       add_segment(cb, p, q);
-      orient_transversal(ta, tb, *s, p, q, ca, cb);
+      orient_transversal(ta, tb, s->source(), s->target(), p, q, ca, cb);
     } else {
       // Coplanar overlap: a triangle or a polygon. Its boundary separates, in each facet, the
       // part that lies on the other surface from the rest.

@@ -5,9 +5,6 @@
 // used, so the result is exact and unchanged as a set; both sides of a crease drop the same
 // vertices, so no T-junction appears.
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
-#include <CGAL/Projection_traits_xy_3.h>
-#include <CGAL/Projection_traits_xz_3.h>
-#include <CGAL/Projection_traits_yz_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
@@ -19,6 +16,7 @@
 
 #include "boolean_internal.h"
 #include "morphex/boolean.h"
+#include "projection_traits.h"
 
 namespace morphex {
 namespace {
@@ -239,13 +237,13 @@ Mesh merge_coplanar_faces(const Mesh& solid) {
     std::optional<std::vector<Triangle>> merged;
     if (ok) switch (detail::dominant_axis(p[seed[0]], p[seed[1]], p[seed[2]])) {
         case 0:
-          merged = triangulate_region<CGAL::Projection_traits_yz_3<Kernel>>(solid, boundary, seed);
+          merged = triangulate_region<detail::FilteredProjectionTraits<0>>(solid, boundary, seed);
           break;
         case 1:
-          merged = triangulate_region<CGAL::Projection_traits_xz_3<Kernel>>(solid, boundary, seed);
+          merged = triangulate_region<detail::FilteredProjectionTraits<1>>(solid, boundary, seed);
           break;
         default:
-          merged = triangulate_region<CGAL::Projection_traits_xy_3<Kernel>>(solid, boundary, seed);
+          merged = triangulate_region<detail::FilteredProjectionTraits<2>>(solid, boundary, seed);
       }
     // Rare (coincident vertices in the region): a neighbour may already have dropped a shared
     // crease vertex, so the only safe answer is the unmerged solid, which is always valid.

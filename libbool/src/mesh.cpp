@@ -29,11 +29,26 @@ Mesh from_double(const DoubleMesh& mesh) {
   return out;
 }
 
+Point point_from_exact(Kernel::Exact_kernel::Point_3 exact) {
+  return Point(Point::Rep(std::move(exact)));
+}
+
+bool has_double_coordinates(const Point& p) {
+  // The interval approximation encloses the exact value: a zero-width interval is that value.
+  const auto& a = CGAL::approx(p);
+  return a.x().is_point() && a.y().is_point() && a.z().is_point();
+}
+
 void make_exact(Mesh& mesh) {
   for (Point& p : mesh.points) {
+    if (has_double_coordinates(p)) {
+      // A point made of doubles needs no rational at all, and may still carry a history.
+      const auto& a = CGAL::approx(p);
+      p = Point(a.x().inf(), a.y().inf(), a.z().inf());
+      continue;
+    }
     // exact() evaluates and prunes the lazy DAG; rebuilding from exact values drops the history.
-    const auto& e = CGAL::exact(p);
-    p = Point(FT(e.x()), FT(e.y()), FT(e.z()));
+    p = point_from_exact(CGAL::exact(p));
   }
 }
 

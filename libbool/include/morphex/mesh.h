@@ -46,6 +46,14 @@ DoubleMesh to_double(const Mesh& mesh);
 // Exact: every double is a dyadic rational, so the conversion loses nothing.
 Mesh from_double(const DoubleMesh& mesh);
 
+// True when the three coordinates are known to be doubles without evaluating anything exactly
+// (the point's interval approximation has zero width), as for every point read from a file.
+bool has_double_coordinates(const Point& p);
+
+// The point whose coordinates are the given exact values, stored as an evaluated leaf: no
+// construction history, tight interval approximations.
+Point point_from_exact(Kernel::Exact_kernel::Point_3 exact);
+
 // Replaces each coordinate's construction history by its exact value, so that chains of
 // operations do not keep growing lazy-evaluation graphs.
 void make_exact(Mesh& mesh);
