@@ -91,10 +91,11 @@ BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
   stats.orientation_conflicts = counts[0].rule_conflicts + counts[1].rule_conflicts;
   stats.seconds.classify = clock.lap();
 
-  result.mesh =
-      detail::assemble(x, refined, labels, op, options.provenance ? &result.provenance : nullptr);
+  std::vector<FaceOrigin> origin;
+  result.mesh = detail::assemble(x, refined, labels, op, &origin);
   if (options.merge_coplanar && !options.provenance)
-    result.mesh = merge_coplanar_faces(result.mesh);
+    result.mesh = detail::merge_coplanar_faces(result.mesh, &origin);
+  if (options.provenance) result.provenance = std::move(origin);
   make_exact(result.mesh);
   stats.seconds.assemble = clock.lap();
   return result;

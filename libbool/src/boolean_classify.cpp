@@ -8,11 +8,12 @@
 // solids, which the seed's propagation could not reach) gets one exact test: coplanar patches
 // compare normals with the facet they lie on, the others take the exact ray-cast winding number
 // of a point inside one of their sub-triangles.
-#include <unordered_map>
-#include <unordered_set>
+#include <algorithm>
+#include <memory>
 
 #include "boolean_internal.h"
 #include "morphex/spatial.h"
+#include "union_find.h"
 
 namespace morphex::detail {
 
@@ -43,35 +44,66 @@ Label label_of(const SubTriangle& s, const Mesh& mesh, const Mesh& other, int si
 
 }  // namespace
 
+namespace {
+
+std::uint64_t edge_key(PointId a, PointId b) {  // directed
+  return (std::uint64_t(a) << 32) | b;
+}
+
+// (key, face) records sorted by key: a flat multimap without one allocation per edge.
+using EdgeRecords = std::vector<std::pair<std::uint64_t, std::uint32_t>>;
+
+template <class Visit>
+void for_each_with_key(const EdgeRecords& records, std::uint64_t key, Visit&& visit) {
+  auto it = std::lower_bound(records.begin(), records.end(), std::make_pair(key, std::uint32_t(0)));
+  for (; it != records.end() && it->first == key; ++it) visit(it->second);
+}
+
+}  // namespace
+
 std::vector<Label> classify(const Mesh& mesh, const Mesh& other, int side, const Refined& refined,
                             const Intersection& x, ClassifyCounts& counts) {
   const std::size_t n = refined.triangles.size();
-  std::unordered_set<Edge, EdgeHash> barrier(refined.on_other_surface.begin(),
-                                             refined.on_other_surface.end());
-  std::unordered_map<Edge, std::vector<std::uint32_t>, EdgeHash> faces_of_edge;
-  faces_of_edge.reserve(n * 2);
+  // Patches: sub-triangles joined across every edge that does not lie on the other surface.
+  std::vector<std::uint64_t> barrier;
+  barrier.reserve(refined.on_other_surface.size());
+  for (const Edge& e : refined.on_other_surface) barrier.push_back(edge_key(e.first, e.second));
+  std::sort(barrier.begin(), barrier.end());
+  EdgeRecords undirected_edges;
+  undirected_edges.reserve(3 * n);
   for (std::uint32_t i = 0; i < n; ++i)
     for (int k = 0; k < 3; ++k) {
       const Edge e = undirected(refined.triangles[i].v[k], refined.triangles[i].v[(k + 1) % 3]);
-      if (!barrier.count(e)) faces_of_edge[e].push_back(i);
+      undirected_edges.emplace_back(edge_key(e.first, e.second), i);
     }
+  std::sort(undirected_edges.begin(), undirected_edges.end());
+  UnionFind patches(n);
+  for (std::size_t i = 0; i < undirected_edges.size();) {
+    std::size_t j = i + 1;
+    while (j < undirected_edges.size() && undirected_edges[j].first == undirected_edges[i].first)
+      ++j;
+    if (!std::binary_search(barrier.begin(), barrier.end(), undirected_edges[i].first))
+      for (std::size_t k = i + 1; k < j; ++k)
+        patches.join(undirected_edges[k].second, undirected_edges[i].second);
+    i = j;
+  }
 
   // The seed's labels: the sub-triangle on the left of an oriented transversal segment is inside
   // the other solid, the one on its right outside. A segment split by further points in the CDT
   // is simply not used; its patches fall back to the ray cast.
   std::vector<std::int8_t> ruled(n, -1);
   {
-    std::unordered_map<Edge, std::vector<std::uint32_t>, EdgeHash> directed;  // (from, to) -> faces
+    EdgeRecords directed;  // edges of the sub-triangles of cut facets
     for (std::uint32_t i = 0; i < n; ++i) {
       const SubTriangle& s = refined.triangles[i];
       if (!x.cuts[side].count(s.facet)) continue;
-      for (int k = 0; k < 3; ++k) directed[{s.v[k], s.v[(k + 1) % 3]}].push_back(i);
+      for (int k = 0; k < 3; ++k) directed.emplace_back(edge_key(s.v[k], s.v[(k + 1) % 3]), i);
     }
+    std::sort(directed.begin(), directed.end());
     auto mark = [&](PointId from, PointId to, std::uint32_t facet, Label label) {
-      const auto it = directed.find({from, to});
-      if (it == directed.end()) return;
-      for (std::uint32_t i : it->second)
+      for_each_with_key(directed, edge_key(from, to), [&](std::uint32_t i) {
         if (refined.triangles[i].facet == facet) ruled[i] = std::int8_t(label);
+      });
     };
     for (const auto& [facet, cut] : x.cuts[side])
       for (const OrientedSegment& s : cut.transversal) {
@@ -80,48 +112,37 @@ std::vector<Label> classify(const Mesh& mesh, const Mesh& other, int side, const
       }
   }
 
-  std::vector<Label> labels(n);
-  std::vector<bool> seen(n, false);
-  std::vector<std::uint32_t> stack, members;
-  std::unique_ptr<TriangleTree> other_tree;
+  // One label per patch: the rule when a segment borders it, else one exact test on the patch's
+  // first sub-triangle (so the answer does not depend on any traversal order).
   counts = {};
-  for (std::uint32_t seed = 0; seed < n; ++seed) {
-    if (seen[seed]) continue;
-    ++counts.patches;
-    members.clear();
-    seen[seed] = true;
-    stack.push_back(seed);
-    std::int8_t rule = -1;
-    while (!stack.empty()) {
-      const std::uint32_t i = stack.back();
-      stack.pop_back();
-      members.push_back(i);
-      if (ruled[i] >= 0) {
-        if (rule >= 0 && rule != ruled[i]) ++counts.rule_conflicts;
-        rule = ruled[i];
-      }
-      for (int k = 0; k < 3; ++k) {
-        const Edge e = undirected(refined.triangles[i].v[k], refined.triangles[i].v[(k + 1) % 3]);
-        const auto it = faces_of_edge.find(e);
-        if (it == faces_of_edge.end()) continue;
-        for (std::uint32_t j : it->second)
-          if (!seen[j]) {
-            seen[j] = true;
-            stack.push_back(j);
-          }
+  std::vector<std::uint32_t> root(n);
+  std::vector<std::int8_t> patch_rule(n, -1);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    root[i] = patches.find(i);
+    if (ruled[i] < 0) continue;
+    std::int8_t& rule = patch_rule[root[i]];
+    if (rule >= 0 && rule != ruled[i]) ++counts.rule_conflicts;
+    rule = ruled[i];
+  }
+  std::vector<Label> labels(n);
+  std::vector<std::int8_t> patch_label(n, -1);
+  std::unique_ptr<TriangleTree> other_tree;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    std::int8_t& label = patch_label[root[i]];
+    if (label < 0) {  // i is the patch's first sub-triangle
+      ++counts.patches;
+      if (patch_rule[root[i]] >= 0) {
+        label = patch_rule[root[i]];
+        ++counts.by_orientation_rule;
+      } else {
+        if (!other_tree && !other.empty()) other_tree = std::make_unique<TriangleTree>(other);
+        label = std::int8_t(other.empty() ? Label::Outside
+                                          : label_of(refined.triangles[i], mesh, other, side, x,
+                                                     *other_tree));
+        ++counts.by_ray_cast;
       }
     }
-    Label label;
-    if (rule >= 0) {
-      label = Label(rule);
-      ++counts.by_orientation_rule;
-    } else {
-      if (!other_tree) other_tree = std::make_unique<TriangleTree>(other);
-      label = other.empty() ? Label::Outside
-                            : label_of(refined.triangles[seed], mesh, other, side, x, *other_tree);
-      ++counts.by_ray_cast;
-    }
-    for (std::uint32_t i : members) labels[i] = label;
+    labels[i] = Label(label);
   }
   return labels;
 }

@@ -86,6 +86,10 @@ std::vector<Label> classify(const Mesh& mesh, const Mesh& other, int side, const
 // by exact radial order and each vertex gets one copy per fan.
 Mesh separate_non_manifold(const std::vector<Point>& points, std::vector<Triangle>& faces);
 
+// merge_coplanar_faces, told where each face comes from (`origin`, optional): faces cut from one
+// input facet are coplanar by construction and need no predicate.
+Mesh merge_coplanar_faces(const Mesh& solid, const std::vector<FaceOrigin>* origin);
+
 // Step 7: selection, output, separation of non-manifold features.
 Mesh assemble(const Intersection& x, const Refined refined[2], const std::vector<Label> labels[2],
               BooleanOp op, std::vector<FaceOrigin>* provenance);

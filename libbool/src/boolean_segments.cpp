@@ -101,16 +101,28 @@ void orient_transversal(const Corners& ta, const Corners& tb,
   cb.transversal.push_back(positive ? OrientedSegment{p2, p1} : OrientedSegment{p1, p2});
 }
 
-// The point where segment pq crosses the plane of t, when p and q are strictly on opposite
-// sides: with d(x) = ((t1 - t0) x (t2 - t0)) . (x - t0), it is (d(p) q - d(q) p) / (d(p) - d(q)).
-// Computed once on the exact coordinates and stored evaluated, so that neither the predicates
-// that meet it later nor the exact output walk a lazy construction graph.
-Point plane_crossing(const Corners& t, const Point& p, const Point& q) {
+// The plane of a facet as n . x = k with n = (t1 - t0) x (t2 - t0), exact.
+struct ExactPlane {
+  Kernel::Exact_kernel::Vector_3 n;
+  Kernel::Exact_kernel::FT k;
+};
+
+ExactPlane exact_plane(const Corners& t) {
+  const auto &t0 = CGAL::exact(t[0]), &t1 = CGAL::exact(t[1]), &t2 = CGAL::exact(t[2]);
+  ExactPlane plane{CGAL::cross_product(t1 - t0, t2 - t0), 0};
+  plane.k = plane.n * (t0 - CGAL::ORIGIN);
+  return plane;
+}
+
+// The point where segment pq crosses the plane, when p and q are strictly on opposite sides:
+// with d(x) = n . x - k, it is (d(p) q - d(q) p) / (d(p) - d(q)). Computed once on the exact
+// coordinates and stored evaluated, so that neither the predicates that meet it later nor the
+// exact output walk a lazy construction graph.
+Point plane_crossing(const ExactPlane& plane, const Point& p, const Point& q) {
   using EK = Kernel::Exact_kernel;
-  const EK::Point_3 &t0 = CGAL::exact(t[0]), &t1 = CGAL::exact(t[1]), &t2 = CGAL::exact(t[2]);
   const EK::Point_3 &ep = CGAL::exact(p), &eq = CGAL::exact(q);
-  const EK::Vector_3 n = CGAL::cross_product(t1 - t0, t2 - t0);
-  const EK::FT dp = n * (ep - t0), dq = n * (eq - t0);
+  const EK::FT dp = plane.n * (ep - CGAL::ORIGIN) - plane.k;
+  const EK::FT dq = plane.n * (eq - CGAL::ORIGIN) - plane.k;
   const EK::FT denominator = dp - dq;
   return point_from_exact(EK::Point_3((dp * eq.x() - dq * ep.x()) / denominator,
                                       (dp * eq.y() - dq * ep.y()) / denominator,
@@ -133,7 +145,10 @@ class EdgePlaneCrossings {
     const auto key = std::make_tuple(side, std::min(u, v), std::max(u, v), other_facet);
     const auto it = memo_.find(key);
     if (it != memo_.end()) return it->second;
-    const Point p = plane_crossing(other, pu, pv);
+    auto plane = planes_[1 - side].find(other_facet);
+    if (plane == planes_[1 - side].end())
+      plane = planes_[1 - side].emplace(other_facet, exact_plane(other)).first;
+    const Point p = plane_crossing(plane->second, pu, pv);
     const ChordEnd end{store_.id(p), p};
     memo_.emplace(key, end);
     return end;
@@ -142,6 +157,7 @@ class EdgePlaneCrossings {
  private:
   PointStore& store_;
   std::map<std::tuple<int, VertexIndex, VertexIndex, std::uint32_t>, ChordEnd> memo_;
+  std::unordered_map<std::uint32_t, ExactPlane> planes_[2];  // per mesh, facet -> plane
 };
 
 // The chord t cuts on the plane of `other` from the signs of t's vertices against that plane:

@@ -16,6 +16,7 @@
 
 #include "boolean_internal.h"
 #include "morphex/boolean.h"
+#include "point_index.h"
 #include "projection_traits.h"
 
 namespace morphex {
@@ -100,6 +101,12 @@ std::optional<std::vector<Triangle>> triangulate_region(
 }  // namespace
 
 Mesh merge_coplanar_faces(const Mesh& solid) {
+  return detail::merge_coplanar_faces(solid, nullptr);
+}
+
+namespace detail {
+
+Mesh merge_coplanar_faces(const Mesh& solid, const std::vector<FaceOrigin>* origin) {
   const std::size_t nf = solid.triangles.size(), nv = solid.points.size();
   if (nf == 0) return solid;
   std::unordered_map<std::uint64_t, std::uint32_t> face_of_edge;
@@ -124,13 +131,22 @@ Mesh merge_coplanar_faces(const Mesh& solid) {
     region[start] = r;
     stack.push_back(start);
     while (!stack.empty()) {
-      const Triangle& t = solid.triangles[stack.back()];
+      const std::uint32_t stack_face = stack.back();
+      const Triangle& t = solid.triangles[stack_face];
       stack.pop_back();
       for (int i = 0; i < 3; ++i) {
         const VertexIndex u = t[i], v = t[(i + 1) % 3], w = t[(i + 2) % 3];
         const std::uint32_t g = twin_face(u, v);
         if (g == kNone || region[g] != kNone) continue;
+        // Pieces of one input facet are coplanar and alike oriented: no predicate needed.
+        const bool same_facet = origin && (*origin)[g].mesh == (*origin)[stack_face].mesh &&
+                                (*origin)[g].face == (*origin)[stack_face].face;
         const Triangle& s = solid.triangles[g];
+        if (same_facet) {
+          region[g] = r;
+          stack.push_back(g);
+          continue;
+        }
         const VertexIndex x = s[0] != u && s[0] != v ? s[0] : s[1] != u && s[1] != v ? s[1] : s[2];
         if (CGAL::orientation(p[u], p[v], p[w], p[x]) != CGAL::COPLANAR ||
             CGAL::coplanar_orientation(p[u], p[v], p[w], p[x]) != CGAL::NEGATIVE)
@@ -158,16 +174,21 @@ Mesh merge_coplanar_faces(const Mesh& solid) {
   // A region holding a vertex whose position another vertex shares (a separated non-manifold
   // feature or a contact) keeps all its triangles and vertices: its edges may be needed to keep the
   // touching parts meeting only at common vertices and edges.
-  std::vector<VertexIndex> by_position(nv);
-  std::iota(by_position.begin(), by_position.end(), 0);
-  std::sort(by_position.begin(), by_position.end(), [&](VertexIndex a, VertexIndex b) {
-    return CGAL::compare_xyz(p[a], p[b]) == CGAL::SMALLER;
-  });
   std::vector<std::uint8_t> frozen_region(region_seed.size(), 0);
   std::vector<std::uint8_t> shared_position(nv, 0);
-  for (std::size_t i = 1; i < nv; ++i)
-    if (p[by_position[i - 1]] == p[by_position[i]])
-      shared_position[by_position[i - 1]] = shared_position[by_position[i]] = 1;
+  {
+    std::vector<Point> distinct;
+    detail::PointIndex index(distinct);
+    std::vector<VertexIndex> first_at(nv, kNone);  // position id -> first vertex there
+    for (VertexIndex v = 0; v < nv; ++v) {
+      const std::uint32_t id = index.id(p[v]);
+      if (first_at.size() <= id) first_at.resize(id + 1, kNone);
+      if (first_at[id] == kNone)
+        first_at[id] = v;
+      else
+        shared_position[first_at[id]] = shared_position[v] = 1;
+    }
+  }
   for (std::uint32_t f = 0; f < nf; ++f)
     for (VertexIndex v : solid.triangles[f])
       if (shared_position[v]) frozen_region[region[f]] = 1;
@@ -269,4 +290,5 @@ Mesh merge_coplanar_faces(const Mesh& solid) {
   return result;
 }
 
+}  // namespace detail
 }  // namespace morphex

@@ -47,8 +47,9 @@ void make_exact(Mesh& mesh) {
       p = Point(a.x().inf(), a.y().inf(), a.z().inf());
       continue;
     }
-    // exact() evaluates and prunes the lazy DAG; rebuilding from exact values drops the history.
-    p = point_from_exact(CGAL::exact(p));
+    // Evaluating a lazy point stores its exact value, tightens its interval and cuts the
+    // construction graph below it; an already evaluated point returns at once.
+    CGAL::exact(p);
   }
 }
 
