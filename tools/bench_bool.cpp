@@ -12,7 +12,8 @@
 // against a shifted grid, a mesh against itself), a coarse box against a fine sphere, and CGAL's
 // demo meshes against rotated copies. Each engine runs in a forked child, so the reported peak
 // memory (ru_maxrss of that child) is the engine's own; exact volumes must agree. --phases adds
-// morphex's time per phase (the profile that guides the speed work) to the table and the JSON.
+// morphex's time per phase in the timed run (the profile that guides the speed work) to the table
+// and the JSON.
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -25,6 +26,7 @@
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 
 #include "morphex/boolean.h"
@@ -57,7 +59,11 @@ struct Run {
   bool ok = false;
   double seconds = 0, peak_mib = 0;
   std::string volume;  // exact, as a rational string
+  std::string note;    // what the engine reported besides (morphex's phases)
 };
+
+// Set by an engine in the child: sent back after the volume.
+std::string child_note;
 
 // Runs `engine` in a child process. The engine times the operation itself (not the volume it
 // then computes for the check); time, exact volume and the child's peak memory come back.
@@ -73,6 +79,7 @@ Run in_child(Engine&& engine) {
       const std::optional<std::pair<double, FT>> result = engine();
       message = result ? std::to_string(result->first) + " " + to_rational_string(result->second)
                        : "failed";
+      if (result && !child_note.empty()) message += " " + child_note;
     } catch (const std::exception& e) {
       message = "failed";
     }
@@ -95,6 +102,10 @@ Run in_child(Engine&& engine) {
   run.ok = true;
   run.seconds = std::stod(message.substr(0, space));
   run.volume = message.substr(space + 1);
+  if (const auto note = run.volume.find(' '); note != std::string::npos) {
+    run.note = run.volume.substr(note + 1);
+    run.volume.resize(note);
+  }
   run.peak_mib = double(usage.ru_maxrss) / 1024.0;
   return run;
 }
@@ -218,6 +229,16 @@ int main(int argc, char** argv) {
       BooleanResult r = compute_boolean(c.a, c.b, op, trusted);  // exact output included
       const double seconds = seconds_since(start);
       if (!r.ok()) return std::nullopt;
+      // Phases are measured in the timed run itself: a parent that ran TBB would hand its
+      // children a thread pool whose workers were not forked with them.
+      const PhaseSeconds& p = r.stats.seconds;
+      std::ostringstream note;
+      note << p.pairs << ' ' << p.segments << ' ' << p.retriangulate << ' ' << p.classify << ' '
+           << p.assemble << " pairs " << r.stats.candidate_pairs << " intersecting "
+           << r.stats.intersecting_pairs << " cut " << r.stats.cut_facets_a << "+"
+           << r.stats.cut_facets_b << " points " << r.stats.intersection_points << " patches "
+           << r.stats.patches << " (ray cast " << r.stats.patches_by_ray_cast << ")";
+      child_note = note.str();
       return std::make_pair(seconds, signed_volume(r.mesh));
     });
     const Run check = in_child([&]() -> Result {
@@ -244,7 +265,7 @@ int main(int argc, char** argv) {
     if (ours.ok && coref.ok)
       agreement += ours.volume == coref.volume ? "=coref " : "DIFFER(coref) ";
     if (ours.ok && nef.ok) agreement += ours.volume == nef.volume ? "=Nef" : "DIFFER(Nef)";
-    if (!coref.ok) agreement += " (coref failed)";
+    if (!coref.ok && peers_too) agreement += " (coref failed)";
     all_agree = all_agree && ours.ok && check.ok && (!coref.ok || ours.volume == coref.volume) &&
                 (!nef.ok || ours.volume == nef.volume);
     auto cell = [](const Run& r, double value) {
@@ -282,23 +303,19 @@ int main(int argc, char** argv) {
       row["nef_peak_mib"] = nef.peak_mib;
       row["ratio_nef"] = nef.seconds / ours.seconds;
     }
-    if (phases) {
-      // A separate in-process run: the timed child above stays free of this bookkeeping.
-      const BooleanResult r = compute_boolean(c.a, c.b, op);
-      const PhaseSeconds& p = r.stats.seconds;
-      const std::pair<const char*, double> parts[] = {
-          {"validate", p.validate}, {"pairs", p.pairs},       {"segments", p.segments},
-          {"retriangulate", p.retriangulate}, {"classify", p.classify}, {"assemble", p.assemble}};
+    if (phases && ours.ok) {
+      std::istringstream in(ours.note);
       std::cout << "    phases:";
-      for (const auto& [name, seconds] : parts) {
+      for (const char* name :
+           {"pairs", "segments", "retriangulate", "classify", "assemble"}) {
+        double seconds = 0;
+        in >> seconds;
         std::cout << ' ' << name << ' ' << std::setprecision(3) << seconds;
         row["morphex_phase_seconds"][name] = seconds;
       }
-      std::cout << " | pairs " << r.stats.candidate_pairs << " intersecting "
-                << r.stats.intersecting_pairs << " cut " << r.stats.cut_facets_a << "+"
-                << r.stats.cut_facets_b << " points " << r.stats.intersection_points
-                << " patches " << r.stats.patches << " (ray cast " << r.stats.patches_by_ray_cast
-                << ")\n";
+      std::string counts;
+      std::getline(in, counts);
+      std::cout << " |" << counts << "\n";
     }
     rows.push_back(row);
   }

@@ -13,7 +13,11 @@
 // their boundary, so every sub-triangle ends up entirely inside, outside or on the other surface.
 #include <CGAL/intersections.h>
 
-#include <map>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <limits>
 #include <tuple>
 
 #include "boolean_internal.h"
@@ -89,16 +93,25 @@ bool on_an_edge(const Corners& t, const Point& p, const Point& q) {
 
 // Step 4, the seed's rule: with s = sign((Na x Nb) . (p2 - p1)), the interior of B lies on the
 // left of (p1, p2) in ta when s > 0, and the interior of A on the left of (p1, p2) in tb when
-// s < 0. Only for transversal segments: on an edge, the local picture involves more facets.
-void orient_transversal(const Corners& ta, const Corners& tb,
-                        const Point& from, const Point& to, PointId p1, PointId p2, FacetCut& ca,
-                        FacetCut& cb) {
-  if (p1 == p2 || on_an_edge(ta, from, to) || on_an_edge(tb, from, to)) return;
-  const auto sign = along_common_line(ta, tb, from, to);
-  if (sign == CGAL::ZERO) return;
+// s < 0. Only for transversal segments (ZERO otherwise): on an edge, the local picture involves
+// more facets.
+CGAL::Sign transversal_orientation(const Corners& ta, const Corners& tb, const Point& from,
+                                   const Point& to) {
+  if (on_an_edge(ta, from, to) || on_an_edge(tb, from, to)) return CGAL::ZERO;
+  return along_common_line(ta, tb, from, to);
+}
+
+void add_transversal(CGAL::Sign sign, PointId p1, PointId p2, FacetCut& ca, FacetCut& cb) {
+  if (p1 == p2 || sign == CGAL::ZERO) return;
   const bool positive = sign == CGAL::POSITIVE;
   ca.transversal.push_back(positive ? OrientedSegment{p1, p2} : OrientedSegment{p2, p1});
   cb.transversal.push_back(positive ? OrientedSegment{p2, p1} : OrientedSegment{p1, p2});
+}
+
+void add_segment(FacetCut& cut, PointId p, PointId q) {
+  cut.points.push_back(p);
+  cut.points.push_back(q);
+  if (p != q) cut.segments.push_back(undirected(p, q));
 }
 
 // The plane of a facet as n . x = k with n = (t1 - t0) x (t2 - t0), exact.
@@ -129,61 +142,62 @@ Point plane_crossing(const ExactPlane& plane, const Point& p, const Point& q) {
                                       (dp * eq.z() - dq * ep.z()) / denominator));
 }
 
-// One end of the chord a triangle cuts on the other triangle's plane.
+// A crossing of an input edge (u, v), u < v, of mesh `side` with the plane of facet `facet` of
+// the other mesh. Every crossing is constructed once, whichever of the edge's facets needs it
+// (the seed's "every intersection point once").
+struct CrossingKey {
+  std::uint32_t side, facet;
+  VertexIndex u, v;
+  bool operator<(const CrossingKey& o) const {
+    return std::tie(side, facet, u, v) < std::tie(o.side, o.facet, o.u, o.v);
+  }
+  bool operator==(const CrossingKey& o) const {
+    return side == o.side && facet == o.facet && u == o.u && v == o.v;
+  }
+};
+
+// One end of the chord a triangle cuts on the other triangle's plane: an input vertex (its point
+// id is known) or a crossing (its id is given in the final, sequential pass).
 struct ChordEnd {
-  PointId id;
-  Point point;
-};
-
-// Constructs each crossing of an input edge with a facet's plane once, whichever of the edge's
-// two facets asks first (the seed's "every intersection point once").
-class EdgePlaneCrossings {
- public:
-  EdgePlaneCrossings(PointStore& store) : store_(store) {}
-  ChordEnd get(int side, VertexIndex u, VertexIndex v, std::uint32_t other_facet, const Point& pu,
-               const Point& pv, const Corners& other) {
-    const auto key = std::make_tuple(side, std::min(u, v), std::max(u, v), other_facet);
-    const auto it = memo_.find(key);
-    if (it != memo_.end()) return it->second;
-    auto plane = planes_[1 - side].find(other_facet);
-    if (plane == planes_[1 - side].end())
-      plane = planes_[1 - side].emplace(other_facet, exact_plane(other)).first;
-    const Point p = plane_crossing(plane->second, pu, pv);
-    const ChordEnd end{store_.id(p), p};
-    memo_.emplace(key, end);
-    return end;
+  const Point* point;
+  PointId vertex = kNoPoint;
+  std::uint32_t crossing = kNoPoint;
+  bool same(const ChordEnd& o) const {
+    return vertex != kNoPoint ? vertex == o.vertex : crossing == o.crossing;
   }
-
- private:
-  PointStore& store_;
-  std::map<std::tuple<int, VertexIndex, VertexIndex, std::uint32_t>, ChordEnd> memo_;
-  std::unordered_map<std::uint32_t, ExactPlane> planes_[2];  // per mesh, facet -> plane
+  static constexpr std::uint32_t kNoPoint = std::numeric_limits<std::uint32_t>::max();
 };
 
-// The chord t cuts on the plane of `other` from the signs of t's vertices against that plane:
-// vertices on the plane are ends as they are; edges whose ends have opposite signs are crossed.
-std::vector<ChordEnd> chord(int side, const Triangle& f, const Corners& t,
-                            const CGAL::Orientation (&signs)[3], std::uint32_t other_facet,
-                            const Corners& other, const Intersection& x,
-                            EdgePlaneCrossings& crossings) {
-  std::vector<ChordEnd> ends;
+// Edges of `f` whose ends lie strictly on opposite sides of the other plane.
+template <class Visit>
+void for_each_crossing_edge(const Triangle& f, const std::int8_t (&signs)[3], Visit&& visit) {
   for (int i = 0; i < 3; ++i) {
-    if (signs[i] == CGAL::COPLANAR) ends.push_back({x.vertex_id[side][f[i]], t[i]});
     const int j = (i + 1) % 3;
-    if (signs[i] != CGAL::COPLANAR && signs[j] != CGAL::COPLANAR && signs[i] != signs[j])
-      ends.push_back(crossings.get(side, f[i], f[j], other_facet, t[i], t[j], other));
+    if (signs[i] != 0 && signs[j] != 0 && signs[i] != signs[j]) visit(i, j);
   }
-  return ends;
 }
 
-void add_segment(FacetCut& cut, PointId p, PointId q) {
-  cut.points.push_back(p);
-  cut.points.push_back(q);
-  if (p != q) cut.segments.push_back(undirected(p, q));
-}
+// What one candidate pair leaves on its two facets, before point ids are given.
+struct PairOutcome {
+  enum class Kind : std::uint8_t { None, Point, Segment, Polygon } kind = Kind::None;
+  ChordEnd lo, hi;              // Point: lo; Segment: lo -> hi (non-coplanar pairs)
+  std::vector<Point> polygon;   // coplanar pairs: the point, segment ends or overlap polygon
+  CGAL::Sign orientation = CGAL::ZERO;  // transversal segments: sign((Na x Nb) . (hi - lo))
+};
+
+struct PairSigns {
+  std::int8_t a[3], b[3];  // ta's vertices against tb's plane, tb's against ta's
+  bool separated = true, coplanar = false;
+};
 
 }  // namespace
 
+// The phases run in parallel where the pairs are independent and end with one sequential pass in
+// pair order that gives point ids, so the result is the same for any number of threads:
+//   1. orientation signs of each pair (separated pairs stop here);
+//   2. the distinct edge/plane crossings the pairs need, each constructed once;
+//   3. each pair's chord overlap (a segment, a point or nothing), or its coplanar overlap;
+//   4. point ids and the per-facet cuts.
 Intersection intersect(const Mesh& a, const Mesh& b,
                        const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs) {
   Intersection x;
@@ -194,79 +208,164 @@ Intersection intersect(const Mesh& a, const Mesh& b,
     for (const Point& p : meshes[side]->points) x.vertex_id[side].push_back(store.id(p));
   }
   const std::size_t input_points = store.size();
+  const std::size_t np = pairs.size();
 
-  EdgePlaneCrossings crossings(store);
-  for (const auto& [ia, ib] : pairs) {
+  std::vector<PairSigns> signs(np);
+  tbb::parallel_for(std::size_t(0), np, [&](std::size_t k) {
+    const auto [ia, ib] = pairs[k];
     const Corners ta = triangle(a, ia), tb = triangle(b, ib);
-    if (separated_by_plane(ta, tb) || separated_by_plane(tb, ta)) continue;
-    CGAL::Orientation sa[3], sb[3];
+    PairSigns& s = signs[k];
+    if (separated_by_plane(ta, tb) || separated_by_plane(tb, ta)) return;
+    s.separated = false;
     for (int i = 0; i < 3; ++i) {
-      sa[i] = CGAL::orientation(tb[0], tb[1], tb[2], ta[i]);
-      sb[i] = CGAL::orientation(ta[0], ta[1], ta[2], tb[i]);
+      s.a[i] = std::int8_t(CGAL::orientation(tb[0], tb[1], tb[2], ta[i]));
+      s.b[i] = std::int8_t(CGAL::orientation(ta[0], ta[1], ta[2], tb[i]));
     }
-    const bool coplanar =
-        sa[0] == CGAL::COPLANAR && sa[1] == CGAL::COPLANAR && sa[2] == CGAL::COPLANAR;
-    if (!coplanar) {
-      // Both chords lie on the line of the two planes: their overlap along it is ta n tb.
-      const std::vector<ChordEnd> ca_ends = chord(0, a.triangles[ia], ta, sa, ib, tb, x, crossings);
-      const std::vector<ChordEnd> cb_ends = chord(1, b.triangles[ib], tb, sb, ia, ta, x, crossings);
+    s.coplanar = s.a[0] == 0 && s.a[1] == 0 && s.a[2] == 0;
+  });
+
+  std::vector<CrossingKey> keys;
+  for (std::size_t k = 0; k < np; ++k) {
+    if (signs[k].separated || signs[k].coplanar) continue;
+    const auto [ia, ib] = pairs[k];
+    for_each_crossing_edge(a.triangles[ia], signs[k].a, [&](int i, int j) {
+      const VertexIndex u = a.triangles[ia][i], v = a.triangles[ia][j];
+      keys.push_back({0, ib, std::min(u, v), std::max(u, v)});
+    });
+    for_each_crossing_edge(b.triangles[ib], signs[k].b, [&](int i, int j) {
+      const VertexIndex u = b.triangles[ib][i], v = b.triangles[ib][j];
+      keys.push_back({1, ia, std::min(u, v), std::max(u, v)});
+    });
+  }
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  // Keys of one facet are adjacent: each group computes that facet's plane once.
+  std::vector<std::size_t> group_begin;
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    if (i == 0 || keys[i].side != keys[i - 1].side || keys[i].facet != keys[i - 1].facet)
+      group_begin.push_back(i);
+  group_begin.push_back(keys.size());
+  std::vector<Point> crossing_points(keys.size());
+  tbb::parallel_for(std::size_t(0), group_begin.size() - 1, [&](std::size_t g) {
+    const CrossingKey& first = keys[group_begin[g]];
+    const Mesh& edges_mesh = *meshes[first.side];
+    const ExactPlane plane = exact_plane(triangle(*meshes[1 - first.side], first.facet));
+    for (std::size_t i = group_begin[g]; i < group_begin[g + 1]; ++i)
+      crossing_points[i] =
+          plane_crossing(plane, edges_mesh.points[keys[i].u], edges_mesh.points[keys[i].v]);
+  });
+
+  std::vector<PairOutcome> outcomes(np);
+  tbb::parallel_for(std::size_t(0), np, [&](std::size_t k) {
+    if (signs[k].separated) return;
+    const auto [ia, ib] = pairs[k];
+    const Corners ta = triangle(a, ia), tb = triangle(b, ib);
+    PairOutcome& out = outcomes[k];
+    if (!signs[k].coplanar) {
+      // The chord each triangle cuts on the other's plane: its vertices on that plane and its
+      // crossing edges. Both chords lie on the planes' common line; their overlap is ta n tb.
+      auto chord = [&](std::uint32_t side, std::uint32_t facet, const Corners& t,
+                       const std::int8_t(&s)[3], std::uint32_t other_facet) {
+        const Triangle& f = meshes[side]->triangles[facet];
+        std::array<ChordEnd, 3> ends;
+        std::size_t count = 0;
+        for (int i = 0; i < 3; ++i)
+          if (s[i] == 0) ends[count++] = {&t[i], x.vertex_id[side][f[i]]};
+        for_each_crossing_edge(f, s, [&](int i, int j) {
+          const CrossingKey key{side, other_facet, std::min(f[i], f[j]), std::max(f[i], f[j])};
+          const auto c = std::uint32_t(std::lower_bound(keys.begin(), keys.end(), key) - keys.begin());
+          ends[count++] = {&crossing_points[c], ChordEnd::kNoPoint, c};
+        });
+        return std::make_pair(ends, count);
+      };
+      const auto [ca, na] = chord(0, ia, ta, signs[k].a, ib);
+      const auto [cb, nb] = chord(1, ib, tb, signs[k].b, ia);
       auto order = [&](const ChordEnd& p, const ChordEnd& q) {  // sign of q - p along the line
-        return p.id == q.id ? CGAL::ZERO : along_common_line(ta, tb, p.point, q.point);
+        return p.same(q) ? CGAL::ZERO : along_common_line(ta, tb, *p.point, *q.point);
       };
-      auto sorted = [&](const std::vector<ChordEnd>& e) {
-        const ChordEnd& last = e.back();
-        return order(e.front(), last) == CGAL::NEGATIVE ? std::make_pair(last, e.front())
-                                                        : std::make_pair(e.front(), last);
+      auto sorted = [&](const std::array<ChordEnd, 3>& e, std::size_t count) {
+        const ChordEnd& last = e[count - 1];
+        return order(e[0], last) == CGAL::NEGATIVE ? std::make_pair(last, e[0])
+                                                   : std::make_pair(e[0], last);
       };
-      const auto [a1, a2] = sorted(ca_ends);
-      const auto [b1, b2] = sorted(cb_ends);
+      const auto [a1, a2] = sorted(ca, na);
+      const auto [b1, b2] = sorted(cb, nb);
       const ChordEnd& lo = order(a1, b1) == CGAL::POSITIVE ? b1 : a1;  // the later start
       const ChordEnd& hi = order(a2, b2) == CGAL::POSITIVE ? a2 : b2;  // the earlier end
       const auto extent = order(lo, hi);
-      if (extent == CGAL::NEGATIVE) continue;
-      ++x.intersecting_pairs;
-      FacetCut& ca = x.cuts[0][ia];
-      FacetCut& cb = x.cuts[1][ib];
+      if (extent == CGAL::NEGATIVE) return;
+      out.lo = lo;
+      out.hi = hi;
       if (extent == CGAL::ZERO) {
-        ca.points.push_back(lo.id);
-        cb.points.push_back(lo.id);
-      } else {
-        add_segment(ca, lo.id, hi.id);
-        add_segment(cb, lo.id, hi.id);
-        orient_transversal(ta, tb, lo.point, hi.point, lo.id, hi.id, ca, cb);
+        out.kind = PairOutcome::Kind::Point;
+        return;
       }
-      continue;
+      out.kind = PairOutcome::Kind::Segment;
+      out.orientation = transversal_orientation(ta, tb, *lo.point, *hi.point);
+      return;
     }
     const auto result = CGAL::intersection(ta.lazy(), tb.lazy());
-    if (!result) continue;
+    if (!result) return;
+    if (const Point* p = boost::get<Point>(&*result)) {
+      out.kind = PairOutcome::Kind::Point;
+      out.polygon = {*p};
+    } else if (const auto* seg = boost::get<Kernel::Segment_3>(&*result)) {
+      out.kind = PairOutcome::Kind::Segment;
+      out.polygon = {seg->source(), seg->target()};
+      out.orientation = transversal_orientation(ta, tb, out.polygon[0], out.polygon[1]);
+    } else {
+      out.kind = PairOutcome::Kind::Polygon;
+      if (const auto* t = boost::get<Kernel::Triangle_3>(&*result))
+        out.polygon = {t->vertex(0), t->vertex(1), t->vertex(2)};
+      else
+        out.polygon = boost::get<std::vector<Point>>(*result);
+    }
+  });
+
+  // Sequential, in pair order: point ids do not depend on the thread count.
+  std::vector<PointId> crossing_id(keys.size(), ChordEnd::kNoPoint);
+  auto id_of = [&](const ChordEnd& e) {
+    if (e.vertex != ChordEnd::kNoPoint) return e.vertex;
+    PointId& id = crossing_id[e.crossing];
+    if (id == ChordEnd::kNoPoint) id = store.id(*e.point);
+    return id;
+  };
+  for (std::size_t k = 0; k < np; ++k) {
+    PairOutcome& out = outcomes[k];
+    if (out.kind == PairOutcome::Kind::None) continue;
+    const auto [ia, ib] = pairs[k];
     ++x.intersecting_pairs;
     FacetCut& ca = x.cuts[0][ia];
     FacetCut& cb = x.cuts[1][ib];
-    if (const Point* p = boost::get<Point>(&*result)) {
-      const PointId id = store.id(*p);
-      ca.points.push_back(id);
-      cb.points.push_back(id);
-    } else if (const auto* s = boost::get<Kernel::Segment_3>(&*result)) {
-      const PointId p = store.id(s->source()), q = store.id(s->target());
-      add_segment(ca, p, q);
-      add_segment(cb, p, q);
-      orient_transversal(ta, tb, s->source(), s->target(), p, q, ca, cb);
-    } else {
-      // Coplanar overlap: a triangle or a polygon. Its boundary separates, in each facet, the
-      // part that lies on the other surface from the rest.
-      std::vector<Point> polygon;
-      if (const auto* t = boost::get<Kernel::Triangle_3>(&*result))
-        polygon = {t->vertex(0), t->vertex(1), t->vertex(2)};
-      else
-        polygon = boost::get<std::vector<Point>>(*result);
-      std::vector<PointId> ids;
-      for (const Point& p : polygon) ids.push_back(store.id(p));
-      for (std::size_t i = 0; i < ids.size(); ++i) {
-        add_segment(ca, ids[i], ids[(i + 1) % ids.size()]);
-        add_segment(cb, ids[i], ids[(i + 1) % ids.size()]);
-      }
-      ca.coplanar_facets.push_back(ib);
-      cb.coplanar_facets.push_back(ia);
+    std::vector<PointId> ids;
+    if (!out.polygon.empty())
+      for (const Point& p : out.polygon) ids.push_back(store.id(p));
+    else if (out.kind == PairOutcome::Kind::Point)
+      ids = {id_of(out.lo)};
+    else
+      ids = {id_of(out.lo), id_of(out.hi)};
+    switch (out.kind) {
+      case PairOutcome::Kind::Point:
+        ca.points.push_back(ids[0]);
+        cb.points.push_back(ids[0]);
+        break;
+      case PairOutcome::Kind::Segment:
+        add_segment(ca, ids[0], ids[1]);
+        add_segment(cb, ids[0], ids[1]);
+        add_transversal(out.orientation, ids[0], ids[1], ca, cb);
+        break;
+      case PairOutcome::Kind::Polygon:
+        // Coplanar overlap: its boundary separates, in each facet, the part that lies on the
+        // other surface from the rest.
+        for (std::size_t i = 0; i < ids.size(); ++i) {
+          add_segment(ca, ids[i], ids[(i + 1) % ids.size()]);
+          add_segment(cb, ids[i], ids[(i + 1) % ids.size()]);
+        }
+        ca.coplanar_facets.push_back(ib);
+        cb.coplanar_facets.push_back(ia);
+        break;
+      case PairOutcome::Kind::None:
+        break;
     }
   }
   x.constructed_points = store.size() - input_points;
