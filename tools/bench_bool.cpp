@@ -4,7 +4,7 @@
 //
 //   bench_bool [--op union|intersection|difference] [--max-level L] [--nef-max-faces N]
 //              [--json FILE] [--demo-dir DIR] [--only SUBSTRING] [--phases]
-//              [--no-peers]   (morphex alone, for profiling)
+//              [--no-peers]   (morphex alone, for profiling) [--threads N]
 //   bench_bool A B [--rotate DEG] [--translate X Y Z] [--op OP]      (one pair from files)
 //
 // Cases: icosphere pairs crossing each other from level 2 up to --max-level (a scaling curve),
@@ -26,6 +26,9 @@
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <thread>
+#include <tbb/global_control.h>
 #include <sstream>
 #include <string>
 
@@ -113,9 +116,13 @@ Run in_child(Engine&& engine) {
 std::vector<Case> generated_cases(int max_level, const std::string& demo_dir) {
   std::vector<Case> cases;
   const Vector shift(FT(1) / 3, FT(1) / 5, FT(1) / 7);
-  for (int level = 2; level <= max_level; ++level)
-    cases.push_back({"icospheres L" + std::to_string(level), make_icosphere(level, FT(1)),
-                     translated(make_icosphere(level, FT(1)), shift)});
+  // Every input is made exact, as if read from an exact file: neither engine should pay for
+  // evaluating the generator's lazy constructions.
+  for (int level = 2; level <= max_level; ++level) {
+    Mesh moved = translated(make_icosphere(level, FT(1)), shift);
+    make_exact(moved);
+    cases.push_back({"icospheres L" + std::to_string(level), make_icosphere(level, FT(1)), moved});
+  }
   {
     const Mesh s = make_icosphere(std::min(max_level, 4), FT(1));
     Mesh turned = transformed(s, rational_rotation(1));
@@ -157,6 +164,7 @@ int main(int argc, char** argv) {
   std::size_t nef_max_faces = 3000;
   std::string json_path, only, a_path, b_path;
   bool phases = false, peers_too = true;
+  std::size_t threads = 0;  // 0: all cores
   const char* home = std::getenv("HOME");
   std::string demo_dir = std::string(home ? home : ".") + "/.cache/morphex/cgal-demo";
   double degrees = 0;
@@ -183,6 +191,8 @@ int main(int argc, char** argv) {
       phases = true;
     else if (arg == "--no-peers")
       peers_too = false;
+    else if (arg == "--threads")
+      threads = std::stoul(next());
     else if (arg == "--rotate")
       degrees = std::stod(next());
     else if (arg == "--translate") {
@@ -209,6 +219,9 @@ int main(int argc, char** argv) {
     cases = generated_cases(max_level, demo_dir);
   }
 
+  // Limits morphex's TBB phases; CGAL's corefinement and Nef run sequentially anyway.
+  std::optional<tbb::global_control> thread_limit;
+  if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, threads);
   nlohmann::json rows = nlohmann::json::array();
   bool all_agree = true;
   std::cout << std::left << std::setw(36) << "case" << std::right << std::setw(9) << "faces"
@@ -292,6 +305,7 @@ int main(int argc, char** argv) {
                           {"morphex_seconds", ours.seconds},
                           {"morphex_peak_mib", ours.peak_mib},
                           {"morphex_check_seconds", check.seconds},
+                          {"threads", threads > 0 ? threads : std::thread::hardware_concurrency()},
                           {"agree", all_agree}};
     if (coref.ok) {
       row["corefinement_seconds"] = coref.seconds;

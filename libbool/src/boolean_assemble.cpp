@@ -7,9 +7,12 @@
 //   | union        | outside B | outside A          | A's copy      | none              |
 //   | intersection | inside B  | inside A           | A's copy      | none              |
 //   | A minus B    | outside B | inside A, reversed | none          | A's copy          |
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
 #include <algorithm>
 #include <numeric>
-#include <unordered_map>
+#include <vector>
 
 #include "boolean_internal.h"
 #include "union_find.h"
@@ -58,11 +61,23 @@ Mesh separate_non_manifold(const std::vector<Point>& points, std::vector<Triangl
   const std::size_t nf = faces.size();
   // half-edge (f, k) goes faces[f][k] -> faces[f][k+1]; mate[f*3+k] is the opposite half-edge.
   std::vector<std::uint32_t> mate(nf * 3, UINT32_MAX);
-  std::unordered_map<Edge, std::vector<std::uint32_t>, EdgeHash> half_edges;
-  for (std::uint32_t f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k)
-      half_edges[undirected(faces[f][k], faces[f][(k + 1) % 3])].push_back(f * 3 + k);
-  for (auto& [edge, hs] : half_edges) {
+  // Half-edges sorted by their undirected edge: each run is one edge of the result.
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> half_edges(nf * 3);
+  tbb::parallel_for(std::uint32_t(0), std::uint32_t(nf), [&](std::uint32_t f) {
+    for (int k = 0; k < 3; ++k) {
+      const Edge e = undirected(faces[f][k], faces[f][(k + 1) % 3]);
+      half_edges[f * 3 + k] = {(std::uint64_t(e.first) << 32) | e.second, f * 3 + k};
+    }
+  });
+  tbb::parallel_sort(half_edges.begin(), half_edges.end());
+  std::vector<std::uint32_t> hs;
+  for (std::size_t begin = 0; begin < half_edges.size();) {
+    std::size_t end = begin + 1;
+    while (end < half_edges.size() && half_edges[end].first == half_edges[begin].first) ++end;
+    const Edge edge{PointId(half_edges[begin].first >> 32), PointId(half_edges[begin].first)};
+    hs.clear();
+    for (std::size_t i = begin; i < end; ++i) hs.push_back(half_edges[i].second);
+    begin = end;
     if (hs.size() == 2) {
       mate[hs[0]] = hs[1];
       mate[hs[1]] = hs[0];
@@ -96,14 +111,15 @@ Mesh separate_non_manifold(const std::vector<Point>& points, std::vector<Triangl
     fans.join(h, g * 3 + (l + 1) % 3);
   }
   Mesh out;
-  std::unordered_map<std::uint32_t, VertexIndex> vertex_of_fan;
-  std::vector<VertexIndex> first_use(points.size(), UINT32_MAX);
+  std::vector<VertexIndex> vertex_of_fan(nf * 3, UINT32_MAX);  // fan root -> output vertex
   out.triangles.resize(nf);
   for (std::uint32_t c = 0; c < nf * 3; ++c) {
-    const std::uint32_t fan = fans.find(c);
-    auto [it, inserted] = vertex_of_fan.emplace(fan, VertexIndex(out.points.size()));
-    if (inserted) out.points.push_back(points[faces[c / 3][c % 3]]);
-    out.triangles[c / 3][c % 3] = it->second;
+    VertexIndex& v = vertex_of_fan[fans.find(c)];
+    if (v == UINT32_MAX) {
+      v = VertexIndex(out.points.size());
+      out.points.push_back(points[faces[c / 3][c % 3]]);
+    }
+    out.triangles[c / 3][c % 3] = v;
   }
   return out;
 }

@@ -31,6 +31,7 @@ class PointStore {
  public:
   explicit PointStore(Intersection& x) : x_(x), index_(x.points) {}
   PointId id(const Point& p) { return index_.id(p); }
+  void reserve(std::size_t points) { index_.reserve(points); }
   std::size_t size() const { return x_.points.size(); }
 
  private:
@@ -203,6 +204,7 @@ Intersection intersect(const Mesh& a, const Mesh& b,
   Intersection x;
   PointStore store(x);
   const Mesh* meshes[2] = {&a, &b};
+  store.reserve(a.num_vertices() + b.num_vertices());
   for (int side = 0; side < 2; ++side) {
     x.vertex_id[side].reserve(meshes[side]->num_vertices());
     for (const Point& p : meshes[side]->points) x.vertex_id[side].push_back(store.id(p));

@@ -181,7 +181,8 @@ MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
           }
         }
       }
-      const auto sign = CGAL::sign(signed_volume(shells[c]));
+      // One shell is the whole mesh, whose volume is already known.
+      const auto sign = CGAL::sign(shells.size() == 1 ? r.volume : signed_volume(shells[c]));
       if (sign != (depth % 2 == 0 ? CGAL::POSITIVE : CGAL::NEGATIVE)) r.outward = false;
     }
   } else {

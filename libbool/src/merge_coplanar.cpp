@@ -16,6 +16,7 @@
 
 #include "boolean_internal.h"
 #include "morphex/boolean.h"
+#include "flat_map.h"
 #include "point_index.h"
 #include "projection_traits.h"
 
@@ -109,14 +110,13 @@ namespace detail {
 Mesh merge_coplanar_faces(const Mesh& solid, const std::vector<FaceOrigin>* origin) {
   const std::size_t nf = solid.triangles.size(), nv = solid.points.size();
   if (nf == 0) return solid;
-  std::unordered_map<std::uint64_t, std::uint32_t> face_of_edge;
-  face_of_edge.reserve(3 * nf);
+  FlatMap<std::uint64_t, std::uint32_t, Hash64> face_of_edge(3 * nf);
   for (std::uint32_t f = 0; f < nf; ++f)
     for (int i = 0; i < 3; ++i)
       face_of_edge.emplace(key(solid.triangles[f][i], solid.triangles[f][(i + 1) % 3]), f);
   auto twin_face = [&](VertexIndex u, VertexIndex v) {
-    const auto it = face_of_edge.find(key(v, u));
-    return it == face_of_edge.end() ? kNone : it->second;
+    const std::uint32_t* face = face_of_edge.find(key(v, u));
+    return face ? *face : kNone;
   };
   const auto& p = solid.points;
 

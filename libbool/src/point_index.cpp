@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "point_index.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <type_traits>
 #include <optional>
+#include <stdexcept>
 
 namespace morphex::detail {
 
@@ -27,38 +29,79 @@ std::optional<std::array<double, 3>> double_coordinates(const Point& p) {
   return c;
 }
 
+std::uint64_t hash_integer(mpz_srcptr z, std::uint64_t h) {
+  h = mix64(h ^ std::uint64_t(std::int64_t(mpz_sgn(z))));
+  for (std::size_t i = 0, n = mpz_size(z); i < n; ++i) h = mix64(h ^ std::uint64_t(mpz_getlimbn(z, i)));
+  return h;
+}
+
+// Exact rationals are kept in lowest terms, so equal values have equal numerators and
+// denominators, limb for limb.
+std::uint64_t hash_exact(const Point& p) {
+  const auto& e = CGAL::exact(p);
+  std::uint64_t h = 0x243f6a8885a308d3ull;
+  for (int i = 0; i < 3; ++i) {
+    const auto& c = e.cartesian(i);
+    h = hash_integer(c.get_num_mpz_t(), h);
+    h = hash_integer(c.get_den_mpz_t(), h);
+  }
+  return h;
+}
+
 }  // namespace
 
+std::uint32_t PointIndex::rational_id(const Point& p) {
+  if (2 * (rational_count_ + 1) > rational_slots_.size()) {
+    // Grow and re-insert by the stored hashes.
+    std::vector<std::uint32_t> old_slots = std::move(rational_slots_);
+    std::vector<std::uint64_t> old_hash = std::move(rational_hash_);
+    const std::size_t capacity = std::max<std::size_t>(64, 2 * old_slots.size());
+    rational_slots_.assign(capacity, kEmpty);
+    rational_hash_.assign(capacity, 0);
+    for (std::size_t s = 0; s < old_slots.size(); ++s) {
+      if (old_slots[s] == kEmpty) continue;
+      std::size_t i = old_hash[s] & (capacity - 1);
+      while (rational_slots_[i] != kEmpty) i = (i + 1) & (capacity - 1);
+      rational_slots_[i] = old_slots[s];
+      rational_hash_[i] = old_hash[s];
+    }
+  }
+  const std::uint64_t h = hash_exact(p);
+  const std::size_t mask = rational_slots_.size() - 1;
+  for (std::size_t i = h & mask;; i = (i + 1) & mask) {
+    const std::uint32_t id = rational_slots_[i];
+    if (id == kEmpty) {
+      rational_slots_[i] = std::uint32_t(points_.size());
+      rational_hash_[i] = h;
+      ++rational_count_;
+      points_.push_back(p);
+      return rational_slots_[i];
+    }
+    if (rational_hash_[i] == h && CGAL::exact(points_[id]) == CGAL::exact(p)) return id;
+  }
+}
+
 std::size_t PointIndex::Hash::operator()(const std::array<double, 3>& c) const {
-  std::uint64_t h = 0x9e3779b97f4a7c15ull;
+  std::uint64_t h = 0;
   for (double d : c) {
     std::uint64_t bits;
     std::memcpy(&bits, &d, sizeof bits);
-    h ^= bits + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+    h = mix64(h ^ bits);
   }
   return std::size_t(h);
 }
 
 PointIndex::PointIndex(std::vector<Point>& points) : points_(points) {
-  doubles_.reserve(points.size() * 2);
-  const std::size_t n = points.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    if (const auto key = double_coordinates(points[i]))
-      doubles_.emplace(*key, std::uint32_t(i));
-    else
-      others_.emplace(points[i], std::uint32_t(i));
-  }
+  if (!points.empty()) throw std::logic_error("PointIndex: the point vector must start empty");
 }
 
 std::uint32_t PointIndex::id(const Point& p) {
   if (const auto key = double_coordinates(p)) {
-    const auto [it, inserted] = doubles_.emplace(*key, std::uint32_t(points_.size()));
+    const auto [id, inserted] = doubles_.emplace(*key, std::uint32_t(points_.size()));
     if (inserted) points_.push_back(p);
-    return it->second;
+    return id;
   }
-  const auto [it, inserted] = others_.emplace(p, std::uint32_t(points_.size()));
-  if (inserted) points_.push_back(p);
-  return it->second;
+  return rational_id(p);
 }
 
 }  // namespace morphex::detail
