@@ -52,7 +52,7 @@ BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
   if (options.validate_inputs) {
     const Mesh* inputs[2] = {&a, &b};
     for (int side = 0; side < 2; ++side) {
-      const MeshReport report = check_mesh(*inputs[side]);
+      const MeshReport report = check_mesh(*inputs[side], kValidityOnly);
       if (!report.valid_solid()) {
         result.status = side == 0 ? BooleanStatus::InvalidInputA : BooleanStatus::InvalidInputB;
         result.message = std::string(side == 0 ? "first" : "second") +

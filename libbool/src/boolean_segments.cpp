@@ -21,6 +21,7 @@
 #include <tuple>
 
 #include "boolean_internal.h"
+#include "filtered.h"
 #include "point_index.h"
 
 namespace morphex::detail {
@@ -50,18 +51,6 @@ struct Corners {
 Corners triangle(const Mesh& m, std::uint32_t t) {
   const Triangle& f = m.triangles[t];
   return {{&m.points[f[0]], &m.points[f[1]], &m.points[f[2]]}};
-}
-
-// The sign of an expression of points, evaluated on their interval approximations and, only
-// when those cannot decide, on their exact coordinates: a filtered predicate without lazy nodes.
-template <class Expression, class... Points>
-CGAL::Sign filtered_sign(const Expression& expression, const Points&... points) {
-  {
-    CGAL::Protect_FPU_rounding<true> rounding;
-    const CGAL::Uncertain<CGAL::Sign> s = CGAL::sign(expression(CGAL::approx(points)...));
-    if (CGAL::is_certain(s)) return CGAL::get_certain(s);
-  }
-  return CGAL::sign(expression(CGAL::exact(points)...));
 }
 
 // sign(((a1 - a0) x (a2 - a0)) x ((b1 - b0) x (b2 - b0)) . (q - p)): the order of p and q along

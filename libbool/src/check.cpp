@@ -127,7 +127,10 @@ MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
       shell.triangles.push_back(t);
     }
   }
-  r.volume = signed_volume(mesh);
+  if (options.volume) r.volume = signed_volume(mesh);
+  const auto volume_sign = [&](const Mesh& m) {
+    return options.volume && &m == &mesh ? CGAL::sign(r.volume) : signed_volume_sign(m);
+  };
   const bool manifold = r.closed() && r.non_manifold_edges == 0 && r.non_manifold_vertices == 0;
   if (manifold) {
     long genus = 0;
@@ -181,12 +184,12 @@ MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
           }
         }
       }
-      // One shell is the whole mesh, whose volume is already known.
-      const auto sign = CGAL::sign(shells.size() == 1 ? r.volume : signed_volume(shells[c]));
+      // One shell is the whole mesh, whose volume may already be known.
+      const auto sign = volume_sign(shells.size() == 1 ? mesh : shells[c]);
       if (sign != (depth % 2 == 0 ? CGAL::POSITIVE : CGAL::NEGATIVE)) r.outward = false;
     }
   } else {
-    r.outward = r.closed() && r.consistently_oriented && CGAL::sign(r.volume) == CGAL::POSITIVE;
+    r.outward = r.closed() && r.consistently_oriented && volume_sign(mesh) == CGAL::POSITIVE;
   }
   if (nf == 0) r.outward = true;
   return r;

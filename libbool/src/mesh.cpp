@@ -2,6 +2,7 @@
 #include "morphex/mesh.h"
 
 #include <gmpxx.h>
+#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -85,11 +86,12 @@ FT parse_exact_number(const std::string& text) {
 namespace {
 using Exact = ExactFT;
 
+// Pairwise, so that operands stay of similar size; each level's additions run in parallel.
 Exact sum_balanced(std::vector<Exact>& terms) {
   if (terms.empty()) return Exact(0);
   while (terms.size() > 1) {
-    std::size_t half = (terms.size() + 1) / 2;
-    for (std::size_t i = 0; i + half < terms.size(); ++i) terms[i] += terms[i + half];
+    const std::size_t half = (terms.size() + 1) / 2, pairs = terms.size() - half;
+    tbb::parallel_for(std::size_t(0), pairs, [&](std::size_t i) { terms[i] += terms[i + half]; });
     terms.resize(half);
   }
   return terms[0];
@@ -97,19 +99,36 @@ Exact sum_balanced(std::vector<Exact>& terms) {
 }  // namespace
 
 FT signed_volume(const Mesh& mesh) {
-  std::vector<Exact> terms;
-  terms.reserve(mesh.triangles.size());
-  for (const Triangle& t : mesh.triangles) {
+  std::vector<Exact> terms(mesh.triangles.size());
+  tbb::parallel_for(std::size_t(0), terms.size(), [&](std::size_t i) {
+    const Triangle& t = mesh.triangles[i];
     const auto& a = CGAL::exact(mesh.points[t[0]]);
     const auto& b = CGAL::exact(mesh.points[t[1]]);
     const auto& c = CGAL::exact(mesh.points[t[2]]);
     // a . (b x c)
-    Exact cx = b.y() * c.z() - b.z() * c.y();
-    Exact cy = b.z() * c.x() - b.x() * c.z();
-    Exact cz = b.x() * c.y() - b.y() * c.x();
-    terms.push_back(a.x() * cx + a.y() * cy + a.z() * cz);
-  }
+    const Exact cx = b.y() * c.z() - b.z() * c.y();
+    const Exact cy = b.z() * c.x() - b.x() * c.z();
+    const Exact cz = b.x() * c.y() - b.y() * c.x();
+    terms[i] = a.x() * cx + a.y() * cy + a.z() * cz;
+  });
   return FT(sum_balanced(terms) / Exact(6));
+}
+
+CGAL::Sign signed_volume_sign(const Mesh& mesh) {
+  {
+    CGAL::Protect_FPU_rounding<true> rounding;
+    CGAL::Interval_nt<false> sum = 0;
+    for (const Triangle& t : mesh.triangles) {
+      const auto& a = CGAL::approx(mesh.points[t[0]]);
+      const auto& b = CGAL::approx(mesh.points[t[1]]);
+      const auto& c = CGAL::approx(mesh.points[t[2]]);
+      sum += a.x() * (b.y() * c.z() - b.z() * c.y()) + a.y() * (b.z() * c.x() - b.x() * c.z()) +
+             a.z() * (b.x() * c.y() - b.y() * c.x());
+    }
+    const CGAL::Uncertain<CGAL::Sign> sign = CGAL::sign(sum);
+    if (CGAL::is_certain(sign)) return CGAL::get_certain(sign);
+  }
+  return CGAL::sign(signed_volume(mesh));
 }
 
 }  // namespace morphex

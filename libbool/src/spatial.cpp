@@ -6,6 +6,9 @@
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
+#include <type_traits>
+
+#include "filtered.h"
 
 namespace morphex {
 
@@ -97,9 +100,11 @@ bool same_position(const Mesh& m, VertexIndex a, VertexIndex b) {
 bool triangles_intersect_improperly(const Mesh& mesh, std::uint32_t i, std::uint32_t j) {
   const Triangle& f = mesh.triangles[i];
   const Triangle& g = mesh.triangles[j];
-  const Kernel::Triangle_3 tf = triangle_of(mesh, i), tg = triangle_of(mesh, j);
+  const Point *pf[3] = {&mesh.points[f[0]], &mesh.points[f[1]], &mesh.points[f[2]]};
+  const Point *pg[3] = {&mesh.points[g[0]], &mesh.points[g[1]], &mesh.points[g[2]]};
   // Degenerate faces are reported on their own; CGAL's triangle predicates require proper ones.
-  if (tf.is_degenerate() || tg.is_degenerate()) return false;
+  if (CGAL::collinear(*pf[0], *pf[1], *pf[2]) || CGAL::collinear(*pg[0], *pg[1], *pg[2]))
+    return false;
   int shared = 0, sf = -1, sg = -1, sf2 = -1, sg2 = -1;
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b)
@@ -113,19 +118,34 @@ bool triangles_intersect_improperly(const Mesh& mesh, std::uint32_t i, std::uint
         }
         ++shared;
       }
-  if (shared == 0) return CGAL::do_intersect(tf, tg);
+  // The tests build interval (then, if undecided, exact) triangles and segments from the points
+  // directly: no lazy construction nodes for the many neighbouring pairs a mesh has.
+  auto triangles_meet = [](const auto& a0, const auto& a1, const auto& a2, const auto& b0,
+                           const auto& b1, const auto& b2) {
+    using K = typename CGAL::Kernel_traits<std::decay_t<decltype(a0)>>::Kernel;
+    return CGAL::do_intersect(typename K::Triangle_3(a0, a1, a2),
+                              typename K::Triangle_3(b0, b1, b2));
+  };
+  auto segment_meets_triangle = [](const auto& s0, const auto& s1, const auto& t0,
+                                   const auto& t1, const auto& t2) {
+    using K = typename CGAL::Kernel_traits<std::decay_t<decltype(s0)>>::Kernel;
+    return CGAL::do_intersect(typename K::Segment_3(s0, s1), typename K::Triangle_3(t0, t1, t2));
+  };
+  if (shared == 0)
+    return detail::filtered_test(triangles_meet, *pf[0], *pf[1], *pf[2], *pg[0], *pg[1], *pg[2]);
   if (shared >= 3) return true;  // the same triangle twice
   if (shared == 1) {
     // Anything beyond the common vertex reaches the edge opposite it in one of the triangles.
-    const Kernel::Segment_3 opposite_f(tf[(sf + 1) % 3], tf[(sf + 2) % 3]);
-    const Kernel::Segment_3 opposite_g(tg[(sg + 1) % 3], tg[(sg + 2) % 3]);
-    return CGAL::do_intersect(opposite_f, tg) || CGAL::do_intersect(opposite_g, tf);
+    return detail::filtered_test(segment_meets_triangle, *pf[(sf + 1) % 3], *pf[(sf + 2) % 3], *pg[0],
+                         *pg[1], *pg[2]) ||
+           detail::filtered_test(segment_meets_triangle, *pg[(sg + 1) % 3], *pg[(sg + 2) % 3], *pf[0],
+                         *pf[1], *pf[2]);
   }
   // A common edge: improper only when the triangles fold onto each other.
-  const Point& p = tf[sf];
-  const Point& q = tf[sf2];
-  const Point& rf = tf[3 - sf - sf2];
-  const Point& rg = tg[3 - sg - sg2];
+  const Point& p = *pf[sf];
+  const Point& q = *pf[sf2];
+  const Point& rf = *pf[3 - sf - sf2];
+  const Point& rg = *pg[3 - sg - sg2];
   return CGAL::coplanar(p, q, rf, rg) && CGAL::coplanar_orientation(p, q, rf, rg) == CGAL::POSITIVE;
 }
 

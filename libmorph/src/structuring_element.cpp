@@ -209,7 +209,7 @@ StructuringElement make_structuring_element(const std::string& shape, const SePa
   } else {
     const std::string path = read.text("path");
     se.mesh = read_mesh(path);  // InputError names the file
-    const MeshReport report = check_mesh(se.mesh);
+    const MeshReport report = check_mesh(se.mesh, kValidityOnly);
     if (!report.valid_solid())
       read.fail("path", path + ": not a valid solid: " + describe_problems(report));
     se.convex = is_convex(se.mesh);

@@ -141,7 +141,7 @@ void add_builtin_stages(StageRegistry& r) {
          [](StageContext& c) {
            const std::string path = c.option("path").get<std::string>();
            Mesh mesh = read_mesh(path);
-           const MeshReport report = check_mesh(mesh);
+           const MeshReport report = check_mesh(mesh, kValidityOnly);
            if (!report.valid_solid()) throw InputError(path, describe_problems(report));
            return mesh;
          }});
@@ -252,7 +252,7 @@ void add_builtin_stages(StageRegistry& r) {
          {optional("require_valid", OptionType::Bool, true,
                    "fail this input when the mesh is not a valid solid")},
          [](StageContext& c) {
-           const MeshReport report = check_mesh(*c.inputs[0]);
+           const MeshReport report = check_mesh(*c.inputs[0], kValidityOnly);
            c.extra["valid"] = report.valid_solid();
            c.extra["genus"] = report.genus;
            c.extra["components"] = report.components;

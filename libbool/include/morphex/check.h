@@ -14,7 +14,12 @@ namespace morphex {
 
 struct CheckOptions {
   bool self_intersections = true;  // the only part that is not linear time
+  // The exact volume in the report. Without it, `volume` stays 0 and only the signs the
+  // orientation test needs are computed, by an interval sum that is exact whenever it decides.
+  bool volume = true;
 };
+// Everything valid_solid() needs, without the exact volume.
+inline constexpr CheckOptions kValidityOnly{true, false};
 
 struct MeshReport {
   std::size_t vertices = 0, triangles = 0, components = 0;
@@ -26,7 +31,7 @@ struct MeshReport {
   std::optional<std::pair<std::uint32_t, std::uint32_t>> first_self_intersection;
   long genus = 0;  // sum over closed shells of (2 - chi) / 2; -1 when not a closed 2-manifold
   CGAL::Bbox_3 bbox;
-  FT volume = 0;  // exact signed volume
+  FT volume = 0;  // exact signed volume (0 when CheckOptions::volume is off)
 
   // Where the first problem of each kind is, for error messages.
   std::optional<VertexIndex> first_border_vertex, first_non_manifold_vertex;

@@ -67,6 +67,8 @@ FT parse_exact_number(const std::string& text);
 // Exact signed volume of a closed mesh (positive when outward oriented), summed pairwise so the
 // rational sizes stay balanced.
 FT signed_volume(const Mesh& mesh);
+// Its sign, exact: an interval sum decides unless the volume is (nearly) zero, then the exact sum.
+CGAL::Sign signed_volume_sign(const Mesh& mesh);
 
 // Error thrown for unusable input. `where` names the file; the message says the problem and the
 // position (line, vertex, face, JSON path).
