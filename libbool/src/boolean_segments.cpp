@@ -68,10 +68,10 @@ CGAL::Sign along_common_line(const Corners& ta, const Corners& tb, const Point& 
 
 // All three vertices of `t` strictly on one side of the plane of `other`.
 bool separated_by_plane(const Corners& t, const Corners& other) {
-  const auto s0 = CGAL::orientation(other[0], other[1], other[2], t[0]);
+  const auto s0 = orient3d(other[0], other[1], other[2], t[0]);
   if (s0 == CGAL::COPLANAR) return false;
-  return CGAL::orientation(other[0], other[1], other[2], t[1]) == s0 &&
-         CGAL::orientation(other[0], other[1], other[2], t[2]) == s0;
+  return orient3d(other[0], other[1], other[2], t[1]) == s0 &&
+         orient3d(other[0], other[1], other[2], t[2]) == s0;
 }
 
 bool on_an_edge(const Corners& t, const Point& p, const Point& q) {
@@ -209,8 +209,8 @@ Intersection intersect(const Mesh& a, const Mesh& b,
     if (separated_by_plane(ta, tb) || separated_by_plane(tb, ta)) return;
     s.separated = false;
     for (int i = 0; i < 3; ++i) {
-      s.a[i] = std::int8_t(CGAL::orientation(tb[0], tb[1], tb[2], ta[i]));
-      s.b[i] = std::int8_t(CGAL::orientation(ta[0], ta[1], ta[2], tb[i]));
+      s.a[i] = std::int8_t(orient3d(tb[0], tb[1], tb[2], ta[i]));
+      s.b[i] = std::int8_t(orient3d(ta[0], ta[1], ta[2], tb[i]));
     }
     s.coplanar = s.a[0] == 0 && s.a[1] == 0 && s.a[2] == 0;
   });

@@ -14,6 +14,7 @@
 #include <unordered_map>
 
 #include "boolean_internal.h"
+#include "filtered.h"
 #include "morphex/spatial.h"
 #include "union_find.h"
 
@@ -29,7 +30,7 @@ Containment locate(const Mesh& soup, std::uint32_t first, std::uint32_t last, co
   std::uint32_t on_plane = UINT32_MAX;
   for (std::uint32_t t = first; t < last; ++t) {
     const Triangle& f = soup.triangles[t];
-    switch (CGAL::orientation(soup.points[f[0]], soup.points[f[1]], soup.points[f[2]], q)) {
+    switch (detail::orient3d(soup.points[f[0]], soup.points[f[1]], soup.points[f[2]], q)) {
       case CGAL::POSITIVE:
         return Containment::Outside;
       case CGAL::ZERO:

@@ -15,8 +15,9 @@
 #include <unordered_map>
 
 #include "boolean_internal.h"
-#include "morphex/boolean.h"
+#include "filtered.h"
 #include "flat_map.h"
+#include "morphex/boolean.h"
 #include "point_index.h"
 #include "projection_traits.h"
 
@@ -148,7 +149,7 @@ Mesh merge_coplanar_faces(const Mesh& solid, const std::vector<FaceOrigin>* orig
           continue;
         }
         const VertexIndex x = s[0] != u && s[0] != v ? s[0] : s[1] != u && s[1] != v ? s[1] : s[2];
-        if (CGAL::orientation(p[u], p[v], p[w], p[x]) != CGAL::COPLANAR ||
+        if (detail::orient3d(p[u], p[v], p[w], p[x]) != CGAL::COPLANAR ||
             CGAL::coplanar_orientation(p[u], p[v], p[w], p[x]) != CGAL::NEGATIVE)
           continue;
         region[g] = r;

@@ -14,6 +14,7 @@
 #include <CGAL/Projection_traits_yz_3.h>
 #include <CGAL/predicates/kernel_ftC2.h>
 
+#include "filtered.h"
 #include "morphex/mesh.h"
 
 namespace morphex::detail {
@@ -45,9 +46,7 @@ struct FilteredProjectedOrientation {
                                          C::first(ar), C::second(ar));
       if (CGAL::is_certain(s)) return CGAL::get_certain(s);
     }
-    const auto &ep = CGAL::exact(p), &eq = CGAL::exact(q), &er = CGAL::exact(r);
-    return CGAL::orientationC2(C::first(ep), C::second(ep), C::first(eq), C::second(eq),
-                               C::first(er), C::second(er));
+    return exact_orientation_2<C::u, C::v>(CGAL::exact(p), CGAL::exact(q), CGAL::exact(r));
   }
 };
 
