@@ -69,9 +69,12 @@ TEST(ExactPredicates, ProjectedOrientationAgreesWithCgalOnCollinearPoints) {
     ASSERT_EQ(xy(p, q, r), cgal_xy(p, q, r)) << i;
     ASSERT_EQ(yz(p, q, r), cgal_yz(p, q, r)) << i;
     ASSERT_EQ(xz(p, q, r), cgal_xz(p, q, r)) << i;
+    ASSERT_EQ(detail::collinear3d(p, q, r), CGAL::collinear(p, q, r)) << i;
     zeros += cgal_xy(p, q, r) == CGAL::COLLINEAR;
   }
   EXPECT_GE(zeros, 1500);
+  // Collinear in two projections but not in space.
+  EXPECT_FALSE(detail::collinear3d(Point(0, 0, 0), Point(1, 0, 0), Point(2, 0, FT(1) / 3)));
 }
 
 TEST(ExactPredicates, FilteredSideOfOrientedCircleAgreesWithCgal) {

@@ -76,7 +76,7 @@ bool separated_by_plane(const Corners& t, const Corners& other) {
 
 bool on_an_edge(const Corners& t, const Point& p, const Point& q) {
   for (int i = 0; i < 3; ++i)
-    if (CGAL::collinear(t[i], t[(i + 1) % 3], p) && CGAL::collinear(t[i], t[(i + 1) % 3], q))
+    if (collinear3d(t[i], t[(i + 1) % 3], p) && collinear3d(t[i], t[(i + 1) % 3], q))
       return true;
   return false;
 }
@@ -104,32 +104,44 @@ void add_segment(FacetCut& cut, PointId p, PointId q) {
   if (p != q) cut.segments.push_back(undirected(p, q));
 }
 
-// The plane of a facet as n . x = k with n = (t1 - t0) x (t2 - t0), exact.
+// The plane of a facet in homogeneous integer coordinates: A X + B Y + C Z + D W = 0 for the
+// homogeneous points (X, Y, Z, W) on it (the 4D cross product of its corners).
 struct ExactPlane {
-  Kernel::Exact_kernel::Vector_3 n;
-  Kernel::Exact_kernel::FT k;
+  std::array<mpz_class, 4> coefficients;
 };
 
+std::array<mpz_class, 4> homogeneous_point(const Point& p) {
+  const auto& e = CGAL::exact(p);
+  return homogeneous<3>({&e.x(), &e.y(), &e.z()});
+}
+
 ExactPlane exact_plane(const Corners& t) {
-  const auto &t0 = CGAL::exact(t[0]), &t1 = CGAL::exact(t[1]), &t2 = CGAL::exact(t[2]);
-  ExactPlane plane{CGAL::cross_product(t1 - t0, t2 - t0), 0};
-  plane.k = plane.n * (t0 - CGAL::ORIGIN);
-  return plane;
+  const auto a = homogeneous_point(t[0]), b = homogeneous_point(t[1]), c = homogeneous_point(t[2]);
+  auto det3 = [&](int i, int j, int k) -> mpz_class {
+    return a[i] * (b[j] * c[k] - b[k] * c[j]) - a[j] * (b[i] * c[k] - b[k] * c[i]) +
+           a[k] * (b[i] * c[j] - b[j] * c[i]);
+  };
+  return {{det3(1, 2, 3), -det3(0, 2, 3), det3(0, 1, 3), -det3(0, 1, 2)}};
 }
 
 // The point where segment pq crosses the plane, when p and q are strictly on opposite sides:
-// with d(x) = n . x - k, it is (d(p) q - d(q) p) / (d(p) - d(q)). Computed once on the exact
-// coordinates and stored evaluated, so that neither the predicates that meet it later nor the
-// exact output walk a lazy construction graph.
+// with d the plane's linear form, it is d(q) p - d(p) q in homogeneous coordinates (integers, so
+// the only gcds are the three that put the coordinates in lowest terms). Stored as an evaluated
+// leaf, so that neither the predicates that meet it later nor the exact output walk a lazy
+// construction graph.
 Point plane_crossing(const ExactPlane& plane, const Point& p, const Point& q) {
-  using EK = Kernel::Exact_kernel;
-  const EK::Point_3 &ep = CGAL::exact(p), &eq = CGAL::exact(q);
-  const EK::FT dp = plane.n * (ep - CGAL::ORIGIN) - plane.k;
-  const EK::FT dq = plane.n * (eq - CGAL::ORIGIN) - plane.k;
-  const EK::FT denominator = dp - dq;
-  return point_from_exact(EK::Point_3((dp * eq.x() - dq * ep.x()) / denominator,
-                                      (dp * eq.y() - dq * ep.y()) / denominator,
-                                      (dp * eq.z() - dq * ep.z()) / denominator));
+  const auto hp = homogeneous_point(p), hq = homogeneous_point(q);
+  const auto& c = plane.coefficients;
+  const mpz_class dp = c[0] * hp[0] + c[1] * hp[1] + c[2] * hp[2] + c[3] * hp[3];
+  const mpz_class dq = c[0] * hq[0] + c[1] * hq[1] + c[2] * hq[2] + c[3] * hq[3];
+  std::array<mpz_class, 4> r;
+  for (int i = 0; i < 4; ++i) r[i] = dq * hp[i] - dp * hq[i];
+  auto coordinate = [&](int i) {
+    mpq_class x(r[i], r[3]);
+    x.canonicalize();
+    return x;
+  };
+  return point_from_exact(Kernel::Exact_kernel::Point_3(coordinate(0), coordinate(1), coordinate(2)));
 }
 
 // A crossing of an input edge (u, v), u < v, of mesh `side` with the plane of facet `facet` of

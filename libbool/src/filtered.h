@@ -119,4 +119,24 @@ CGAL::Orientation exact_orientation_2(const ExactPoint& p, const ExactPoint& q,
   return CGAL::Orientation(sign_of_det3(h(p), h(q), h(r)));
 }
 
+// CGAL::collinear(p, q, r), with the exact stage on integers: three points are collinear when
+// their projections on the three coordinate planes all are.
+inline bool collinear3d(const Point& p, const Point& q, const Point& r) {
+  {
+    CGAL::Protect_FPU_rounding<true> rounding;
+    const auto &ap = CGAL::approx(p), &aq = CGAL::approx(q), &ar = CGAL::approx(r);
+    try {
+      const CGAL::Uncertain<bool> c = CGAL::collinearC3(ap.x(), ap.y(), ap.z(), aq.x(), aq.y(),
+                                                        aq.z(), ar.x(), ar.y(), ar.z());
+      if (CGAL::is_certain(c)) return CGAL::get_certain(c);
+    } catch (const CGAL::Uncertain_conversion_exception&) {
+      // collinearC3 branches on comparisons the intervals could not decide
+    }
+  }
+  const auto &ep = CGAL::exact(p), &eq = CGAL::exact(q), &er = CGAL::exact(r);
+  return exact_orientation_2<0, 1>(ep, eq, er) == CGAL::COLLINEAR &&
+         exact_orientation_2<1, 2>(ep, eq, er) == CGAL::COLLINEAR &&
+         exact_orientation_2<0, 2>(ep, eq, er) == CGAL::COLLINEAR;
+}
+
 }  // namespace morphex::detail
