@@ -12,6 +12,8 @@
 #include <memory>
 
 #include "boolean_internal.h"
+#include "filtered.h"
+#include "projection_traits.h"
 #include "morphex/spatial.h"
 #include "union_find.h"
 
@@ -24,22 +26,57 @@ Kernel::Triangle_3 input_triangle(const Mesh& m, std::uint32_t t) {
   return {m.points[f[0]], m.points[f[1]], m.points[f[2]]};
 }
 
+// Whether the centroid of pqr lies in the closed triangle abc, all in one plane seen along the
+// coordinate axis `dropped`. det(a, b, centroid) = (det(a, b, p) + det(a, b, q) + det(a, b, r)) / 3,
+// so no point is constructed; the sub-triangle lies entirely inside or outside the overlap, so
+// its centroid is rarely near an edge and the interval stage nearly always decides.
+template <int dropped>
+bool centroid_in_triangle(const Point& a, const Point& b, const Point& c, const Point& p,
+                          const Point& q, const Point& r) {
+  constexpr int u = dropped == 0 ? 1 : 0, v = dropped == 2 ? 1 : 2;
+  auto side = [&](const Point& e0, const Point& e1) {
+    return filtered_sign(
+        [](const auto& e0, const auto& e1, const auto& p, const auto& q, const auto& r) {
+          auto det = [&](const auto& x) {
+            return (e1.cartesian(u) - e0.cartesian(u)) * (x.cartesian(v) - e0.cartesian(v)) -
+                   (e1.cartesian(v) - e0.cartesian(v)) * (x.cartesian(u) - e0.cartesian(u));
+          };
+          return det(p) + det(q) + det(r);
+        },
+        e0, e1, p, q, r);
+  };
+  const CGAL::Sign turn = FilteredProjectedOrientation<dropped>()(a, b, c);
+  for (const auto& [e0, e1] : {std::pair<const Point*, const Point*>{&a, &b}, {&b, &c}, {&c, &a}})
+    if (side(*e0, *e1) == -turn) return false;
+  return true;
+}
+
 // The label of one sub-triangle, by an exact test on its centroid.
 Label label_of(const SubTriangle& s, const Mesh& mesh, const Mesh& other, int side,
                const Intersection& x, const TriangleTree& other_tree) {
-  const Point centroid = CGAL::centroid(x.points[s.v[0]], x.points[s.v[1]], x.points[s.v[2]]);
+  const Point &p = x.points[s.v[0]], &q = x.points[s.v[1]], &r = x.points[s.v[2]];
   const auto cut = x.cuts[side].find(s.facet);
-  if (cut != x.cuts[side].end()) {
-    const Kernel::Vector_3 normal =
-        input_triangle(mesh, s.facet).supporting_plane().orthogonal_vector();
+  if (cut != x.cuts[side].end() && !cut->second.coplanar_facets.empty()) {
+    const Triangle& f = mesh.triangles[s.facet];
+    const Point &a = mesh.points[f[0]], &b = mesh.points[f[1]], &c = mesh.points[f[2]];
+    const int dropped = dominant_axis(a, b, c);
     for (std::uint32_t t : cut->second.coplanar_facets) {
-      const Kernel::Triangle_3 facet = input_triangle(other, t);
-      if (!facet.has_on(centroid)) continue;
-      const auto same = CGAL::sign(normal * facet.supporting_plane().orthogonal_vector());
+      const Triangle& g = other.triangles[t];
+      const Point &d = other.points[g[0]], &e = other.points[g[1]], &h = other.points[g[2]];
+      const bool inside = dropped == 0   ? centroid_in_triangle<0>(d, e, h, p, q, r)
+                          : dropped == 1 ? centroid_in_triangle<1>(d, e, h, p, q, r)
+                                         : centroid_in_triangle<2>(d, e, h, p, q, r);
+      if (!inside) continue;
+      // Same or opposite normals: the sign of ((b - a) x (c - a)) . ((e - d) x (h - d)).
+      const auto same = filtered_sign(
+          [](const auto& a, const auto& b, const auto& c, const auto& d, const auto& e,
+             const auto& h) { return CGAL::cross_product(b - a, c - a) * CGAL::cross_product(e - d, h - d); },
+          a, b, c, d, e, h);
       return same == CGAL::POSITIVE ? Label::CoplanarSame : Label::CoplanarOpposite;
     }
   }
-  return winding_number(other, other_tree, centroid) != 0 ? Label::Inside : Label::Outside;
+  return winding_number(other, other_tree, CGAL::centroid(p, q, r)) != 0 ? Label::Inside
+                                                                         : Label::Outside;
 }
 
 }  // namespace

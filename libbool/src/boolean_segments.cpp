@@ -23,6 +23,7 @@
 #include "boolean_internal.h"
 #include "filtered.h"
 #include "point_index.h"
+#include "projection_traits.h"
 
 namespace morphex::detail {
 
@@ -45,7 +46,6 @@ class PointStore {
 struct Corners {
   const Point* p[3];
   const Point& operator[](int i) const { return *p[i]; }
-  Kernel::Triangle_3 lazy() const { return {*p[0], *p[1], *p[2]}; }
 };
 
 Corners triangle(const Mesh& m, std::uint32_t t) {
@@ -142,6 +142,73 @@ Point plane_crossing(const ExactPlane& plane, const Point& p, const Point& q) {
     return x;
   };
   return point_from_exact(Kernel::Exact_kernel::Point_3(coordinate(0), coordinate(1), coordinate(2)));
+}
+
+// The vertical plane through the line ab of the coordinate plane that drops axis `dropped`: the
+// points whose projection lies on that line. Crossing it with a segment of the common plane of
+// two coplanar triangles gives the exact point where the segment meets the line.
+ExactPlane plane_through_projected_line(int dropped, const Point& a, const Point& b) {
+  const auto ha = homogeneous_point(a), hb = homogeneous_point(b);
+  const int u = dropped == 0 ? 1 : 0, v = dropped == 2 ? 1 : 2;
+  ExactPlane plane;
+  plane.coefficients[dropped] = 0;
+  plane.coefficients[u] = ha[v] * hb[3] - ha[3] * hb[v];
+  plane.coefficients[v] = ha[3] * hb[u] - ha[u] * hb[3];
+  plane.coefficients[3] = ha[u] * hb[v] - ha[v] * hb[u];
+  return plane;
+}
+
+// The overlap of two coplanar, non-degenerate triangles: tb clipped by the three edges of ta in
+// the coordinate plane that drops the dominant axis of their normal (an exact projection: it
+// only selects coordinates). Kept vertices stay the input points; each new vertex is one exact
+// crossing. Returns nothing, one point, the two ends of a segment, or a convex polygon.
+template <int dropped>
+std::vector<Point> coplanar_overlap(const Corners& ta, const Corners& tb) {
+  const FilteredProjectedOrientation<dropped> orient;
+  const int turn = orient(ta[0], ta[1], ta[2]);  // +1 or -1: ta is not degenerate
+  std::vector<Point> polygon = {tb[0], tb[1], tb[2]}, clipped;
+  for (int i = 0; i < 3 && !polygon.empty(); ++i) {
+    const Point &a = ta[i], &b = ta[(i + 1) % 3];
+    clipped.clear();
+    std::vector<int> side(polygon.size());
+    for (std::size_t k = 0; k < polygon.size(); ++k) side[k] = turn * orient(a, b, polygon[k]);
+    for (std::size_t k = 0; k < polygon.size(); ++k) {
+      const std::size_t next = (k + 1) % polygon.size();
+      if (side[k] >= 0) clipped.push_back(polygon[k]);
+      if (side[k] * side[next] < 0)
+        clipped.push_back(plane_crossing(plane_through_projected_line(dropped, a, b), polygon[k],
+                                         polygon[next]));
+    }
+    std::swap(polygon, clipped);
+  }
+  // Touching contacts leave repeated points and flat polygons: reduce to distinct points, and a
+  // polygon without area to the ends of its segment.
+  std::vector<Point> distinct;
+  for (const Point& p : polygon)
+    if (distinct.empty() || p != distinct.back()) distinct.push_back(p);
+  while (distinct.size() > 1 && distinct.front() == distinct.back()) distinct.pop_back();
+  if (distinct.size() < 3) return distinct;
+  bool flat = true;
+  for (std::size_t k = 2; k < distinct.size() && flat; ++k)
+    flat = orient(distinct[0], distinct[1], distinct[k]) == CGAL::COLLINEAR;
+  if (!flat) return distinct;
+  // The extreme points along the segment's line, by exact lexicographic order (which is monotone
+  // along any line).
+  const auto [lo, hi] = std::minmax_element(
+      distinct.begin(), distinct.end(),
+      [](const Point& p, const Point& q) { return CGAL::compare_xyz(p, q) == CGAL::SMALLER; });
+  return {*lo, *hi};
+}
+
+std::vector<Point> coplanar_overlap(const Corners& ta, const Corners& tb) {
+  switch (dominant_axis(ta[0], ta[1], ta[2])) {
+    case 0:
+      return coplanar_overlap<0>(ta, tb);
+    case 1:
+      return coplanar_overlap<1>(ta, tb);
+    default:
+      return coplanar_overlap<2>(ta, tb);
+  }
 }
 
 // A crossing of an input edge (u, v), u < v, of mesh `side` with the plane of facet `facet` of
@@ -307,21 +374,19 @@ Intersection intersect(const Mesh& a, const Mesh& b,
       out.orientation = transversal_orientation(ta, tb, *lo.point, *hi.point);
       return;
     }
-    const auto result = CGAL::intersection(ta.lazy(), tb.lazy());
-    if (!result) return;
-    if (const Point* p = boost::get<Point>(&*result)) {
-      out.kind = PairOutcome::Kind::Point;
-      out.polygon = {*p};
-    } else if (const auto* seg = boost::get<Kernel::Segment_3>(&*result)) {
-      out.kind = PairOutcome::Kind::Segment;
-      out.polygon = {seg->source(), seg->target()};
-      out.orientation = transversal_orientation(ta, tb, out.polygon[0], out.polygon[1]);
-    } else {
-      out.kind = PairOutcome::Kind::Polygon;
-      if (const auto* t = boost::get<Kernel::Triangle_3>(&*result))
-        out.polygon = {t->vertex(0), t->vertex(1), t->vertex(2)};
-      else
-        out.polygon = boost::get<std::vector<Point>>(*result);
+    out.polygon = coplanar_overlap(ta, tb);
+    switch (out.polygon.size()) {
+      case 0:
+        return;
+      case 1:
+        out.kind = PairOutcome::Kind::Point;
+        return;
+      case 2:
+        out.kind = PairOutcome::Kind::Segment;
+        out.orientation = transversal_orientation(ta, tb, out.polygon[0], out.polygon[1]);
+        return;
+      default:
+        out.kind = PairOutcome::Kind::Polygon;
     }
   });
 
