@@ -21,10 +21,6 @@ namespace morphex::detail {
 
 namespace {
 
-Kernel::Triangle_3 input_triangle(const Mesh& m, std::uint32_t t) {
-  const Triangle& f = m.triangles[t];
-  return {m.points[f[0]], m.points[f[1]], m.points[f[2]]};
-}
 
 // Whether the centroid of pqr lies in the closed triangle abc, all in one plane seen along the
 // coordinate axis `dropped`. det(a, b, centroid) = (det(a, b, p) + det(a, b, q) + det(a, b, r)) / 3,

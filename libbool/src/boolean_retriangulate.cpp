@@ -60,8 +60,24 @@ struct FacetCdt {
 }  // namespace
 
 int dominant_axis(const Point& a, const Point& b, const Point& c) {
-  const Kernel::Vector_3 n = CGAL::cross_product(b - a, c - a);
-  const FT ax = CGAL::abs(n.x()), ay = CGAL::abs(n.y()), az = CGAL::abs(n.z());
+  // The largest |normal coordinate|, ties to the lower axis; intervals decide unless two
+  // components are (nearly) equal in size, then the exact normal does.
+  {
+    CGAL::Protect_FPU_rounding<true> rounding;
+    const auto &pa = CGAL::approx(a), &pb = CGAL::approx(b), &pc = CGAL::approx(c);
+    const auto n = CGAL::cross_product(pb - pa, pc - pa);
+    const CGAL::Interval_nt<false> ax = CGAL::abs(n.x()), ay = CGAL::abs(n.y()),
+                                   az = CGAL::abs(n.z());
+    try {
+      if (ax >= ay && ax >= az) return 0;
+      return ay >= az ? 1 : 2;
+    } catch (const CGAL::Uncertain_conversion_exception&) {
+      // two components too close to order with intervals
+    }
+  }
+  const auto &ea = CGAL::exact(a), &eb = CGAL::exact(b), &ec = CGAL::exact(c);
+  const auto n = CGAL::cross_product(eb - ea, ec - ea);
+  const auto ax = CGAL::abs(n.x()), ay = CGAL::abs(n.y()), az = CGAL::abs(n.z());
   if (ax >= ay && ax >= az) return 0;
   return ay >= az ? 1 : 2;
 }
@@ -80,6 +96,16 @@ Refined retriangulate(const Mesh& mesh, int side, const Intersection& x) {
     const std::array<PointId, 3> corners{x.vertex_id[side][f[0]], x.vertex_id[side][f[1]],
                                          x.vertex_id[side][f[2]]};
     const FacetCut& cut = x.cuts[side].at(t);
+    // Touched only at its corners or along its edges (coplanar neighbours, contacts): the facet
+    // stays whole, its touched edges marked on the other surface.
+    const bool only_corners = std::all_of(cut.points.begin(), cut.points.end(), [&](PointId p) {
+      return p == corners[0] || p == corners[1] || p == corners[2];
+    });
+    if (only_corners) {
+      pieces[i].triangles.push_back({corners, t});
+      pieces[i].on_other_surface = cut.segments;
+      return;
+    }
     switch (dominant_axis(x.points[corners[0]], x.points[corners[1]], x.points[corners[2]])) {
       case 0:
         FacetCdt<FilteredProjectionTraits<0>>::run(corners, cut, x, t, pieces[i]);
