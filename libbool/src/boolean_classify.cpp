@@ -10,6 +10,7 @@
 // of a point inside one of their sub-triangles.
 #include <algorithm>
 #include <memory>
+#include <type_traits>
 
 #include "boolean_internal.h"
 #include "filtered.h"
@@ -33,11 +34,14 @@ bool centroid_in_triangle(const Point& a, const Point& b, const Point& c, const 
   auto side = [&](const Point& e0, const Point& e1) {
     return filtered_sign(
         [](const auto& e0, const auto& e1, const auto& p, const auto& q, const auto& r) {
+          // Concrete numbers, not expression templates: coordinates may be returned by value.
+          using Number = std::decay_t<decltype(p.cartesian(0))>;
           auto det = [&](const auto& x) {
-            return (e1.cartesian(u) - e0.cartesian(u)) * (x.cartesian(v) - e0.cartesian(v)) -
-                   (e1.cartesian(v) - e0.cartesian(v)) * (x.cartesian(u) - e0.cartesian(u));
+            const Number du = e1.cartesian(u) - e0.cartesian(u), dv = e1.cartesian(v) - e0.cartesian(v);
+            const Number xu = x.cartesian(u) - e0.cartesian(u), xv = x.cartesian(v) - e0.cartesian(v);
+            return Number(du * xv - dv * xu);
           };
-          return det(p) + det(q) + det(r);
+          return Number(det(p) + det(q) + det(r));
         },
         e0, e1, p, q, r);
   };

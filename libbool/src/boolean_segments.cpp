@@ -66,12 +66,11 @@ CGAL::Sign along_common_line(const Corners& ta, const Corners& tb, const Point& 
       ta[0], ta[1], ta[2], tb[0], tb[1], tb[2], p, q);
 }
 
-// All three vertices of `t` strictly on one side of the plane of `other`.
-bool separated_by_plane(const Corners& t, const Corners& other) {
-  const auto s0 = orient3d(other[0], other[1], other[2], t[0]);
-  if (s0 == CGAL::COPLANAR) return false;
-  return orient3d(other[0], other[1], other[2], t[1]) == s0 &&
-         orient3d(other[0], other[1], other[2], t[2]) == s0;
+// The signs of t's vertices against the plane of `other`; true when all three are strictly on
+// one side (the triangles cannot meet).
+bool signs_against_plane(const Corners& t, const Corners& other, std::int8_t (&signs)[3]) {
+  for (int i = 0; i < 3; ++i) signs[i] = std::int8_t(orient3d(other[0], other[1], other[2], t[i]));
+  return signs[0] != 0 && signs[0] == signs[1] && signs[1] == signs[2];
 }
 
 bool on_an_edge(const Corners& t, const Point& p, const Point& q) {
@@ -285,12 +284,8 @@ Intersection intersect(const Mesh& a, const Mesh& b,
     const auto [ia, ib] = pairs[k];
     const Corners ta = triangle(a, ia), tb = triangle(b, ib);
     PairSigns& s = signs[k];
-    if (separated_by_plane(ta, tb) || separated_by_plane(tb, ta)) return;
+    if (signs_against_plane(ta, tb, s.a) || signs_against_plane(tb, ta, s.b)) return;
     s.separated = false;
-    for (int i = 0; i < 3; ++i) {
-      s.a[i] = std::int8_t(orient3d(tb[0], tb[1], tb[2], ta[i]));
-      s.b[i] = std::int8_t(orient3d(ta[0], ta[1], ta[2], tb[i]));
-    }
     s.coplanar = s.a[0] == 0 && s.a[1] == 0 && s.a[2] == 0;
   });
 

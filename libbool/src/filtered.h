@@ -2,7 +2,8 @@
 // Filtered exact evaluation of expressions over points, without lazy construction nodes: first on
 // the points' interval approximations, then, only when the intervals cannot decide, on their exact
 // coordinates. The expression is generic over the kernel (CGAL's interval and exact kernels both
-// provide the vector, triangle and segment types it builds).
+// provide the vector, triangle and segment types it builds). It must return a concrete number:
+// gmpxx expression templates would refer to temporaries (exact coordinates come by value).
 #pragma once
 
 #include <CGAL/Interval_nt.h>
