@@ -26,9 +26,15 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 Mesh facet_sum_convex(const Mesh& surface, const Triangle& f, const Mesh& b) {
   std::vector<Point> points;
   points.reserve(3 * b.points.size());
+  // The sums are evaluated exactly here, once: the hull's many exact fallbacks (its faces often
+  // hold four coplanar sums) then read stored values instead of walking construction graphs.
   for (VertexIndex v : f) {
-    const Vector offset = surface.points[v] - CGAL::ORIGIN;
-    for (const Point& q : b.points) points.push_back(q + offset);
+    const auto& offset = CGAL::exact(surface.points[v]);
+    for (const Point& q : b.points) {
+      const auto& e = CGAL::exact(q);
+      points.push_back(point_from_exact(
+          {e.x() + offset.x(), e.y() + offset.y(), e.z() + offset.z()}));
+    }
   }
   Mesh piece = convex_hull(points);
   make_exact(piece);
@@ -41,7 +47,10 @@ Mesh triangle_pair_sum(const Mesh& surface, const Triangle& f, const Mesh& b, co
   std::vector<Point> points;
   points.reserve(9);
   for (VertexIndex v : f)
-    for (VertexIndex w : g) points.push_back(surface.points[v] + (b.points[w] - CGAL::ORIGIN));
+    for (VertexIndex w : g) {
+      const auto &p = CGAL::exact(surface.points[v]), &q = CGAL::exact(b.points[w]);
+      points.push_back(point_from_exact({p.x() + q.x(), p.y() + q.y(), p.z() + q.z()}));
+    }
   Mesh piece = convex_hull(points);
   make_exact(piece);
   return piece;

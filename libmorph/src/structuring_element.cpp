@@ -266,7 +266,7 @@ Mesh convex_hull(const std::vector<Point>& points) {
   std::vector<std::array<VertexIndex, 3>> faces;
   CGAL::convex_hull_3(points.begin(), points.end(), hull.points, faces);
   hull.triangles.assign(faces.begin(), faces.end());
-  if (hull.triangles.size() < 4 || signed_volume(hull) == 0) return {};  // flat or lower
+  if (hull.triangles.size() < 4 || signed_volume_sign(hull) == CGAL::ZERO) return {};  // flat
   return hull;
 }
 
