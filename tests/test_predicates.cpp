@@ -41,13 +41,13 @@ TEST(ExactPredicates, Orient3dAgreesWithCgalOnGeneralAndCoplanarPoints) {
   for (int i = 0; i < 3000; ++i) {
     const Point p = random.point(), q = random.point(), r = random.point();
     // Every third s lies exactly on the plane pqr (an exact affine combination).
-    const Point s = i % 3 == 0 ? p + random.weight() * (q - p) + random.weight() * (r - p)
-                               : random.point();
+    const Point s =
+        i % 3 == 0 ? p + random.weight() * (q - p) + random.weight() * (r - p) : random.point();
     const auto expected = CGAL::orientation(p, q, r, s);
     ASSERT_EQ(detail::orient3d(p, q, r, s), expected) << i;
-    ASSERT_EQ(detail::exact_orientation(CGAL::exact(p), CGAL::exact(q), CGAL::exact(r),
-                                        CGAL::exact(s)),
-              expected)
+    ASSERT_EQ(
+        detail::exact_orientation(CGAL::exact(p), CGAL::exact(q), CGAL::exact(r), CGAL::exact(s)),
+        expected)
         << i;
     zeros += expected == CGAL::COPLANAR;
   }

@@ -19,6 +19,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <tbb/global_control.h>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -28,10 +29,9 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <thread>
-#include <tbb/global_control.h>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "morphex/boolean.h"
 #include "morphex/check.h"
@@ -244,9 +244,9 @@ int main(int argc, char** argv) {
   nlohmann::json rows = nlohmann::json::array();
   bool all_agree = true;
   std::cout << std::left << std::setw(36) << "case" << std::right << std::setw(9) << "faces"
-            << std::setw(10) << "morphex" << std::setw(9) << "check" << std::setw(10) << "coref" << std::setw(9) << "ratio"
-            << std::setw(10) << "Nef" << std::setw(9) << "ratio" << std::setw(12) << "tri/s"
-            << std::setw(14) << "MiB m/c/N"
+            << std::setw(10) << "morphex" << std::setw(9) << "check" << std::setw(10) << "coref"
+            << std::setw(9) << "ratio" << std::setw(10) << "Nef" << std::setw(9) << "ratio"
+            << std::setw(12) << "tri/s" << std::setw(14) << "MiB m/c/N"
             << "  volumes\n";
   // Each child first runs its engine once on two small crossing cubes, untimed: one-time costs
   // (thread pool start, first allocations) are not part of the time per operation that a chain of
@@ -320,9 +320,8 @@ int main(int argc, char** argv) {
     };
     std::cout << std::left << std::setw(36) << c.name.substr(0, 35) << std::right << std::setw(9)
               << faces << std::setw(10) << cell(ours, ours.seconds) << std::setw(9)
-              << cell(check, check.seconds) << std::setw(10)
-              << cell(coref, coref.seconds) << std::setw(9)
-              << cell(coref, coref.seconds / ours.seconds) << std::setw(10)
+              << cell(check, check.seconds) << std::setw(10) << cell(coref, coref.seconds)
+              << std::setw(9) << cell(coref, coref.seconds / ours.seconds) << std::setw(10)
               << cell(nef, nef.seconds) << std::setw(9) << cell(nef, nef.seconds / ours.seconds)
               << std::setw(12) << cell(ours, double(faces) / ours.seconds) << ' ' << std::setw(15)
               << (cell(ours, ours.peak_mib) + "/" + cell(coref, coref.peak_mib) + "/" +
@@ -349,8 +348,7 @@ int main(int argc, char** argv) {
     if (phases && ours.ok) {
       std::istringstream in(ours.note);
       std::cout << "    phases:";
-      for (const char* name :
-           {"pairs", "segments", "retriangulate", "classify", "assemble"}) {
+      for (const char* name : {"pairs", "segments", "retriangulate", "classify", "assemble"}) {
         double seconds = 0;
         in >> seconds;
         std::cout << ' ' << name << ' ' << std::setprecision(3) << seconds;
@@ -365,7 +363,8 @@ int main(int argc, char** argv) {
   if (!json_path.empty()) std::ofstream(json_path) << rows.dump(2) << '\n';
   std::cout
       << "ratio = peer time / morphex time (above 1: morphex is faster); tri/s = input "
-         "triangles per second of morphex; MiB = peak memory above the inputs, morphex / corefinement / Nef.\n"
+         "triangles per second of morphex; MiB = peak memory above the inputs, morphex / "
+         "corefinement / Nef.\n"
          "morphex times the operation on trusted inputs, as corefinement does, with exact output "
          "coordinates; check = morphex's validity check of both inputs, which compute_boolean "
          "runs by default; corefinement's output coordinates stay lazy when its clock stops.\n";

@@ -14,18 +14,17 @@
 
 #include "boolean_internal.h"
 #include "filtered.h"
-#include "projection_traits.h"
 #include "morphex/spatial.h"
+#include "projection_traits.h"
 #include "union_find.h"
 
 namespace morphex::detail {
 
 namespace {
 
-
 // Whether the centroid of pqr lies in the closed triangle abc, all in one plane seen along the
-// coordinate axis `dropped`. det(a, b, centroid) = (det(a, b, p) + det(a, b, q) + det(a, b, r)) / 3,
-// so no point is constructed; the sub-triangle lies entirely inside or outside the overlap, so
+// coordinate axis `dropped`. det(a, b, centroid) = (det(a, b, p) + det(a, b, q) + det(a, b, r)) /
+// 3, so no point is constructed; the sub-triangle lies entirely inside or outside the overlap, so
 // its centroid is rarely near an edge and the interval stage nearly always decides.
 template <int dropped>
 bool centroid_in_triangle(const Point& a, const Point& b, const Point& c, const Point& p,
@@ -37,8 +36,10 @@ bool centroid_in_triangle(const Point& a, const Point& b, const Point& c, const 
           // Concrete numbers, not expression templates: coordinates may be returned by value.
           using Number = std::decay_t<decltype(p.cartesian(0))>;
           auto det = [&](const auto& x) {
-            const Number du = e1.cartesian(u) - e0.cartesian(u), dv = e1.cartesian(v) - e0.cartesian(v);
-            const Number xu = x.cartesian(u) - e0.cartesian(u), xv = x.cartesian(v) - e0.cartesian(v);
+            const Number du = e1.cartesian(u) - e0.cartesian(u),
+                         dv = e1.cartesian(v) - e0.cartesian(v);
+            const Number xu = x.cartesian(u) - e0.cartesian(u),
+                         xv = x.cartesian(v) - e0.cartesian(v);
             return Number(du * xv - dv * xu);
           };
           return Number(det(p) + det(q) + det(r));
@@ -70,7 +71,9 @@ Label label_of(const SubTriangle& s, const Mesh& mesh, const Mesh& other, int si
       // Same or opposite normals: the sign of ((b - a) x (c - a)) . ((e - d) x (h - d)).
       const auto same = filtered_sign(
           [](const auto& a, const auto& b, const auto& c, const auto& d, const auto& e,
-             const auto& h) { return CGAL::cross_product(b - a, c - a) * CGAL::cross_product(e - d, h - d); },
+             const auto& h) {
+            return CGAL::cross_product(b - a, c - a) * CGAL::cross_product(e - d, h - d);
+          },
           a, b, c, d, e, h);
       return same == CGAL::POSITIVE ? Label::CoplanarSame : Label::CoplanarOpposite;
     }
@@ -173,9 +176,9 @@ std::vector<Label> classify(const Mesh& mesh, const Mesh& other, int side, const
         ++counts.by_orientation_rule;
       } else {
         if (!other_tree && !other.empty()) other_tree = std::make_unique<TriangleTree>(other);
-        label = std::int8_t(other.empty() ? Label::Outside
-                                          : label_of(refined.triangles[i], mesh, other, side, x,
-                                                     *other_tree));
+        label = std::int8_t(
+            other.empty() ? Label::Outside
+                          : label_of(refined.triangles[i], mesh, other, side, x, *other_tree));
         ++counts.by_ray_cast;
       }
     }

@@ -75,8 +75,7 @@ bool signs_against_plane(const Corners& t, const Corners& other, std::int8_t (&s
 
 bool on_an_edge(const Corners& t, const Point& p, const Point& q) {
   for (int i = 0; i < 3; ++i)
-    if (collinear3d(t[i], t[(i + 1) % 3], p) && collinear3d(t[i], t[(i + 1) % 3], q))
-      return true;
+    if (collinear3d(t[i], t[(i + 1) % 3], p) && collinear3d(t[i], t[(i + 1) % 3], q)) return true;
   return false;
 }
 
@@ -114,8 +113,9 @@ std::array<mpz_class, 4> homogeneous_point(const Point& p) {
   return homogeneous<3>({&e.x(), &e.y(), &e.z()});
 }
 
-ExactPlane exact_plane(const Corners& t) {
-  const auto a = homogeneous_point(t[0]), b = homogeneous_point(t[1]), c = homogeneous_point(t[2]);
+using Homogeneous = std::array<mpz_class, 4>;
+
+ExactPlane exact_plane(const Homogeneous& a, const Homogeneous& b, const Homogeneous& c) {
   auto det3 = [&](int i, int j, int k) -> mpz_class {
     return a[i] * (b[j] * c[k] - b[k] * c[j]) - a[j] * (b[i] * c[k] - b[k] * c[i]) +
            a[k] * (b[i] * c[j] - b[j] * c[i]);
@@ -128,20 +128,46 @@ ExactPlane exact_plane(const Corners& t) {
 // the only gcds are the three that put the coordinates in lowest terms). Stored as an evaluated
 // leaf, so that neither the predicates that meet it later nor the exact output walk a lazy
 // construction graph.
-Point plane_crossing(const ExactPlane& plane, const Point& p, const Point& q) {
-  const auto hp = homogeneous_point(p), hq = homogeneous_point(q);
+Point plane_crossing(const ExactPlane& plane, const Homogeneous& hp, const Homogeneous& hq) {
   const auto& c = plane.coefficients;
   const mpz_class dp = c[0] * hp[0] + c[1] * hp[1] + c[2] * hp[2] + c[3] * hp[3];
   const mpz_class dq = c[0] * hq[0] + c[1] * hq[1] + c[2] * hq[2] + c[3] * hq[3];
-  std::array<mpz_class, 4> r;
+  Homogeneous r;
   for (int i = 0; i < 4; ++i) r[i] = dq * hp[i] - dp * hq[i];
   auto coordinate = [&](int i) {
     mpq_class x(r[i], r[3]);
     x.canonicalize();
     return x;
   };
-  return point_from_exact(Kernel::Exact_kernel::Point_3(coordinate(0), coordinate(1), coordinate(2)));
+  return point_from_exact(
+      Kernel::Exact_kernel::Point_3(coordinate(0), coordinate(1), coordinate(2)));
 }
+
+Point plane_crossing(const ExactPlane& plane, const Point& p, const Point& q) {
+  return plane_crossing(plane, homogeneous_point(p), homogeneous_point(q));
+}
+
+// Homogeneous coordinates of the input vertices the crossings need, each converted once (a vertex
+// serves every crossing of its edges and every plane of its facets).
+class HomogeneousVertices {
+ public:
+  HomogeneousVertices(const Mesh& mesh, std::vector<VertexIndex> vertices)
+      : vertices_(std::move(vertices)) {
+    std::sort(vertices_.begin(), vertices_.end());
+    vertices_.erase(std::unique(vertices_.begin(), vertices_.end()), vertices_.end());
+    forms_.resize(vertices_.size());
+    tbb::parallel_for(std::size_t(0), vertices_.size(), [&](std::size_t i) {
+      forms_[i] = homogeneous_point(mesh.points[vertices_[i]]);
+    });
+  }
+  const Homogeneous& operator()(VertexIndex v) const {
+    return forms_[std::lower_bound(vertices_.begin(), vertices_.end(), v) - vertices_.begin()];
+  }
+
+ private:
+  std::vector<VertexIndex> vertices_;
+  std::vector<Homogeneous> forms_;
+};
 
 // The vertical plane through the line ab of the coordinate plane that drops axis `dropped`: the
 // points whose projection lies on that line. Crossing it with a segment of the common plane of
@@ -175,8 +201,8 @@ std::vector<Point> coplanar_overlap(const Corners& ta, const Corners& tb) {
       const std::size_t next = (k + 1) % polygon.size();
       if (side[k] >= 0) clipped.push_back(polygon[k]);
       if (side[k] * side[next] < 0)
-        clipped.push_back(plane_crossing(plane_through_projected_line(dropped, a, b), polygon[k],
-                                         polygon[next]));
+        clipped.push_back(
+            plane_crossing(plane_through_projected_line(dropped, a, b), polygon[k], polygon[next]));
     }
     std::swap(polygon, clipped);
   }
@@ -248,8 +274,8 @@ void for_each_crossing_edge(const Triangle& f, const std::int8_t (&signs)[3], Vi
 // What one candidate pair leaves on its two facets, before point ids are given.
 struct PairOutcome {
   enum class Kind : std::uint8_t { None, Point, Segment, Polygon } kind = Kind::None;
-  ChordEnd lo, hi;              // Point: lo; Segment: lo -> hi (non-coplanar pairs)
-  std::vector<Point> polygon;   // coplanar pairs: the point, segment ends or overlap polygon
+  ChordEnd lo, hi;             // Point: lo; Segment: lo -> hi (non-coplanar pairs)
+  std::vector<Point> polygon;  // coplanar pairs: the point, segment ends or overlap polygon
   CGAL::Sign orientation = CGAL::ZERO;  // transversal segments: sign((Na x Nb) . (hi - lo))
 };
 
@@ -310,14 +336,22 @@ Intersection intersect(const Mesh& a, const Mesh& b,
     if (i == 0 || keys[i].side != keys[i - 1].side || keys[i].facet != keys[i - 1].facet)
       group_begin.push_back(i);
   group_begin.push_back(keys.size());
+  std::vector<VertexIndex> used[2];  // per mesh: edge ends and plane corners
+  for (const CrossingKey& k : keys) {
+    used[k.side].push_back(k.u);
+    used[k.side].push_back(k.v);
+    for (VertexIndex v : meshes[1 - k.side]->triangles[k.facet]) used[1 - k.side].push_back(v);
+  }
+  const HomogeneousVertices homogeneous_of[2] = {{a, std::move(used[0])}, {b, std::move(used[1])}};
   std::vector<Point> crossing_points(keys.size());
   tbb::parallel_for(std::size_t(0), group_begin.size() - 1, [&](std::size_t g) {
     const CrossingKey& first = keys[group_begin[g]];
-    const Mesh& edges_mesh = *meshes[first.side];
-    const ExactPlane plane = exact_plane(triangle(*meshes[1 - first.side], first.facet));
+    const HomogeneousVertices& edge_ends = homogeneous_of[first.side];
+    const HomogeneousVertices& corners = homogeneous_of[1 - first.side];
+    const Triangle& f = meshes[1 - first.side]->triangles[first.facet];
+    const ExactPlane plane = exact_plane(corners(f[0]), corners(f[1]), corners(f[2]));
     for (std::size_t i = group_begin[g]; i < group_begin[g + 1]; ++i)
-      crossing_points[i] =
-          plane_crossing(plane, edges_mesh.points[keys[i].u], edges_mesh.points[keys[i].v]);
+      crossing_points[i] = plane_crossing(plane, edge_ends(keys[i].u), edge_ends(keys[i].v));
   });
 
   std::vector<PairOutcome> outcomes(np);
@@ -338,7 +372,8 @@ Intersection intersect(const Mesh& a, const Mesh& b,
           if (s[i] == 0) ends[count++] = {&t[i], x.vertex_id[side][f[i]]};
         for_each_crossing_edge(f, s, [&](int i, int j) {
           const CrossingKey key{side, other_facet, std::min(f[i], f[j]), std::max(f[i], f[j])};
-          const auto c = std::uint32_t(std::lower_bound(keys.begin(), keys.end(), key) - keys.begin());
+          const auto c =
+              std::uint32_t(std::lower_bound(keys.begin(), keys.end(), key) - keys.begin());
           ends[count++] = {&crossing_points[c], ChordEnd::kNoPoint, c};
         });
         return std::make_pair(ends, count);

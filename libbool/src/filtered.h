@@ -75,12 +75,10 @@ inline int sign_of_det4(const std::array<mpz_class, 4>& r0, const std::array<mpz
                         const std::array<mpz_class, 4>& r2, const std::array<mpz_class, 4>& r3) {
   auto minor = [](const std::array<mpz_class, 4>& a, const std::array<mpz_class, 4>& b, int i,
                   int j) -> mpz_class { return a[i] * b[j] - a[j] * b[i]; };
-  const mpz_class d = minor(r0, r1, 0, 1) * minor(r2, r3, 2, 3) -
-                      minor(r0, r1, 0, 2) * minor(r2, r3, 1, 3) +
-                      minor(r0, r1, 0, 3) * minor(r2, r3, 1, 2) +
-                      minor(r0, r1, 1, 2) * minor(r2, r3, 0, 3) -
-                      minor(r0, r1, 1, 3) * minor(r2, r3, 0, 2) +
-                      minor(r0, r1, 2, 3) * minor(r2, r3, 0, 1);
+  const mpz_class d =
+      minor(r0, r1, 0, 1) * minor(r2, r3, 2, 3) - minor(r0, r1, 0, 2) * minor(r2, r3, 1, 3) +
+      minor(r0, r1, 0, 3) * minor(r2, r3, 1, 2) + minor(r0, r1, 1, 2) * minor(r2, r3, 0, 3) -
+      minor(r0, r1, 1, 3) * minor(r2, r3, 0, 2) + minor(r0, r1, 2, 3) * minor(r2, r3, 0, 1);
   return sgn(d);
 }
 
@@ -95,15 +93,14 @@ inline CGAL::Orientation exact_orientation(const ExactPoint& p, const ExactPoint
 }
 
 // The same sign as CGAL::orientation on Epeck points: intervals first, integers when undecided.
-inline CGAL::Orientation orient3d(const Point& p, const Point& q, const Point& r,
-                                  const Point& s) {
+inline CGAL::Orientation orient3d(const Point& p, const Point& q, const Point& r, const Point& s) {
   {
     CGAL::Protect_FPU_rounding<true> rounding;
     const auto &ap = CGAL::approx(p), &aq = CGAL::approx(q), &ar = CGAL::approx(r),
                &as = CGAL::approx(s);
-    const CGAL::Uncertain<CGAL::Sign> o = CGAL::orientationC3(
-        ap.x(), ap.y(), ap.z(), aq.x(), aq.y(), aq.z(), ar.x(), ar.y(), ar.z(), as.x(), as.y(),
-        as.z());
+    const CGAL::Uncertain<CGAL::Sign> o =
+        CGAL::orientationC3(ap.x(), ap.y(), ap.z(), aq.x(), aq.y(), aq.z(), ar.x(), ar.y(), ar.z(),
+                            as.x(), as.y(), as.z());
     if (CGAL::is_certain(o)) return CGAL::get_certain(o);
   }
   return exact_orientation(CGAL::exact(p), CGAL::exact(q), CGAL::exact(r), CGAL::exact(s));
@@ -113,9 +110,7 @@ inline CGAL::Orientation orient3d(const Point& p, const Point& q, const Point& r
 template <int u, int v>
 CGAL::Orientation exact_orientation_2(const ExactPoint& p, const ExactPoint& q,
                                       const ExactPoint& r) {
-  auto h = [](const ExactPoint& a) {
-    return homogeneous<2>({&a.cartesian(u), &a.cartesian(v)});
-  };
+  auto h = [](const ExactPoint& a) { return homogeneous<2>({&a.cartesian(u), &a.cartesian(v)}); };
   // det [p 1; q 1; r 1] = det(q - p, r - p), and the W factors are positive.
   return CGAL::Orientation(sign_of_det3(h(p), h(q), h(r)));
 }
@@ -127,8 +122,8 @@ inline bool collinear3d(const Point& p, const Point& q, const Point& r) {
     CGAL::Protect_FPU_rounding<true> rounding;
     const auto &ap = CGAL::approx(p), &aq = CGAL::approx(q), &ar = CGAL::approx(r);
     try {
-      const CGAL::Uncertain<bool> c = CGAL::collinearC3(ap.x(), ap.y(), ap.z(), aq.x(), aq.y(),
-                                                        aq.z(), ar.x(), ar.y(), ar.z());
+      const CGAL::Uncertain<bool> c =
+          CGAL::collinearC3(ap.x(), ap.y(), ap.z(), aq.x(), aq.y(), aq.z(), ar.x(), ar.y(), ar.z());
       if (CGAL::is_certain(c)) return CGAL::get_certain(c);
     } catch (const CGAL::Uncertain_conversion_exception&) {
       // collinearC3 branches on comparisons the intervals could not decide

@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <type_traits>
 #include <optional>
 #include <stdexcept>
+#include <type_traits>
 
 namespace morphex::detail {
 
@@ -31,7 +31,8 @@ std::optional<std::array<double, 3>> double_coordinates(const Point& p) {
 
 std::uint64_t hash_integer(mpz_srcptr z, std::uint64_t h) {
   h = mix64(h ^ std::uint64_t(std::int64_t(mpz_sgn(z))));
-  for (std::size_t i = 0, n = mpz_size(z); i < n; ++i) h = mix64(h ^ std::uint64_t(mpz_getlimbn(z, i)));
+  for (std::size_t i = 0, n = mpz_size(z); i < n; ++i)
+    h = mix64(h ^ std::uint64_t(mpz_getlimbn(z, i)));
   return h;
 }
 

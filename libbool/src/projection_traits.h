@@ -60,16 +60,16 @@ struct FilteredProjectedSideOfOrientedCircle {
       CGAL::Protect_FPU_rounding<true> rounding;
       const auto &ap = CGAL::approx(p), &aq = CGAL::approx(q), &ar = CGAL::approx(r),
                  &at = CGAL::approx(t);
-      const auto s = CGAL::side_of_oriented_circleC2(
-          C::first(ap), C::second(ap), C::first(aq), C::second(aq), C::first(ar), C::second(ar),
-          C::first(at), C::second(at));
+      const auto s =
+          CGAL::side_of_oriented_circleC2(C::first(ap), C::second(ap), C::first(aq), C::second(aq),
+                                          C::first(ar), C::second(ar), C::first(at), C::second(at));
       if (CGAL::is_certain(s)) return CGAL::get_certain(s);
     }
     const auto &ep = CGAL::exact(p), &eq = CGAL::exact(q), &er = CGAL::exact(r),
                &et = CGAL::exact(t);
-    return CGAL::side_of_oriented_circleC2(C::first(ep), C::second(ep), C::first(eq),
-                                           C::second(eq), C::first(er), C::second(er),
-                                           C::first(et), C::second(et));
+    return CGAL::side_of_oriented_circleC2(C::first(ep), C::second(ep), C::first(eq), C::second(eq),
+                                           C::first(er), C::second(er), C::first(et),
+                                           C::second(et));
   }
 };
 

@@ -100,8 +100,8 @@ bool same_position(const Mesh& m, VertexIndex a, VertexIndex b) {
 bool triangles_intersect_improperly(const Mesh& mesh, std::uint32_t i, std::uint32_t j) {
   const Triangle& f = mesh.triangles[i];
   const Triangle& g = mesh.triangles[j];
-  const Point *pf[3] = {&mesh.points[f[0]], &mesh.points[f[1]], &mesh.points[f[2]]};
-  const Point *pg[3] = {&mesh.points[g[0]], &mesh.points[g[1]], &mesh.points[g[2]]};
+  const Point* pf[3] = {&mesh.points[f[0]], &mesh.points[f[1]], &mesh.points[f[2]]};
+  const Point* pg[3] = {&mesh.points[g[0]], &mesh.points[g[1]], &mesh.points[g[2]]};
   // Degenerate faces are reported on their own; CGAL's triangle predicates require proper ones.
   if (CGAL::collinear(*pf[0], *pf[1], *pf[2]) || CGAL::collinear(*pg[0], *pg[1], *pg[2]))
     return false;
@@ -126,8 +126,8 @@ bool triangles_intersect_improperly(const Mesh& mesh, std::uint32_t i, std::uint
     return CGAL::do_intersect(typename K::Triangle_3(a0, a1, a2),
                               typename K::Triangle_3(b0, b1, b2));
   };
-  auto segment_meets_triangle = [](const auto& s0, const auto& s1, const auto& t0,
-                                   const auto& t1, const auto& t2) {
+  auto segment_meets_triangle = [](const auto& s0, const auto& s1, const auto& t0, const auto& t1,
+                                   const auto& t2) {
     using K = typename CGAL::Kernel_traits<std::decay_t<decltype(s0)>>::Kernel;
     return CGAL::do_intersect(typename K::Segment_3(s0, s1), typename K::Triangle_3(t0, t1, t2));
   };
@@ -136,10 +136,10 @@ bool triangles_intersect_improperly(const Mesh& mesh, std::uint32_t i, std::uint
   if (shared >= 3) return true;  // the same triangle twice
   if (shared == 1) {
     // Anything beyond the common vertex reaches the edge opposite it in one of the triangles.
-    return detail::filtered_test(segment_meets_triangle, *pf[(sf + 1) % 3], *pf[(sf + 2) % 3], *pg[0],
-                         *pg[1], *pg[2]) ||
-           detail::filtered_test(segment_meets_triangle, *pg[(sg + 1) % 3], *pg[(sg + 2) % 3], *pf[0],
-                         *pf[1], *pf[2]);
+    return detail::filtered_test(segment_meets_triangle, *pf[(sf + 1) % 3], *pf[(sf + 2) % 3],
+                                 *pg[0], *pg[1], *pg[2]) ||
+           detail::filtered_test(segment_meets_triangle, *pg[(sg + 1) % 3], *pg[(sg + 2) % 3],
+                                 *pf[0], *pf[1], *pf[2]);
   }
   // A common edge: improper only when the triangles fold onto each other.
   const Point& p = *pf[sf];

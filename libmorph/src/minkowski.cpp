@@ -32,8 +32,8 @@ Mesh facet_sum_convex(const Mesh& surface, const Triangle& f, const Mesh& b) {
     const auto& offset = CGAL::exact(surface.points[v]);
     for (const Point& q : b.points) {
       const auto& e = CGAL::exact(q);
-      points.push_back(point_from_exact(
-          {e.x() + offset.x(), e.y() + offset.y(), e.z() + offset.z()}));
+      points.push_back(
+          point_from_exact({e.x() + offset.x(), e.y() + offset.y(), e.z() + offset.z()}));
     }
   }
   Mesh piece = convex_hull(points);
