@@ -7,6 +7,8 @@
 #include <chrono>
 #include <numeric>
 #include <stdexcept>
+#include <unordered_map>
+#include <vector>
 
 #include "minkowski_internal.h"
 #include "morphex/boolean.h"
@@ -23,12 +25,56 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }
 
 // conv(f + B) for one facet f and a convex B: the hull of three translated copies of B's vertices.
-Mesh facet_sum_convex(const Mesh& surface, const Triangle& f, const Mesh& b) {
+// The surface's facets in convex planar groups: a triangle with its neighbour across one edge
+// when the two are coplanar, alike oriented and make a strictly convex quadrilateral, else alone.
+// For convex B, (f1 u f2) + B = (f1 + B) u (f2 + B), and the sum of a convex quadrilateral with B
+// is convex, so each group is one convex piece: half as many pieces on meshes whose planar faces
+// are split in triangles (CAD models, boxes). Greedy in facet order, so the grouping depends only
+// on the input.
+std::vector<std::vector<VertexIndex>> convex_facet_groups(const Mesh& surface) {
+  const std::size_t nf = surface.triangles.size();
+  std::unordered_map<std::uint64_t, std::uint32_t> face_of_edge;
+  face_of_edge.reserve(3 * nf);
+  auto key = [](VertexIndex u, VertexIndex v) { return (std::uint64_t(u) << 32) | v; };
+  for (std::uint32_t f = 0; f < nf; ++f)
+    for (int i = 0; i < 3; ++i)
+      face_of_edge.emplace(key(surface.triangles[f][i], surface.triangles[f][(i + 1) % 3]), f);
+  const auto& p = surface.points;
+  std::vector<std::uint8_t> grouped(nf, 0);
+  std::vector<std::vector<VertexIndex>> groups;
+  groups.reserve(nf);
+  for (std::uint32_t f = 0; f < nf; ++f) {
+    if (grouped[f]) continue;
+    grouped[f] = 1;
+    const Triangle& t = surface.triangles[f];
+    std::vector<VertexIndex> group(t.begin(), t.end());
+    for (int i = 0; i < 3; ++i) {
+      const VertexIndex u = t[i], v = t[(i + 1) % 3], w = t[(i + 2) % 3];
+      const auto twin = face_of_edge.find(key(v, u));
+      if (twin == face_of_edge.end() || grouped[twin->second]) continue;
+      const Triangle& g = surface.triangles[twin->second];
+      const VertexIndex x = g[0] != u && g[0] != v ? g[0] : g[1] != u && g[1] != v ? g[1] : g[2];
+      // Coplanar, x across uv from w, and u, v across wx from each other: a convex quadrilateral.
+      if (CGAL::orientation(p[u], p[v], p[w], p[x]) != CGAL::COPLANAR ||
+          CGAL::coplanar_orientation(p[u], p[v], p[w], p[x]) != CGAL::NEGATIVE ||
+          CGAL::coplanar_orientation(p[w], p[x], p[u], p[v]) != CGAL::NEGATIVE)
+        continue;
+      grouped[twin->second] = 1;
+      group.push_back(x);
+      break;
+    }
+    groups.push_back(std::move(group));
+  }
+  return groups;
+}
+
+// conv(g + B) for a convex planar group g of facets and a convex B.
+Mesh facet_sum_convex(const Mesh& surface, const std::vector<VertexIndex>& group, const Mesh& b) {
   std::vector<Point> points;
-  points.reserve(3 * b.points.size());
+  points.reserve(group.size() * b.points.size());
   // The sums are evaluated exactly here, once: the hull's many exact fallbacks (its faces often
   // hold four coplanar sums) then read stored values instead of walking construction graphs.
-  for (VertexIndex v : f) {
+  for (VertexIndex v : group) {
     const auto& offset = CGAL::exact(surface.points[v]);
     for (const Point& q : b.points) {
       const auto& e = CGAL::exact(q);
@@ -136,10 +182,10 @@ Mesh boundary_sum(const Mesh& surface, const Mesh& b, bool b_convex, MinkowskiSt
   const auto start = std::chrono::steady_clock::now();
   std::vector<Mesh> pieces, copies;  // convex pieces; translated copies of a non-convex B
   if (b_convex) {
-    pieces.resize(surface.triangles.size());
-    tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t i) {
-      pieces[i] = facet_sum_convex(surface, surface.triangles[i], b);
-    });
+    const std::vector<std::vector<VertexIndex>> groups = convex_facet_groups(surface);
+    pieces.resize(groups.size());
+    tbb::parallel_for(std::size_t(0), pieces.size(),
+                      [&](std::size_t i) { pieces[i] = facet_sum_convex(surface, groups[i], b); });
   } else {
     // f + B = (f + dB) u (p_f + B): pairs of triangles, plus B at every vertex of the surface.
     const std::size_t pairs = surface.triangles.size() * b.triangles.size();
