@@ -57,6 +57,8 @@ std::vector<std::vector<VertexIndex>> convex_facet_groups(const Mesh& surface) {
       // Coplanar, x across uv from w, and u, v across wx from each other: a convex quadrilateral.
       if (CGAL::orientation(p[u], p[v], p[w], p[x]) != CGAL::COPLANAR ||
           CGAL::coplanar_orientation(p[u], p[v], p[w], p[x]) != CGAL::NEGATIVE ||
+          // (u on the line wx: a flat angle, and coplanar_orientation's precondition fails)
+          CGAL::collinear(p[w], p[x], p[u]) ||
           CGAL::coplanar_orientation(p[w], p[x], p[u], p[v]) != CGAL::NEGATIVE)
         continue;
       grouped[twin->second] = 1;

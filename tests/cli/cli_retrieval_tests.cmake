@@ -5,8 +5,12 @@ set(quick ${data}/pipelines/quick-descriptors.json)
 morphex_cli_test(describe_cube 0 "\"granulometry\":\\[1.0,1.0,1.0\\].*\"name\":\"unit_cube\""
   describe --json ${data}/unit_cube.off)
 morphex_cli_test(describe_open_mesh 2 "open_cube.off: mesh is not closed" describe ${data}/open_cube.off)
+# A fresh, existing directory: the index tests create their databases in it, whether or not a
+# generate test has run before them.
 add_test(NAME cli.retrieval_setup COMMAND ${CMAKE_COMMAND} -E rm -rf ${rdir})
-set_tests_properties(cli.retrieval_setup PROPERTIES FIXTURES_SETUP retrieval)
+add_test(NAME cli.retrieval_mkdir COMMAND ${CMAKE_COMMAND} -E make_directory ${rdir})
+set_tests_properties(cli.retrieval_mkdir PROPERTIES DEPENDS cli.retrieval_setup)
+set_tests_properties(cli.retrieval_setup cli.retrieval_mkdir PROPERTIES FIXTURES_SETUP retrieval)
 morphex_cli_test(generate 0 "wrote 6 meshes in 6 classes" generate ${rdir}/coll --per-class 1 --seed 3)
 set_tests_properties(cli.generate PROPERTIES FIXTURES_REQUIRED retrieval)
 # a second collection member per class for the evaluation, and a copy of one mesh under a new name
