@@ -66,7 +66,7 @@ Mesh separate_non_manifold(const std::vector<Point>& points, std::vector<Triangl
   tbb::parallel_for(std::uint32_t(0), std::uint32_t(nf), [&](std::uint32_t f) {
     for (int k = 0; k < 3; ++k) {
       const Edge e = undirected(faces[f][k], faces[f][(k + 1) % 3]);
-      half_edges[f * 3 + k] = {(std::uint64_t(e.first) << 32) | e.second, f * 3 + k};
+      half_edges[f * 3 + k] = {edge_key(e.first, e.second), f * 3 + k};
     }
   });
   tbb::parallel_sort(half_edges.begin(), half_edges.end());

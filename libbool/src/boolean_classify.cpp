@@ -86,10 +86,6 @@ Label label_of(const SubTriangle& s, const Mesh& mesh, const Mesh& other, int si
 
 namespace {
 
-std::uint64_t edge_key(PointId a, PointId b) {  // directed
-  return (std::uint64_t(a) << 32) | b;
-}
-
 // (key, face) records sorted by key: a flat multimap without one allocation per edge.
 using EdgeRecords = std::vector<std::pair<std::uint64_t, std::uint32_t>>;
 

@@ -19,6 +19,12 @@ inline Edge undirected(PointId a, PointId b) {
   return a < b ? Edge{a, b} : Edge{b, a};
 }
 
+// An edge (a, b) as one 64-bit key, for hash tables and sorted edge records: directed as given;
+// pass undirected(a, b) for the undirected edge.
+inline std::uint64_t edge_key(PointId a, PointId b) {
+  return (std::uint64_t(a) << 32) | b;
+}
+
 struct EdgeHash {
   std::size_t operator()(const Edge& e) const {
     return std::hash<std::uint64_t>()((std::uint64_t(e.first) << 32) | e.second);

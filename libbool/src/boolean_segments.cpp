@@ -7,12 +7,10 @@
 // it; an edge/plane crossing is constructed once per (edge, facet) and shared by both facets of the
 // edge. The two chords lie on the planes' common line and their overlap, ordered by exact
 // predicates along that line, is the intersection: a segment, a point, or nothing. Coplanar pairs
-// take CGAL's exact triangle/triangle intersection (the overlap polygon). Points are stored once
-// by exact position.
+// clip one triangle by the other in their common plane (the overlap polygon). Points are stored
+// once by exact position.
 // Unlike the seed, point-only contacts are kept (as Steiner points) and coplanar overlaps insert
 // their boundary, so every sub-triangle ends up entirely inside, outside or on the other surface.
-#include <CGAL/intersections.h>
-
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -108,12 +106,9 @@ struct ExactPlane {
   std::array<mpz_class, 4> coefficients;
 };
 
-std::array<mpz_class, 4> homogeneous_point(const Point& p) {
-  const auto& e = CGAL::exact(p);
-  return homogeneous<3>({&e.x(), &e.y(), &e.z()});
+Homogeneous homogeneous_point(const Point& p) {
+  return detail::homogeneous_point(CGAL::exact(p));
 }
-
-using Homogeneous = std::array<mpz_class, 4>;
 
 ExactPlane exact_plane(const Homogeneous& a, const Homogeneous& b, const Homogeneous& c) {
   auto det3 = [&](int i, int j, int k) -> mpz_class {

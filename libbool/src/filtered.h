@@ -83,13 +83,18 @@ inline int sign_of_det4(const std::array<mpz_class, 4>& r0, const std::array<mpz
 }
 
 using ExactPoint = Kernel::Exact_kernel::Point_3;
+using Homogeneous = std::array<mpz_class, 4>;
+
+inline Homogeneous homogeneous_point(const ExactPoint& p) {
+  return homogeneous<3>({&p.x(), &p.y(), &p.z()});
+}
 
 // CGAL::orientation(p, q, r, s) = sign det(q - p, r - p, s - p), exactly.
 inline CGAL::Orientation exact_orientation(const ExactPoint& p, const ExactPoint& q,
                                            const ExactPoint& r, const ExactPoint& s) {
-  auto h = [](const ExactPoint& a) { return homogeneous<3>({&a.x(), &a.y(), &a.z()}); };
   // det [p 1; q 1; r 1; s 1] = -det(q - p, r - p, s - p), and the W factors are positive.
-  return CGAL::Orientation(-sign_of_det4(h(p), h(q), h(r), h(s)));
+  return CGAL::Orientation(-sign_of_det4(homogeneous_point(p), homogeneous_point(q),
+                                         homogeneous_point(r), homogeneous_point(s)));
 }
 
 // The same sign as CGAL::orientation on Epeck points: intervals first, integers when undecided.

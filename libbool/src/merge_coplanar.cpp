@@ -26,10 +26,6 @@ namespace {
 
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 
-std::uint64_t key(VertexIndex a, VertexIndex b) {
-  return (std::uint64_t(a) << 32) | b;
-}
-
 // The region's new triangles, or nullopt when the region must stay as it is.
 template <class Traits>
 std::optional<std::vector<Triangle>> triangulate_region(
@@ -114,9 +110,10 @@ Mesh merge_coplanar_faces(const Mesh& solid, const std::vector<FaceOrigin>* orig
   FlatMap<std::uint64_t, std::uint32_t, Hash64> face_of_edge(3 * nf);
   for (std::uint32_t f = 0; f < nf; ++f)
     for (int i = 0; i < 3; ++i)
-      face_of_edge.emplace(key(solid.triangles[f][i], solid.triangles[f][(i + 1) % 3]), f);
+      face_of_edge.emplace(detail::edge_key(solid.triangles[f][i], solid.triangles[f][(i + 1) % 3]),
+                           f);
   auto twin_face = [&](VertexIndex u, VertexIndex v) {
-    const std::uint32_t* face = face_of_edge.find(key(v, u));
+    const std::uint32_t* face = face_of_edge.find(detail::edge_key(v, u));
     return face ? *face : kNone;
   };
   const auto& p = solid.points;

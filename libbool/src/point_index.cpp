@@ -15,9 +15,10 @@ namespace {
 // The three coordinates as doubles when each one is exactly a double, without exact evaluation
 // whenever the interval approximation already says so. (+0.0 stands for -0.0: equal values.)
 std::optional<std::array<double, 3>> double_coordinates(const Point& p) {
-  const auto& a = CGAL::approx(p);
-  if (a.x().is_point() && a.y().is_point() && a.z().is_point())
+  if (has_double_coordinates(p)) {
+    const auto& a = CGAL::approx(p);
     return std::array<double, 3>{a.x().inf() + 0.0, a.y().inf() + 0.0, a.z().inf() + 0.0};
+  }
   const auto& e = CGAL::exact(p);
   std::array<double, 3> c{};
   using Exact = std::decay_t<decltype(e.x())>;
