@@ -295,6 +295,77 @@ TEST(Boolean, VertexOnAFacetAndEdgeInAFacet) {
   check_identities(cube, translated(make_tetrahedron(), Kernel::Vector_3(-1, -1, 1)));
 }
 
+// Inputs whose own non-manifold features are separated (coincident vertices and edges that are
+// distinct in the mesh): the other operand crosses the doubled edge's interior, touches it with
+// vertices, or is the same solid. Point identity must merge the coincident features where the
+// other mesh meets them, so that every result is a valid solid with exact volumes.
+TEST(Boolean, SeparatedFeaturesOfAnInputAreCrossedAndTouched) {
+  Mesh along_edge, at_vertex;
+  ASSERT_EQ(checked_volume(box_mesh(kUnit), box_mesh(shifted(kUnit, 1, 1, 0)), BooleanOp::Union,
+                           &along_edge),
+            FT(2));
+  ASSERT_EQ(checked_volume(box_mesh(kUnit), box_mesh(shifted(kUnit, 1, 1, 1)), BooleanOp::Union,
+                           &at_vertex),
+            FT(2));
+  const Point on_edge(1, 1, FT(1) / 2);
+  // Octahedron on the doubled edge: two vertices on the edge, four on the faces around it.
+  const Mesh octahedron = translated(make_octahedron(FT(1) / 4), on_edge - CGAL::ORIGIN);
+  // A box turned about the edge by a rational angle: the edge crosses its top and bottom faces.
+  const Mesh turned = translated(transformed(make_box(Point(FT(-1) / 4, FT(-1) / 4, FT(1) / 4),
+                                                      Point(FT(1) / 4, FT(1) / 4, FT(3) / 4)),
+                                             quaternion_rotation(5, 0, 0, 2)),
+                                 Vector(1, 1, 0));
+  // A tetrahedron whose edge PQ crosses the doubled edge at its midpoint (an edge/edge contact):
+  // the unit tetrahedron mapped by x -> P + [Q - P, R - P, S - P] x.
+  const FT h = FT(1) / 2, q = FT(1) / 4;
+  const Mesh crossing_edge =
+      transformed(make_tetrahedron(), Transformation(1, 1, 1, h, -1, 0, 0, 3 * h, 0, q, -q, h));
+  for (const Mesh* solid : {&along_edge, &at_vertex}) {
+    for (const Mesh* other : {&octahedron, &turned, &crossing_edge})
+      check_identities(*solid, *other);
+    check_identities(*solid, *solid);
+    check_identities(*solid, translated(*solid, Vector(FT(1) / 3, FT(1) / 5, FT(1) / 7)));
+    check_identities(*solid, translated(*solid, Vector(1, 0, 0)));
+  }
+  // the octahedron meets each cube in a quarter of its volume: (4/3) r^3 / 4 each
+  const FT quarter = FT(4) / 3 * FT(1) / 64 / 4;
+  EXPECT_EQ(checked_volume(along_edge, octahedron, BooleanOp::Intersection), 2 * quarter);
+}
+
+// A box minus two cubes sharing an edge, the edge inside the box: along the edge the result is
+// two opposite wedges, but around each end it is one piece, so no vertex copy tells the two
+// pairs of faces on the edge apart. Each pair is split at its own copy of the edge's midpoint.
+TEST(Boolean, WedgesMeetingAlongAnEdgeInsideTheResult) {
+  Mesh cubes;
+  ASSERT_EQ(
+      checked_volume(box_mesh(kUnit), box_mesh(shifted(kUnit, 1, 1, 0)), BooleanOp::Union, &cubes),
+      FT(2));
+  const Mesh outer = make_box(Point(-1, -1, -1), Point(3, 3, 2));
+  Mesh carved;
+  EXPECT_EQ(checked_volume(outer, cubes, BooleanOp::Difference, &carved), FT(48 - 2));
+  EXPECT_EQ(check_mesh(carved).non_manifold_edges, 0u);
+  // the carved solid is a valid input: cut it through the doubled edge and fill one cube back
+  check_identities(carved, make_box(Point(0, 0, FT(1) / 2), Point(2, 2, 3)));
+  check_identities(carved, cubes);
+  EXPECT_EQ(checked_volume(carved, box_mesh(kUnit), BooleanOp::Union), FT(48 - 1));
+}
+
+TEST(Boolean, LazyAndEvaluatedOutputsAreTheSameSolid) {
+  const Mesh a = make_icosphere(2, FT(1));
+  const Mesh b = transformed(a, quaternion_rotation(9, 1, 2, 3));
+  BooleanOptions evaluated;
+  evaluated.exact_output = true;
+  for (BooleanOp op : {BooleanOp::Union, BooleanOp::Intersection, BooleanOp::Difference}) {
+    const BooleanResult lazy = compute_boolean(a, b, op),
+                        exact = compute_boolean(a, b, op, evaluated);
+    ASSERT_TRUE(lazy.ok() && exact.ok());
+    EXPECT_EQ(lazy.mesh.triangles, exact.mesh.triangles);
+    ASSERT_EQ(lazy.mesh.points.size(), exact.mesh.points.size());
+    for (std::size_t i = 0; i < lazy.mesh.points.size(); ++i)
+      EXPECT_EQ(CGAL::exact(lazy.mesh.points[i]), CGAL::exact(exact.mesh.points[i])) << i;
+  }
+}
+
 TEST(ManySolids, TreeUnionAndNaryUnionOfConvexSolidsAgreeExactly) {
   // Three boxes crossing pairwise (their faces meet at triple points), touching and coplanar
   // cubes, nested and disjoint ones, and crossing icospheres: both unions, same exact volume.

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // stress [--seed S] [--count N] [--out DIR]: randomized exact Booleans and morphology.
-// Random solids (boxes on a 1/4 grid, cubes, tetrahedra, octahedra, icospheres, L-shapes) under
+// Random solids (boxes on a 1/4 grid, cubes, tetrahedra, octahedra, icospheres, L-shapes, cube
+// pairs sharing only an edge or a vertex, whose contact is separated) under
 // random rational rigid motions, chosen so that coplanar faces, shared edges and vertices and
 // nesting are frequent. Every result must be a valid solid and satisfy the exact identities
 //   vol(A u B) + vol(A n B) = vol(A) + vol(B),   vol(A - B) = vol(A) - vol(A n B);
@@ -31,7 +32,7 @@ class RandomSolids {
   FT grid(int lo, int hi) { return FT(pick(lo, hi)) / 4; }  // quarters: contacts are frequent
 
   Mesh shape() {
-    switch (pick(0, 5)) {
+    switch (pick(0, 7)) {
       case 0: {
         const FT x = grid(-4, 0), y = grid(-4, 0), z = grid(-4, 0);
         return make_box(Point(x, y, z), Point(x + grid(1, 8), y + grid(1, 8), z + grid(1, 8)));
@@ -44,10 +45,19 @@ class RandomSolids {
         return make_octahedron(grid(1, 6));
       case 4:
         return make_icosphere(1, FT(1));
-      default:
+      case 5:
         return compute_boolean(make_box(Point(0, 0, 0), Point(2, 1, 1)),
                                make_box(Point(0, 0, 0), Point(1, 2, 1)), BooleanOp::Union)
             .mesh;
+      default: {
+        // Two cubes sharing only an edge or only a vertex: a solid whose non-manifold feature is
+        // separated into coincident vertices (and edges).
+        const FT s = grid(2, 4), z = pick(6, 7) == 6 ? FT(0) : s;
+        return compute_boolean(make_box(Point(0, 0, 0), Point(s, s, s)),
+                               make_box(Point(s, s, z), Point(2 * s, 2 * s, z + s)),
+                               BooleanOp::Union)
+            .mesh;
+      }
     }
   }
 

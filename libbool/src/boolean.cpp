@@ -82,9 +82,8 @@ BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
   stats.seconds.retriangulate = clock.lap();
 
   detail::ClassifyCounts counts[2];
-  const std::vector<detail::Label> labels[2] = {
-      detail::classify(a, b, 0, refined[0], x, counts[0]),
-      detail::classify(b, a, 1, refined[1], x, counts[1])};
+  const detail::Labels labels[2] = {detail::classify(a, b, 0, refined[0], x, counts[0]),
+                                    detail::classify(b, a, 1, refined[1], x, counts[1])};
   stats.patches = counts[0].patches + counts[1].patches;
   stats.patches_by_orientation_rule = counts[0].by_orientation_rule + counts[1].by_orientation_rule;
   stats.patches_by_ray_cast = counts[0].by_ray_cast + counts[1].by_ray_cast;
@@ -92,11 +91,12 @@ BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
   stats.seconds.classify = clock.lap();
 
   std::vector<FaceOrigin> origin;
-  result.mesh = detail::assemble(x, refined, labels, op, &origin);
-  if (options.merge_coplanar && !options.provenance)
+  bool may_merge = false;
+  result.mesh = detail::assemble(a, b, x, refined, labels, op, &origin, &may_merge);
+  if (options.merge_coplanar && !options.provenance && may_merge)
     result.mesh = detail::merge_coplanar_faces(result.mesh, &origin);
   if (options.provenance) result.provenance = std::move(origin);
-  make_exact(result.mesh);
+  if (options.exact_output) make_exact(result.mesh);
   stats.seconds.assemble = clock.lap();
   return result;
 }

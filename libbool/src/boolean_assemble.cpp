@@ -1,13 +1,17 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Step 7: keep the sub-triangles the operation selects, share the points of the two inputs, and
-// separate non-manifold features so the result is a closed 2-manifold the next Boolean accepts.
+// Step 7: keep the facets and sub-triangles the operation selects, share the points of the two
+// inputs, and separate non-manifold features so the result is a closed 2-manifold the next
+// Boolean accepts.
 //
 // Selection (coplanar patches are kept once, from A, or dropped):
 //   | op           | from A'   | from B'            | coplanar same | coplanar opposite |
 //   | union        | outside B | outside A          | A's copy      | none              |
 //   | intersection | inside B  | inside A           | A's copy      | none              |
 //   | A minus B    | outside B | inside A, reversed | none          | A's copy          |
-#include <tbb/parallel_for.h>
+//
+// Only special points (on both surfaces, or where coincident input vertices met) can be
+// non-manifold: every other vertex keeps the fan it had in its input. So only the corners at
+// special points are examined, and the work is proportional to the intersection, not the meshes.
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
@@ -15,7 +19,8 @@
 #include <vector>
 
 #include "boolean_internal.h"
-#include "union_find.h"
+#include "filtered.h"
+#include "flat_map.h"
 
 namespace morphex::detail {
 
@@ -37,108 +42,241 @@ bool keep(BooleanOp op, int side, Label label) {
 // Angle order of the faces around the directed axis u->v: true when face third vertex `p` comes
 // before `q` counter-clockwise, starting from `ref`. Exact orientation predicates only.
 struct AroundEdge {
-  const Point &u, &v, &ref;
-  int half(const Point& w) const {  // 0: angle in [0, pi), 1: [pi, 2 pi)
-    const auto s = CGAL::orientation(u, v, ref, w);
+  const PointTable& points;
+  PointId u, v, ref;
+  int half(PointId w) const {  // 0: angle in [0, pi), 1: [pi, 2 pi)
+    const auto s = points.orientation(u, v, ref, w);
     if (s == CGAL::POSITIVE) return 0;
     if (s == CGAL::NEGATIVE) return 1;
     // In the plane of ref: angle 0 when on the same side of the axis as ref, else pi.
-    return CGAL::coplanar_orientation(u, v, ref, w) == CGAL::POSITIVE ? 0 : 1;
+    return CGAL::coplanar_orientation(points.point(u), points.point(v), points.point(ref),
+                                      points.point(w)) == CGAL::POSITIVE
+               ? 0
+               : 1;
   }
-  bool operator()(const Point& p, const Point& q) const {
+  bool operator()(PointId p, PointId q) const {
     const int hp = half(p), hq = half(q);
     if (hp != hq) return hp < hq;
-    return CGAL::orientation(u, v, p, q) == CGAL::POSITIVE;
+    return points.orientation(u, v, p, q) == CGAL::POSITIVE;
   }
 };
 
+constexpr std::uint32_t kNone = 0xffffffffu;
+
 }  // namespace
 
-// Faces are corners of vertices; a corner (face f, slot k) is "attached" to the corner of the
-// face across each of its two edges at that vertex. Non-manifold edges first pair their faces by
-// the solid wedges between them; then each vertex gets one copy per fan of attached corners.
-Mesh separate_non_manifold(const std::vector<Point>& points, std::vector<Triangle>& faces) {
+// Half-edge (f, k) runs faces[f][k] -> faces[f][k + 1]; the corner (f, k) sits at faces[f][k].
+// At a special point, each corner is attached to the corner of the face across each of its two
+// edges there; a non-manifold edge pairs its faces by the solid wedges between them. Each fan of
+// attached corners becomes one vertex.
+//
+// Fans do not always tell the pairs of a non-manifold edge apart: where the solid is two opposite
+// wedges along the edge but one piece around each end (a solid minus two boxes sharing an edge),
+// each end is a single fan, and both pairs of faces would share one edge. Each such extra pair is
+// split at the edge's midpoint, a vertex of its own (coincident midpoints only touch).
+Mesh separate_non_manifold(const PointTable& points, const std::vector<Triangle>& faces,
+                           const std::vector<std::uint8_t>& special,
+                           std::vector<FaceOrigin>* origin) {
   const std::size_t nf = faces.size();
-  // half-edge (f, k) goes faces[f][k] -> faces[f][k+1]; mate[f*3+k] is the opposite half-edge.
-  std::vector<std::uint32_t> mate(nf * 3, UINT32_MAX);
-  // Half-edges sorted by their undirected edge: each run is one edge of the result.
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> half_edges(nf * 3);
-  tbb::parallel_for(std::uint32_t(0), std::uint32_t(nf), [&](std::uint32_t f) {
-    for (int k = 0; k < 3; ++k) {
-      const Edge e = undirected(faces[f][k], faces[f][(k + 1) % 3]);
-      half_edges[f * 3 + k] = {edge_key(e.first, e.second), f * 3 + k};
-    }
-  });
-  tbb::parallel_sort(half_edges.begin(), half_edges.end());
-  std::vector<std::uint32_t> hs;
-  for (std::size_t begin = 0; begin < half_edges.size();) {
+  // Corners at special points, grouped by point.
+  std::vector<std::pair<PointId, std::uint32_t>> corners;
+  for (std::uint32_t f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k)
+      if (special[faces[f][k]]) corners.emplace_back(faces[f][k], f * 3 + k);
+  tbb::parallel_sort(corners.begin(), corners.end());
+  auto at = [&](std::uint32_t corner) { return faces[corner / 3][corner % 3]; };
+  auto next = [&](std::uint32_t corner) { return faces[corner / 3][(corner % 3 + 1) % 3]; };
+  auto previous = [&](std::uint32_t corner) { return faces[corner / 3][(corner % 3 + 2) % 3]; };
+
+  // fan[i]: union-find over the special corners (by their index in `corners`).
+  UnionFind fans(corners.size());
+  FlatMap<std::uint64_t, std::uint32_t, Hash64> slot_of_corner(corners.size());
+  for (std::uint32_t i = 0; i < corners.size(); ++i) slot_of_corner.emplace(corners[i].second, i);
+  // Non-manifold edges (lo, hi): each pair of faces that the radial order put together.
+  struct WedgePair {
+    PointId lo, hi;
+    std::uint32_t faces[2];
+  };
+  std::vector<WedgePair> wedge_pairs;
+  for (std::size_t begin = 0; begin < corners.size();) {
     std::size_t end = begin + 1;
-    while (end < half_edges.size() && half_edges[end].first == half_edges[begin].first) ++end;
-    const Edge edge{PointId(half_edges[begin].first >> 32), PointId(half_edges[begin].first)};
-    hs.clear();
-    for (std::size_t i = begin; i < end; ++i) hs.push_back(half_edges[i].second);
+    while (end < corners.size() && corners[end].first == corners[begin].first) ++end;
+    const PointId v = corners[begin].first;
+    // Half-edges v -> w leave the corner (f, k); half-edges w -> v arrive at it from (f, k - 1).
+    // Join each corner to the corner whose arriving half-edge is the mate of its leaving one.
+    std::vector<std::pair<PointId, std::uint32_t>> leaving, arriving;  // (w, slot)
+    for (std::size_t i = begin; i < end; ++i) {
+      leaving.emplace_back(next(corners[i].second), std::uint32_t(i));
+      arriving.emplace_back(previous(corners[i].second), std::uint32_t(i));
+    }
+    std::sort(leaving.begin(), leaving.end());
+    std::sort(arriving.begin(), arriving.end());
+    for (std::size_t i = 0, j = 0; i < leaving.size();) {
+      const PointId w = leaving[i].first;
+      std::size_t i_end = i;
+      while (i_end < leaving.size() && leaving[i_end].first == w) ++i_end;
+      while (j < arriving.size() && arriving[j].first < w) ++j;
+      std::size_t j_end = j;
+      while (j_end < arriving.size() && arriving[j_end].first == w) ++j_end;
+      if (i_end - i == 1 && j_end - j == 1) {
+        fans.join(leaving[i].second, arriving[j].second);
+      } else if (i_end - i == j_end - j && i_end > i) {
+        // Several solids meet along the edge vw: sort its faces around the axis u->v with
+        // u < v (the same order seen from both ends) and pair each face that runs u->v with the
+        // one just before it (the wedge between them is inside the solid).
+        struct HalfEdge {
+          std::uint32_t corner;  // the face's corner at v
+          bool leaves_v;
+        };
+        std::vector<HalfEdge> hs;
+        for (std::size_t t = i; t < i_end; ++t)
+          hs.push_back({corners[leaving[t].second].second, true});
+        for (std::size_t t = j; t < j_end; ++t)
+          hs.push_back({corners[arriving[t].second].second, false});
+        const PointId lo = std::min(v, w), hi = std::max(v, w);
+        auto third = [&](const HalfEdge& h) {
+          return h.leaves_v ? previous(h.corner) : next(h.corner);
+        };
+        auto face_of = [](const HalfEdge& h) { return h.corner / 3; };
+        std::sort(hs.begin(), hs.end(),
+                  [&](const HalfEdge& x, const HalfEdge& y) { return face_of(x) < face_of(y); });
+        const AroundEdge order{points, lo, hi, third(hs[0])};
+        std::sort(hs.begin(), hs.end(),
+                  [&](const HalfEdge& x, const HalfEdge& y) { return order(third(x), third(y)); });
+        for (std::size_t t = 0; t < hs.size(); ++t) {
+          const bool runs_lo_hi = hs[t].leaves_v == (v == lo);
+          if (!runs_lo_hi) continue;
+          const HalfEdge& before = hs[(t + hs.size() - 1) % hs.size()];
+          // One of the two leaves v and the other arrives at it: their corners at v share a fan.
+          fans.join(*slot_of_corner.find(hs[t].corner), *slot_of_corner.find(before.corner));
+          if (v == lo) wedge_pairs.push_back({lo, hi, {face_of(hs[t]), face_of(before)}});
+        }
+      }
+      // Otherwise the edge is not closed (not possible for selected patches of valid inputs);
+      // its corners keep their own fans.
+      i = i_end;
+      j = j_end;
+    }
     begin = end;
-    if (hs.size() == 2) {
-      mate[hs[0]] = hs[1];
-      mate[hs[1]] = hs[0];
-      continue;
-    }
-    // Several solids meet along this edge: sort the faces around u->v and pair each face that
-    // runs u->v with the one just before it (the wedge between them is inside the solid).
-    const Point& u = points[edge.first];
-    const Point& v = points[edge.second];
-    auto third = [&](std::uint32_t h) -> const Point& {
-      return points[faces[h / 3][(h % 3 + 2) % 3]];
-    };
-    const AroundEdge order{u, v, third(hs[0])};
-    std::sort(hs.begin(), hs.end(),
-              [&](std::uint32_t a, std::uint32_t b) { return order(third(a), third(b)); });
-    for (std::size_t i = 0; i < hs.size(); ++i) {
-      const std::uint32_t h = hs[i];
-      if (faces[h / 3][h % 3] != edge.first) continue;  // runs v->u
-      const std::uint32_t before = hs[(i + hs.size() - 1) % hs.size()];
-      mate[h] = before;
-      mate[before] = h;
-    }
   }
 
-  // Corner c = f*3+k sits at vertex faces[f][k]. Half-edge (f,k) leaves that corner; its mate
-  // (g,l) arrives at the same vertex from face g, whose corner there is (g, l+1).
-  UnionFind fans(nf * 3);
-  for (std::uint32_t h = 0; h < nf * 3; ++h) {
-    if (mate[h] == UINT32_MAX) continue;
-    const std::uint32_t g = mate[h] / 3, l = mate[h] % 3;
-    fans.join(h, g * 3 + (l + 1) % 3);
-  }
   Mesh out;
-  std::vector<VertexIndex> vertex_of_fan(nf * 3, UINT32_MAX);  // fan root -> output vertex
   out.triangles.resize(nf);
+  std::vector<VertexIndex> vertex_of_point(points.size(), kNone);
+  std::vector<VertexIndex> vertex_of_fan(corners.size(), kNone);
   for (std::uint32_t c = 0; c < nf * 3; ++c) {
-    VertexIndex& v = vertex_of_fan[fans.find(c)];
-    if (v == UINT32_MAX) {
+    const PointId p = at(c);
+    VertexIndex& v =
+        special[p] ? vertex_of_fan[fans.find(*slot_of_corner.find(c))] : vertex_of_point[p];
+    if (v == kNone) {
       v = VertexIndex(out.points.size());
-      out.points.push_back(points[faces[c / 3][c % 3]]);
+      out.points.push_back(points.point(p));
     }
     out.triangles[c / 3][c % 3] = v;
+  }
+
+  // Pairs of one non-manifold edge that still share both vertex copies: each is split at its own
+  // copy of the midpoint, so that the halves of different pairs meet only at common edges.
+  std::vector<std::pair<std::uint64_t, std::size_t>> copies;  // (output edge, pair)
+  for (std::size_t i = 0; i < wedge_pairs.size(); ++i) {
+    const WedgePair& w = wedge_pairs[i];
+    const Triangle& t = out.triangles[w.faces[0]];
+    const Triangle& input = faces[w.faces[0]];
+    VertexIndex a = kNone, b = kNone;
+    for (int k = 0; k < 3; ++k) {
+      if (input[k] == w.lo) a = t[k];
+      if (input[k] == w.hi) b = t[k];
+    }
+    copies.emplace_back((std::uint64_t(a) << 32) | b, i);
+  }
+  std::sort(copies.begin(), copies.end());
+  for (std::size_t i = 0; i < copies.size(); ++i) {
+    const bool shared = (i > 0 && copies[i].first == copies[i - 1].first) ||
+                        (i + 1 < copies.size() && copies[i].first == copies[i + 1].first);
+    if (!shared) continue;
+    const VertexIndex a = VertexIndex(copies[i].first >> 32), b = VertexIndex(copies[i].first);
+    const auto m = VertexIndex(out.points.size());
+    out.points.push_back(CGAL::midpoint(out.points[a], out.points[b]));
+    for (const std::uint32_t f : wedge_pairs[copies[i].second].faces) {
+      const Triangle t = out.triangles[f];
+      int k = 0;
+      while (!((t[k] == a && t[(k + 1) % 3] == b) || (t[k] == b && t[(k + 1) % 3] == a))) ++k;
+      out.triangles[f] = {t[k], m, t[(k + 2) % 3]};
+      out.triangles.push_back({m, t[(k + 1) % 3], t[(k + 2) % 3]});
+      if (origin) origin->push_back((*origin)[f]);
+    }
   }
   return out;
 }
 
-Mesh assemble(const Intersection& x, const Refined refined[2], const std::vector<Label> labels[2],
-              BooleanOp op, std::vector<FaceOrigin>* provenance) {
+Mesh assemble(const Mesh& a, const Mesh& b, const Intersection& x, const Refined refined[2],
+              const Labels labels[2], BooleanOp op, std::vector<FaceOrigin>* provenance,
+              bool* may_merge) {
   std::vector<Triangle> faces;
   std::vector<FaceOrigin> origin;
+  const Mesh* meshes[2] = {&a, &b};
   for (int side = 0; side < 2; ++side) {
+    const Mesh& mesh = *meshes[side];
     const bool reverse = op == BooleanOp::Difference && side == 1;
-    for (std::size_t i = 0; i < refined[side].triangles.size(); ++i) {
-      if (!keep(op, side, labels[side][i])) continue;
-      const SubTriangle& s = refined[side].triangles[i];
-      faces.push_back(reverse ? Triangle{s.v[0], s.v[2], s.v[1]}
-                              : Triangle{s.v[0], s.v[1], s.v[2]});
-      origin.push_back({std::uint8_t(side), s.facet});
+    auto add = [&](PointId p, PointId q, PointId r, std::uint32_t facet) {
+      faces.push_back(reverse ? Triangle{p, r, q} : Triangle{p, q, r});
+      origin.push_back({std::uint8_t(side), facet});
+    };
+    const Refined& refined_side = refined[side];
+    std::size_t sub = 0;
+    for (std::uint32_t f = 0; f < mesh.num_triangles(); ++f) {
+      if (sub < refined_side.triangles.size() && refined_side.triangles[sub].facet == f) {
+        for (; sub < refined_side.triangles.size() && refined_side.triangles[sub].facet == f; ++sub)
+          if (keep(op, side, labels[side].sub[sub])) {
+            const auto& v = refined_side.triangles[sub].v;
+            add(v[0], v[1], v[2], f);
+          }
+        continue;
+      }
+      if (!keep(op, side, labels[side].facet[f])) continue;
+      const Triangle& t = mesh.triangles[f];
+      add(x.vertex_id(side, t[0]), x.vertex_id(side, t[1]), x.vertex_id(side, t[2]), f);
     }
   }
-  Mesh out = separate_non_manifold(x.points, faces);
+
+  // A vertex can only become removable by merging coplanar faces where two of the input facets
+  // around it are coplanar: look at the special points (the only new vertices), unless coplanar
+  // facets already overlapped.
+  *may_merge = x.coplanar_overlaps;
+  if (!*may_merge) {
+    std::vector<std::pair<PointId, std::uint32_t>> around;  // (special point, face)
+    for (std::uint32_t f = 0; f < faces.size(); ++f)
+      for (PointId p : faces[f])
+        if (x.special(p)) around.emplace_back(p, f);
+    std::sort(around.begin(), around.end());
+    auto corners_of = [&](const FaceOrigin& o) {
+      const Mesh& m = *meshes[o.mesh];
+      const Triangle& t = m.triangles[o.face];
+      return std::array<PointId, 3>{x.points.vertex(o.mesh, t[0]), x.points.vertex(o.mesh, t[1]),
+                                    x.points.vertex(o.mesh, t[2])};
+    };
+    std::vector<FaceOrigin> facets;
+    for (std::size_t i = 0; i < around.size() && !*may_merge;) {
+      std::size_t j = i;
+      facets.clear();
+      for (; j < around.size() && around[j].first == around[i].first; ++j) {
+        const FaceOrigin& o = origin[around[j].second];
+        if (std::none_of(facets.begin(), facets.end(),
+                         [&](const FaceOrigin& e) { return e.mesh == o.mesh && e.face == o.face; }))
+          facets.push_back(o);
+      }
+      for (std::size_t s = 0; s < facets.size() && !*may_merge; ++s)
+        for (std::size_t t = s + 1; t < facets.size() && !*may_merge; ++t) {
+          const auto f = corners_of(facets[s]), g = corners_of(facets[t]);
+          *may_merge = std::all_of(g.begin(), g.end(), [&](PointId p) {
+            return x.points.orientation(f[0], f[1], f[2], p) == CGAL::ZERO;
+          });
+        }
+      i = j;
+    }
+  }
+
+  Mesh out = separate_non_manifold(x.points, faces, x.flags, &origin);
   if (provenance) *provenance = std::move(origin);
   return out;
 }

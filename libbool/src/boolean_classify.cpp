@@ -1,13 +1,20 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Step 6: labels. Sub-triangles are grouped into patches: connected without crossing an edge that
-// lies on the other surface. The open interior of a patch never meets the other surface except by
-// lying on it (coplanar overlaps are bounded by constraints), so one label decides all of it.
+// Step 6: labels. Facets no cut touches and the sub-triangles of cut facets are grouped into
+// patches: connected without crossing an edge that lies on the other surface. The open interior
+// of a patch never meets the other surface except by lying on it (coplanar overlaps are bounded by
+// constraints), so one label decides all of it.
+//
+// Patches are found in linear time without any edge table: the fan of a vertex that is not on the
+// other surface lies on one side of it, so facets and sub-triangles are joined through their free
+// vertices; inside a cut facet the CDT joins its sub-triangles; and the rare unconstrained edge
+// between two points of the other surface on a facet's boundary joins the facets on its sides.
+//
 // A patch bordered by a transversal segment takes the seed's label from the segment's
 // orientation (no construction, no search); every other patch (contacts along edges or at
 // vertices, coplanar overlaps, components the other mesh never touches: nested or disjoint
 // solids, which the seed's propagation could not reach) gets one exact test: coplanar patches
 // compare normals with the facet they lie on, the others take the exact ray-cast winding number
-// of a point inside one of their sub-triangles.
+// of a point inside one of their triangles.
 #include <algorithm>
 #include <memory>
 #include <type_traits>
@@ -16,7 +23,6 @@
 #include "filtered.h"
 #include "morphex/spatial.h"
 #include "projection_traits.h"
-#include "union_find.h"
 
 namespace morphex::detail {
 
@@ -52,13 +58,13 @@ bool centroid_in_triangle(const Point& a, const Point& b, const Point& c, const 
   return true;
 }
 
-// The label of one sub-triangle, by an exact test on its centroid.
-Label label_of(const SubTriangle& s, const Mesh& mesh, const Mesh& other, int side,
-               const Intersection& x, const TriangleTree& other_tree) {
-  const Point &p = x.points[s.v[0]], &q = x.points[s.v[1]], &r = x.points[s.v[2]];
-  const auto cut = x.cuts[side].find(s.facet);
+// The label of the triangle pqr lying on `facet` of `mesh`, by an exact test on its centroid.
+Label label_of(const Point& p, const Point& q, const Point& r, std::uint32_t facet,
+               const Mesh& mesh, const Mesh& other, int side, const Intersection& x,
+               const TriangleTree& other_tree) {
+  const auto cut = x.cuts[side].find(facet);
   if (cut != x.cuts[side].end() && !cut->second.coplanar_facets.empty()) {
-    const Triangle& f = mesh.triangles[s.facet];
+    const Triangle& f = mesh.triangles[facet];
     const Point &a = mesh.points[f[0]], &b = mesh.points[f[1]], &c = mesh.points[f[2]];
     const int dropped = dominant_axis(a, b, c);
     for (std::uint32_t t : cut->second.coplanar_facets) {
@@ -84,101 +90,96 @@ Label label_of(const SubTriangle& s, const Mesh& mesh, const Mesh& other, int si
 
 }  // namespace
 
-namespace {
-
-// (key, face) records sorted by key: a flat multimap without one allocation per edge.
-using EdgeRecords = std::vector<std::pair<std::uint64_t, std::uint32_t>>;
-
-template <class Visit>
-void for_each_with_key(const EdgeRecords& records, std::uint64_t key, Visit&& visit) {
-  auto it = std::lower_bound(records.begin(), records.end(), std::make_pair(key, std::uint32_t(0)));
-  for (; it != records.end() && it->first == key; ++it) visit(it->second);
+UnionFind connect_patches(const Mesh& mesh, int side, const Refined& refined, const Intersection& x,
+                          const std::vector<std::uint32_t>* component) {
+  const std::size_t nf = mesh.num_triangles(), ns = refined.triangles.size();
+  const std::size_t vertex_node = nf + ns;
+  UnionFind patches(vertex_node + x.points.num_inputs());
+  std::vector<std::uint8_t> cut(nf, 0);
+  for (std::uint32_t f : refined.facets) cut[f] = 1;
+  for (std::uint32_t f = 0; f < nf; ++f) {
+    if (cut[f]) continue;
+    for (VertexIndex v : mesh.triangles[f]) {
+      const PointId id = x.vertex_id(side, v);
+      if (!x.special(id)) patches.join(f, std::uint32_t(vertex_node + id));
+    }
+  }
+  for (std::uint32_t i = 0; i < ns; ++i) {
+    const std::uint32_t node = std::uint32_t(nf + i);
+    patches.join(node, std::uint32_t(nf + refined.joined[i]));
+    for (PointId id : refined.triangles[i].v)
+      if (x.points.is_input(id) && !x.special(id))
+        patches.join(node, std::uint32_t(vertex_node + id));
+  }
+  // The same boundary edge seen from the facets on both sides.
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> open = refined.open_boundary;
+  auto group = [&](std::uint32_t sub) {
+    return component ? (*component)[refined.triangles[sub].facet] : 0u;
+  };
+  std::sort(open.begin(), open.end(), [&](const auto& l, const auto& r) {
+    return std::make_pair(l.first, group(l.second)) < std::make_pair(r.first, group(r.second));
+  });
+  for (std::size_t i = 1; i < open.size(); ++i)
+    if (open[i].first == open[i - 1].first && group(open[i].second) == group(open[i - 1].second))
+      patches.join(std::uint32_t(nf + open[i].second), std::uint32_t(nf + open[i - 1].second));
+  return patches;
 }
 
-}  // namespace
+Labels classify(const Mesh& mesh, const Mesh& other, int side, const Refined& refined,
+                const Intersection& x, ClassifyCounts& counts) {
+  const std::size_t nf = mesh.num_triangles(), ns = refined.triangles.size();
+  UnionFind patches = connect_patches(mesh, side, refined, x);
+  const std::size_t nodes = patches.parent.size();
 
-std::vector<Label> classify(const Mesh& mesh, const Mesh& other, int side, const Refined& refined,
-                            const Intersection& x, ClassifyCounts& counts) {
-  const std::size_t n = refined.triangles.size();
-  // Patches: sub-triangles joined across every edge that does not lie on the other surface.
-  std::vector<std::uint64_t> barrier;
-  barrier.reserve(refined.on_other_surface.size());
-  for (const Edge& e : refined.on_other_surface) barrier.push_back(edge_key(e.first, e.second));
-  std::sort(barrier.begin(), barrier.end());
-  EdgeRecords undirected_edges;
-  undirected_edges.reserve(3 * n);
-  for (std::uint32_t i = 0; i < n; ++i)
-    for (int k = 0; k < 3; ++k) {
-      const Edge e = undirected(refined.triangles[i].v[k], refined.triangles[i].v[(k + 1) % 3]);
-      undirected_edges.emplace_back(edge_key(e.first, e.second), i);
-    }
-  std::sort(undirected_edges.begin(), undirected_edges.end());
-  UnionFind patches(n);
-  for (std::size_t i = 0; i < undirected_edges.size();) {
-    std::size_t j = i + 1;
-    while (j < undirected_edges.size() && undirected_edges[j].first == undirected_edges[i].first)
-      ++j;
-    if (!std::binary_search(barrier.begin(), barrier.end(), undirected_edges[i].first))
-      for (std::size_t k = i + 1; k < j; ++k)
-        patches.join(undirected_edges[k].second, undirected_edges[i].second);
-    i = j;
-  }
-
-  // The seed's labels: the sub-triangle on the left of an oriented transversal segment is inside
-  // the other solid, the one on its right outside. A segment split by further points in the CDT
-  // is simply not used; its patches fall back to the ray cast.
-  std::vector<std::int8_t> ruled(n, -1);
-  {
-    EdgeRecords directed;  // edges of the sub-triangles of cut facets
-    for (std::uint32_t i = 0; i < n; ++i) {
-      const SubTriangle& s = refined.triangles[i];
-      if (!x.cuts[side].count(s.facet)) continue;
-      for (int k = 0; k < 3; ++k) directed.emplace_back(edge_key(s.v[k], s.v[(k + 1) % 3]), i);
-    }
-    std::sort(directed.begin(), directed.end());
-    auto mark = [&](PointId from, PointId to, std::uint32_t facet, Label label) {
-      for_each_with_key(directed, edge_key(from, to), [&](std::uint32_t i) {
-        if (refined.triangles[i].facet == facet) ruled[i] = std::int8_t(label);
-      });
-    };
-    for (const auto& [facet, cut] : x.cuts[side])
-      for (const OrientedSegment& s : cut.transversal) {
-        mark(s.from, s.to, facet, Label::Inside);
-        mark(s.to, s.from, facet, Label::Outside);
-      }
+  // The seed's labels, gathered per patch.
+  counts = {};
+  std::vector<std::int8_t> patch_rule(nodes, -1);
+  for (std::uint32_t i = 0; i < ns; ++i) {
+    if (refined.rule[i] < 0) continue;
+    std::int8_t& rule = patch_rule[patches.find(std::uint32_t(nf + i))];
+    if (rule >= 0 && rule != refined.rule[i]) ++counts.rule_conflicts;
+    rule = refined.rule[i];
   }
 
   // One label per patch: the rule when a segment borders it, else one exact test on the patch's
-  // first sub-triangle (so the answer does not depend on any traversal order).
-  counts = {};
-  std::vector<std::uint32_t> root(n);
-  std::vector<std::int8_t> patch_rule(n, -1);
-  for (std::uint32_t i = 0; i < n; ++i) {
-    root[i] = patches.find(i);
-    if (ruled[i] < 0) continue;
-    std::int8_t& rule = patch_rule[root[i]];
-    if (rule >= 0 && rule != ruled[i]) ++counts.rule_conflicts;
-    rule = ruled[i];
-  }
-  std::vector<Label> labels(n);
-  std::vector<std::int8_t> patch_label(n, -1);
+  // first facet or sub-triangle (so the answer does not depend on any traversal order).
+  std::vector<std::uint8_t> cut(nf, 0);
+  for (std::uint32_t f : refined.facets) cut[f] = 1;
+  std::vector<std::int8_t> patch_label(nodes, -1);
   std::unique_ptr<TriangleTree> other_tree;
-  for (std::uint32_t i = 0; i < n; ++i) {
-    std::int8_t& label = patch_label[root[i]];
-    if (label < 0) {  // i is the patch's first sub-triangle
+  auto label = [&](std::uint32_t node, auto&& test) {
+    std::int8_t& l = patch_label[patches.find(node)];
+    if (l < 0) {
       ++counts.patches;
-      if (patch_rule[root[i]] >= 0) {
-        label = patch_rule[root[i]];
+      const std::int8_t rule = patch_rule[patches.find(node)];
+      if (rule >= 0) {
+        l = rule;
         ++counts.by_orientation_rule;
       } else {
         if (!other_tree && !other.empty()) other_tree = std::make_unique<TriangleTree>(other);
-        label = std::int8_t(
-            other.empty() ? Label::Outside
-                          : label_of(refined.triangles[i], mesh, other, side, x, *other_tree));
+        l = std::int8_t(other.empty() ? Label::Outside : test(*other_tree));
         ++counts.by_ray_cast;
       }
     }
-    labels[i] = Label(label);
+    return Label(l);
+  };
+  Labels labels;
+  labels.facet.assign(nf, Label::Outside);
+  labels.sub.resize(ns);
+  for (std::uint32_t f = 0; f < nf; ++f) {
+    if (cut[f]) continue;
+    labels.facet[f] = label(f, [&](const TriangleTree& tree) {
+      const Triangle& t = mesh.triangles[f];
+      return label_of(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]], f, mesh, other, side,
+                      x, tree);
+    });
+  }
+  for (std::uint32_t i = 0; i < ns; ++i) {
+    const SubTriangle& s = refined.triangles[i];
+    labels.sub[i] = label(std::uint32_t(nf + i), [&](const TriangleTree& tree) {
+      return label_of(x.points.point(s.v[0]), x.points.point(s.v[1]), x.points.point(s.v[2]),
+                      s.facet, mesh, other, side, x, tree);
+    });
   }
   return labels;
 }

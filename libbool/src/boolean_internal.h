@@ -1,18 +1,22 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Plain data passed between the phases of the Boolean (notation: morphex/boolean.h).
+//
+// Points are named by ids of a PointTable (point_table.h): A's vertices, B's vertices, then the
+// constructed points. Work is local to what the other mesh touches: only cut facets are
+// re-triangulated, and the rest of each mesh is labelled and copied through its vertices.
 #pragma once
 
 #include <cstdint>
-#include <map>
 #include <unordered_map>
 #include <utility>
 #include <vector>
 
 #include "morphex/boolean.h"
+#include "point_table.h"
+#include "union_find.h"
 
 namespace morphex::detail {
 
-using PointId = std::uint32_t;
 using Edge = std::pair<PointId, PointId>;  // undirected edges are stored (min, max)
 
 inline Edge undirected(PointId a, PointId b) {
@@ -24,80 +28,130 @@ inline Edge undirected(PointId a, PointId b) {
 inline std::uint64_t edge_key(PointId a, PointId b) {
   return (std::uint64_t(a) << 32) | b;
 }
+inline std::uint64_t edge_key(const Edge& e) {
+  return edge_key(e.first, e.second);
+}
 
-struct EdgeHash {
-  std::size_t operator()(const Edge& e) const {
-    return std::hash<std::uint64_t>()((std::uint64_t(e.first) << 32) | e.second);
-  }
-};
+using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
 
 // Step 2: pairs (ta, tb) whose boxes overlap.
-std::vector<std::pair<std::uint32_t, std::uint32_t>> candidate_pairs(const Mesh& a, const Mesh& b);
+Pairs candidate_pairs(const Mesh& a, const Mesh& b);
 
-// What the other mesh leaves on one input triangle.
+// A point of a facet's cut, with the edges of that facet it lies on (bit i: the edge from corner i
+// to corner i + 1), so that the facet's triangulation takes those collinearities from the
+// combinatorics instead of evaluating them (they would always need the exact stage).
+struct CutPoint {
+  PointId id;
+  std::uint8_t edges;
+};
+
 // A transversal segment (its interior lies inside both open triangles), oriented by the seed's
 // rule so that the other solid's interior is on its left, seen along the facet's normal.
 struct OrientedSegment {
   PointId from, to;
 };
 
+// What the other mesh leaves on one input triangle.
 struct FacetCut {
-  std::vector<PointId> points;                 // intersection points lying on the facet
+  std::vector<CutPoint> points;                // intersection points lying on the facet
   std::vector<Edge> segments;                  // constraints
   std::vector<OrientedSegment> transversal;    // the subset that decides labels locally
   std::vector<std::uint32_t> coplanar_facets;  // facets of the other mesh coplanar and touching
 };
 
-// Step 3: all intersection points (shared by identity = exact position) and per-facet cuts.
-// Point ids: A's vertices first, then B's, then constructed points; coincident input vertices
-// share the id of the first one (`vertex_id`).
+// Flags of a point id.
+enum PointFlag : std::uint8_t {
+  kOnSurface = 1,  // in some cut: on both surfaces
+  kMerged = 2,     // several input vertices at this position were given this id
+};
+
+// Step 3: all intersection points, each with one id, and the per-facet cuts.
 struct Intersection {
-  std::vector<Point> points;
-  std::vector<PointId> vertex_id[2];                    // input vertex -> point id
+  PointTable points;
+  // Input id -> the id its position has: coincident input vertices near the other mesh (on facets
+  // of candidate pairs) share the first one's id; every other vertex keeps its own.
+  std::vector<PointId> vertex_rep;
+  std::vector<std::uint8_t> flags;                      // PointFlag bits, by id
   std::unordered_map<std::uint32_t, FacetCut> cuts[2];  // facet -> cut
   std::size_t intersecting_pairs = 0;
   std::size_t constructed_points = 0;
+  bool coplanar_overlaps = false;  // some coplanar facets overlap with positive area
+
+  PointId vertex_id(int side, std::uint32_t v) const { return vertex_rep[points.vertex(side, v)]; }
+  // A point where the output may be non-manifold: on both surfaces, or where input vertices met.
+  bool special(PointId id) const { return flags[id] != 0; }
 };
 
-// How the patches were labelled: by the seed's orientation rule or by an exact ray cast.
-struct ClassifyCounts {
-  std::size_t patches = 0, by_orientation_rule = 0, by_ray_cast = 0;
-  std::size_t rule_conflicts = 0;  // segments of one patch that disagree: must stay 0
+struct IntersectOptions {
+  // a and b are one mesh, a soup of solids that may overlap (the n-ary union): the candidate
+  // pairs are its own triangle pairs, and every constructed point is identified by its exact
+  // position (in a soup, distinct constructions may coincide).
+  bool soup = false;
 };
-Intersection intersect(const Mesh& a, const Mesh& b,
-                       const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs);
+Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
+                       const IntersectOptions& options = {});
 
-// Step 5: the refined mesh A' or B'.
+// Step 5: the cut facets of one mesh re-triangulated (the other facets stay as they are).
 struct SubTriangle {
   std::array<PointId, 3> v;  // oriented as the input facet
   std::uint32_t facet;       // input facet it comes from
 };
 struct Refined {
+  std::vector<std::uint32_t> facets;  // the cut facets, in increasing order
   std::vector<SubTriangle> triangles;
-  std::vector<Edge> on_other_surface;  // constrained edges: they separate patches
+  // Per sub-triangle: the first sub-triangle of its facet that it reaches without crossing a
+  // constraint (the sub-triangles of one facet between constraints are one piece of a patch).
+  std::vector<std::uint32_t> joined;
+  // Per sub-triangle: its Label by the seed's orientation rule (it borders a transversal
+  // segment), or -1.
+  std::vector<std::int8_t> rule;
+  // (undirected edge key, sub-triangle): unconstrained edges on the facet's boundary whose ends
+  // are both special points. They join the sub-triangles of the facets on both sides, which a
+  // common free vertex cannot.
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> open_boundary;
 };
 Refined retriangulate(const Mesh& mesh, int side, const Intersection& x);
 
-// 0, 1 or 2: the axis along which the normal of triangle abc is largest, so that dropping that
-// coordinate projects the triangle's plane without degeneracy (exact: it only selects coordinates).
-int dominant_axis(const Point& a, const Point& b, const Point& c);
+// Patches: the input facets of one side that no cut touches, and the sub-triangles, joined when
+// they meet without crossing the other surface. Nodes: facet f is f, sub-triangle i is
+// num_triangles + i, and the free vertex with id p (not special) is num_triangles + subs + p.
+// Facets and sub-triangles meet through free vertices (a free vertex's fan lies on one side of
+// the other surface), inside a facet across unconstrained edges, and across the open boundary
+// edges of cut facets. `component` (optional, per facet) keeps open boundary edges from joining
+// facets of different components (pieces of a soup).
+UnionFind connect_patches(const Mesh& mesh, int side, const Refined& refined, const Intersection& x,
+                          const std::vector<std::uint32_t>* component = nullptr);
 
 // Step 6: labels.
 enum class Label : std::uint8_t { Outside, Inside, CoplanarSame, CoplanarOpposite };
-// One label per sub-triangle of `refined` (a refinement of `mesh`, side 0 = A, 1 = B).
-std::vector<Label> classify(const Mesh& mesh, const Mesh& other, int side, const Refined& refined,
-                            const Intersection& x, ClassifyCounts& counts);
+struct Labels {
+  std::vector<Label> facet;  // by input facet (only meaningful for facets no cut touches)
+  std::vector<Label> sub;    // by sub-triangle of Refined
+};
+// How the patches were labelled: by the seed's orientation rule or by an exact ray cast.
+struct ClassifyCounts {
+  std::size_t patches = 0, by_orientation_rule = 0, by_ray_cast = 0;
+  std::size_t rule_conflicts = 0;  // segments of one patch that disagree: must stay 0
+};
+Labels classify(const Mesh& mesh, const Mesh& other, int side, const Refined& refined,
+                const Intersection& x, ClassifyCounts& counts);
 
-// Turns kept triangles over shared points into a closed 2-manifold: non-manifold edges are paired
-// by exact radial order and each vertex gets one copy per fan.
-Mesh separate_non_manifold(const std::vector<Point>& points, std::vector<Triangle>& faces);
+// Turns faces over point ids into a closed 2-manifold mesh: non-manifold edges are paired by exact
+// radial order and each vertex gets one copy per fan. Only points whose `special` entry is not
+// zero can be non-manifold, so only their corners are examined; every other id becomes one vertex.
+// Faces split to separate an edge are appended, with their origin appended to `origin` if given.
+Mesh separate_non_manifold(const PointTable& points, const std::vector<Triangle>& faces,
+                           const std::vector<std::uint8_t>& special,
+                           std::vector<FaceOrigin>* origin = nullptr);
 
 // merge_coplanar_faces, told where each face comes from (`origin`, optional): faces cut from one
 // input facet are coplanar by construction and need no predicate.
 Mesh merge_coplanar_faces(const Mesh& solid, const std::vector<FaceOrigin>* origin);
 
-// Step 7: selection, output, separation of non-manifold features.
-Mesh assemble(const Intersection& x, const Refined refined[2], const std::vector<Label> labels[2],
-              BooleanOp op, std::vector<FaceOrigin>* provenance);
+// Step 7: selection, output, separation of non-manifold features. `may_merge` is set when a
+// vertex of the result may be removable by merge_coplanar_faces (coplanar facets met).
+Mesh assemble(const Mesh& a, const Mesh& b, const Intersection& x, const Refined refined[2],
+              const Labels labels[2], BooleanOp op, std::vector<FaceOrigin>* provenance,
+              bool* may_merge);
 
 }  // namespace morphex::detail

@@ -2,136 +2,258 @@
 // Step 5: each cut facet becomes a constrained Delaunay triangulation of its corners and the
 // intersection points on it, constrained by its segments. The CDT works in the coordinate plane
 // that drops the dominant axis of the facet's normal: an exact projection (it only selects
-// coordinates) that keeps the facet non-degenerate.
+// coordinates) that keeps the facet non-degenerate. Its points are table ids: predicates run on
+// their intervals and fall back to exact homogeneous integers, and the orientation of three points
+// on one edge of the facet (every crossing of the facet's own edges is on one) is known without
+// evaluating anything. The CDT also yields what classification needs: the sub-triangles joined
+// without crossing a constraint, the labels the seed's rule gives beside transversal segments,
+// and the unconstrained boundary edges that join the facet to its neighbours.
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
 
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 
 #include "boolean_internal.h"
-#include "projection_traits.h"
 
 namespace morphex::detail {
 
 namespace {
 
-template <class Traits>
-struct FacetCdt {
-  using Vb = CGAL::Triangulation_vertex_base_with_info_2<PointId, Traits>;
-  using Fb = CGAL::Constrained_triangulation_face_base_2<Traits>;
+// A point of the facet's triangulation: its id and the facet edges it lies on.
+struct TablePoint {
+  PointId id = 0;
+  std::uint8_t edges = 0;
+};
+
+// Triangulation traits over table ids, seen along the axis `dropped`.
+template <int dropped>
+class TableTraits {
+ public:
+  static constexpr int u = dropped == 0 ? 1 : 0, v = dropped == 2 ? 1 : 2;
+  using Point_2 = TablePoint;
+  struct Segment_2 {
+    TablePoint s, t;
+    const TablePoint& source() const { return s; }
+    const TablePoint& target() const { return t; }
+  };
+  struct Triangle_2 {
+    TablePoint a, b, c;
+  };
+
+  struct Orientation_2 {
+    const PointTable* table;
+    CGAL::Orientation operator()(const TablePoint& p, const TablePoint& q,
+                                 const TablePoint& r) const {
+      // Three points on one edge of the facet: collinear by construction.
+      if ((p.edges & q.edges & r.edges) || p.id == q.id || q.id == r.id || p.id == r.id)
+        return CGAL::COLLINEAR;
+      return table->orientation_2(dropped, p.id, q.id, r.id);
+    }
+  };
+  struct Side_of_oriented_circle_2 {
+    const PointTable* table;
+    CGAL::Oriented_side operator()(const TablePoint& p, const TablePoint& q, const TablePoint& r,
+                                   const TablePoint& t) const {
+      return table->side_of_oriented_circle(dropped, p.id, q.id, r.id, t.id);
+    }
+  };
+  template <int axis>
+  struct Compare {
+    const PointTable* table;
+    CGAL::Comparison_result operator()(const TablePoint& p, const TablePoint& q) const {
+      return table->compare(axis, p.id, q.id);
+    }
+  };
+  template <int axis>
+  struct Less {
+    const PointTable* table;
+    bool operator()(const TablePoint& p, const TablePoint& q) const {
+      return table->compare(axis, p.id, q.id) == CGAL::SMALLER;
+    }
+  };
+  using Compare_x_2 = Compare<u>;
+  using Compare_y_2 = Compare<v>;
+  using Less_x_2 = Less<u>;
+  using Less_y_2 = Less<v>;
+  struct Construct_point_2 {
+    const TablePoint& operator()(const TablePoint& p) const { return p; }
+  };
+  struct Construct_segment_2 {
+    Segment_2 operator()(const TablePoint& p, const TablePoint& q) const { return {p, q}; }
+  };
+  struct Construct_triangle_2 {
+    Triangle_2 operator()(const TablePoint& p, const TablePoint& q, const TablePoint& r) const {
+      return {p, q, r};
+    }
+  };
+
+  explicit TableTraits(const PointTable* table = nullptr) : table_(table) {}
+  Orientation_2 orientation_2_object() const { return {table_}; }
+  Side_of_oriented_circle_2 side_of_oriented_circle_2_object() const { return {table_}; }
+  Compare_x_2 compare_x_2_object() const { return {table_}; }
+  Compare_y_2 compare_y_2_object() const { return {table_}; }
+  Less_x_2 less_x_2_object() const { return {table_}; }
+  Less_y_2 less_y_2_object() const { return {table_}; }
+  Construct_point_2 construct_point_2_object() const { return {}; }
+  Construct_segment_2 construct_segment_2_object() const { return {}; }
+  Construct_triangle_2 construct_triangle_2_object() const { return {}; }
+
+ private:
+  const PointTable* table_;
+};
+
+std::uint8_t corner_edges(int k) {
+  return std::uint8_t((1u << k) | (1u << ((k + 2) % 3)));
+}
+
+// The sub-triangles of one cut facet, with indices local to the facet.
+struct FacetPieces {
+  std::vector<SubTriangle> triangles;
+  std::vector<std::uint32_t> joined;
+  std::vector<std::int8_t> rule;
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> open_boundary;
+};
+
+// The seed's label of a sub-triangle (oriented as its facet) from the transversal segments on its
+// edges: the other solid's interior is on the left of each segment.
+std::int8_t rule_of(const std::array<PointId, 3>& v, const FacetCut& cut) {
+  for (const OrientedSegment& s : cut.transversal)
+    for (int k = 0; k < 3; ++k) {
+      if (v[k] == s.from && v[(k + 1) % 3] == s.to) return std::int8_t(Label::Inside);
+      if (v[k] == s.to && v[(k + 1) % 3] == s.from) return std::int8_t(Label::Outside);
+    }
+  return -1;
+}
+
+template <int dropped>
+void triangulate(const Intersection& x, const std::array<CutPoint, 3>& corners,
+                 const std::vector<CutPoint>& points, const FacetCut& cut, std::uint32_t facet,
+                 FacetPieces& out) {
+  using Traits = TableTraits<dropped>;
+  using Vb = CGAL::Triangulation_vertex_base_2<Traits>;
+  using Fbb = CGAL::Triangulation_face_base_with_info_2<std::uint32_t, Traits>;
+  using Fb = CGAL::Constrained_triangulation_face_base_2<Traits, Fbb>;
   using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
-  // Valid inputs never produce crossing constraints; if they do, CGAL throws instead of
-  // silently constructing a point we did not share with the other mesh.
+  // Valid inputs never produce crossing constraints; if they do, CGAL throws instead of silently
+  // constructing a point the other mesh would not share.
   using Cdt = CGAL::Constrained_Delaunay_triangulation_2<
       Traits, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
+  const PointTable& table = x.points;
+  Cdt cdt{Traits(&table)};
+  std::vector<std::pair<PointId, typename Cdt::Vertex_handle>> handles;
+  handles.reserve(points.size());
+  for (const CutPoint& p : points)
+    handles.emplace_back(p.id, cdt.insert(TablePoint{p.id, p.edges}));
+  auto handle = [&](PointId id) {
+    return std::lower_bound(handles.begin(), handles.end(), id,
+                            [](const auto& h, PointId key) { return h.first < key; })
+        ->second;
+  };
+  for (const Edge& s : cut.segments) cdt.insert_constraint(handle(s.first), handle(s.second));
 
-  static void run(const std::array<PointId, 3>& corners, const FacetCut& cut, const Intersection& x,
-                  std::uint32_t facet, Refined& out) {
-    Cdt cdt;
-    auto insert = [&](PointId id) {
-      auto v = cdt.insert(x.points[id]);
-      v->info() = id;
-      return v;
-    };
-    for (PointId id : corners) insert(id);
-    for (PointId id : cut.points) insert(id);
-    for (const Edge& s : cut.segments) {
-      auto p = insert(s.first), q = insert(s.second);
-      cdt.insert_constraint(p, q);
-    }
-    const auto orient = Traits().orientation_2_object();
-    const bool flip =
-        orient(x.points[corners[0]], x.points[corners[1]], x.points[corners[2]]) == CGAL::NEGATIVE;
-    for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
-      std::array<PointId, 3> v{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()};
-      if (flip) std::swap(v[1], v[2]);
-      out.triangles.push_back({v, facet});
-      for (int i = 0; i < 3; ++i)
-        if (f->is_constrained(i)) {
-          const PointId p = f->vertex(Cdt::cw(i))->info(), q = f->vertex(Cdt::ccw(i))->info();
-          out.on_other_surface.push_back(undirected(p, q));
-        }
+  const bool flip =
+      table.orientation_2(dropped, corners[0].id, corners[1].id, corners[2].id) == CGAL::NEGATIVE;
+  std::uint32_t count = 0;
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) f->info() = count++;
+  UnionFind local(count);
+  out.triangles.reserve(count);
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+    const std::uint32_t i = f->info();
+    std::array<PointId, 3> v{f->vertex(0)->point().id, f->vertex(1)->point().id,
+                             f->vertex(2)->point().id};
+    if (flip) std::swap(v[1], v[2]);
+    out.triangles.push_back({v, facet});
+    out.rule.push_back(cut.transversal.empty() ? std::int8_t(-1) : rule_of(v, cut));
+    for (int k = 0; k < 3; ++k) {
+      if (f->is_constrained(k)) continue;
+      const auto n = f->neighbor(k);
+      if (!cdt.is_infinite(n)) {
+        local.join(i, n->info());
+        continue;
+      }
+      const PointId p = f->vertex(Cdt::cw(k))->point().id, q = f->vertex(Cdt::ccw(k))->point().id;
+      if (x.special(p) && x.special(q))
+        out.open_boundary.emplace_back(edge_key(undirected(p, q)), i);
     }
   }
-};
+  out.joined.resize(count);
+  for (std::uint32_t i = 0; i < count; ++i) out.joined[i] = local.find(i);
+}
+
+void cut_facet(const Mesh& mesh, int side, const Intersection& x, std::uint32_t t,
+               FacetPieces& out) {
+  const Triangle& f = mesh.triangles[t];
+  const std::array<CutPoint, 3> corners = {CutPoint{x.vertex_id(side, f[0]), corner_edges(0)},
+                                           CutPoint{x.vertex_id(side, f[1]), corner_edges(1)},
+                                           CutPoint{x.vertex_id(side, f[2]), corner_edges(2)}};
+  const FacetCut& cut = x.cuts[side].at(t);
+  // Distinct points by id, the known edges of each merged.
+  std::vector<CutPoint> points(corners.begin(), corners.end());
+  points.insert(points.end(), cut.points.begin(), cut.points.end());
+  std::sort(points.begin(), points.end(),
+            [](const CutPoint& p, const CutPoint& q) { return p.id < q.id; });
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (n > 0 && points[n - 1].id == points[i].id)
+      points[n - 1].edges |= points[i].edges;
+    else
+      points[n++] = points[i];
+  }
+  points.resize(n);
+
+  if (points.size() == 3) {
+    // Touched only at its corners or along its edges (coplanar neighbours, contacts): the facet
+    // stays whole.
+    const std::array<PointId, 3> v = {corners[0].id, corners[1].id, corners[2].id};
+    out.triangles.push_back({v, t});
+    out.joined.push_back(0);
+    out.rule.push_back(-1);
+    for (int k = 0; k < 3; ++k) {
+      const Edge e = undirected(v[k], v[(k + 1) % 3]);
+      const bool constrained =
+          std::find(cut.segments.begin(), cut.segments.end(), e) != cut.segments.end();
+      if (!constrained && x.special(e.first) && x.special(e.second))
+        out.open_boundary.emplace_back(edge_key(e), 0);
+    }
+    return;
+  }
+  switch (x.points.dominant_axis(corners[0].id, corners[1].id, corners[2].id)) {
+    case 0:
+      triangulate<0>(x, corners, points, cut, t, out);
+      break;
+    case 1:
+      triangulate<1>(x, corners, points, cut, t, out);
+      break;
+    default:
+      triangulate<2>(x, corners, points, cut, t, out);
+  }
+}
 
 }  // namespace
 
-int dominant_axis(const Point& a, const Point& b, const Point& c) {
-  // The largest |normal coordinate|, ties to the lower axis; intervals decide unless two
-  // components are (nearly) equal in size, then the exact normal does.
-  {
-    CGAL::Protect_FPU_rounding<true> rounding;
-    const auto &pa = CGAL::approx(a), &pb = CGAL::approx(b), &pc = CGAL::approx(c);
-    const auto n = CGAL::cross_product(pb - pa, pc - pa);
-    const CGAL::Interval_nt<false> ax = CGAL::abs(n.x()), ay = CGAL::abs(n.y()),
-                                   az = CGAL::abs(n.z());
-    try {
-      if (ax >= ay && ax >= az) return 0;
-      return ay >= az ? 1 : 2;
-    } catch (const CGAL::Uncertain_conversion_exception&) {
-      // two components too close to order with intervals
-    }
-  }
-  const auto &ea = CGAL::exact(a), &eb = CGAL::exact(b), &ec = CGAL::exact(c);
-  const auto n = CGAL::cross_product(eb - ea, ec - ea);
-  const auto ax = CGAL::abs(n.x()), ay = CGAL::abs(n.y()), az = CGAL::abs(n.z());
-  if (ax >= ay && ax >= az) return 0;
-  return ay >= az ? 1 : 2;
-}
-
 Refined retriangulate(const Mesh& mesh, int side, const Intersection& x) {
-  // Cut facets are independent: their CDTs run in parallel, each into its own Refined, and are
+  // Cut facets are independent: their CDTs run in parallel, each into its own pieces, and are
   // concatenated in facet order so that the result does not depend on the thread count.
-  std::vector<std::uint32_t> cut_facets;
-  cut_facets.reserve(x.cuts[side].size());
-  for (const auto& entry : x.cuts[side]) cut_facets.push_back(entry.first);
-  std::sort(cut_facets.begin(), cut_facets.end());
-  std::vector<Refined> pieces(cut_facets.size());
-  tbb::parallel_for(std::size_t(0), cut_facets.size(), [&](std::size_t i) {
-    const std::uint32_t t = cut_facets[i];
-    const Triangle& f = mesh.triangles[t];
-    const std::array<PointId, 3> corners{x.vertex_id[side][f[0]], x.vertex_id[side][f[1]],
-                                         x.vertex_id[side][f[2]]};
-    const FacetCut& cut = x.cuts[side].at(t);
-    // Touched only at its corners or along its edges (coplanar neighbours, contacts): the facet
-    // stays whole, its touched edges marked on the other surface.
-    const bool only_corners = std::all_of(cut.points.begin(), cut.points.end(), [&](PointId p) {
-      return p == corners[0] || p == corners[1] || p == corners[2];
-    });
-    if (only_corners) {
-      pieces[i].triangles.push_back({corners, t});
-      pieces[i].on_other_surface = cut.segments;
-      return;
-    }
-    switch (dominant_axis(x.points[corners[0]], x.points[corners[1]], x.points[corners[2]])) {
-      case 0:
-        FacetCdt<FilteredProjectionTraits<0>>::run(corners, cut, x, t, pieces[i]);
-        break;
-      case 1:
-        FacetCdt<FilteredProjectionTraits<1>>::run(corners, cut, x, t, pieces[i]);
-        break;
-      default:
-        FacetCdt<FilteredProjectionTraits<2>>::run(corners, cut, x, t, pieces[i]);
-    }
-  });
-
   Refined out;
-  out.triangles.reserve(mesh.num_triangles());
-  std::size_t next_cut = 0;
-  for (std::uint32_t t = 0; t < mesh.num_triangles(); ++t) {
-    if (next_cut < cut_facets.size() && cut_facets[next_cut] == t) {
-      Refined& piece = pieces[next_cut++];
-      out.triangles.insert(out.triangles.end(), piece.triangles.begin(), piece.triangles.end());
-      out.on_other_surface.insert(out.on_other_surface.end(), piece.on_other_surface.begin(),
-                                  piece.on_other_surface.end());
-      continue;
-    }
-    const Triangle& f = mesh.triangles[t];
-    out.triangles.push_back(
-        {{x.vertex_id[side][f[0]], x.vertex_id[side][f[1]], x.vertex_id[side][f[2]]}, t});
+  out.facets.reserve(x.cuts[side].size());
+  for (const auto& entry : x.cuts[side]) out.facets.push_back(entry.first);
+  std::sort(out.facets.begin(), out.facets.end());
+  std::vector<FacetPieces> pieces(out.facets.size());
+  tbb::parallel_for(std::size_t(0), out.facets.size(),
+                    [&](std::size_t i) { cut_facet(mesh, side, x, out.facets[i], pieces[i]); });
+  std::size_t total = 0;
+  for (const FacetPieces& p : pieces) total += p.triangles.size();
+  out.triangles.reserve(total);
+  out.joined.reserve(total);
+  out.rule.reserve(total);
+  for (FacetPieces& p : pieces) {
+    const auto offset = std::uint32_t(out.triangles.size());
+    out.triangles.insert(out.triangles.end(), p.triangles.begin(), p.triangles.end());
+    for (std::uint32_t j : p.joined) out.joined.push_back(offset + j);
+    out.rule.insert(out.rule.end(), p.rule.begin(), p.rule.end());
+    for (const auto& [key, i] : p.open_boundary) out.open_boundary.emplace_back(key, offset + i);
   }
   return out;
 }

@@ -1,14 +1,22 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Step 3: exact intersection of each candidate pair, each intersection point stored once.
+// Step 3: exact intersection of each candidate pair, each intersection point named once.
 //
 // The vertices of each triangle are classified against the other's plane with orientation
 // predicates (no construction): all on one side, none meet. Non-coplanar pairs: each triangle cuts
 // a chord on the other's plane whose ends are its vertices on that plane or its edges crossing
-// it; an edge/plane crossing is constructed once per (edge, facet) and shared by both facets of the
-// edge. The two chords lie on the planes' common line and their overlap, ordered by exact
-// predicates along that line, is the intersection: a segment, a point, or nothing. Coplanar pairs
-// clip one triangle by the other in their common plane (the overlap polygon). Points are stored
-// once by exact position.
+// it; an edge/plane crossing is one table entry per (edge, facet), shared by both facets of the
+// edge, kept as its recipe (its exact value is computed only if a predicate needs it). The two
+// chords lie on the planes' common line and their overlap, ordered by exact predicates along that
+// line, is the intersection: a segment, a point, or nothing. Coplanar pairs clip one triangle by
+// the other in their common plane (the overlap polygon).
+//
+// Point identity is combinatorial, so no point is evaluated to be named. Coincident input vertices
+// near the other mesh share one id (found by exact position, on doubles for file input). A
+// crossing of an edge with the open interior of the other facet can coincide with no other point
+// of valid solids, so it keeps its table id. A crossing that lands on an edge of the other facet is
+// named by the two edges, and one that lands on a corner is that corner. In a soup (the n-ary
+// union) constructions may coincide, so there every constructed point is named by exact position.
+//
 // Unlike the seed, point-only contacts are kept (as Steiner points) and coplanar overlaps insert
 // their boundary, so every sub-triangle ends up entirely inside, outside or on the other surface.
 #include <tbb/parallel_for.h>
@@ -16,227 +24,57 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <memory>
 #include <tuple>
 
 #include "boolean_internal.h"
 #include "filtered.h"
+#include "flat_map.h"
 #include "point_index.h"
-#include "projection_traits.h"
 
 namespace morphex::detail {
 
 namespace {
 
-class PointStore {
- public:
-  explicit PointStore(Intersection& x) : x_(x), index_(x.points) {}
-  PointId id(const Point& p) { return index_.id(p); }
-  void reserve(std::size_t points) { index_.reserve(points); }
-  std::size_t size() const { return x_.points.size(); }
+constexpr PointId kNoPoint = std::numeric_limits<PointId>::max();
 
- private:
-  Intersection& x_;
-  PointIndex index_;
-};
+using Corners = std::array<PointId, 3>;
 
-// A triangle as references to its mesh's points. CGAL's lazy Triangle_3 would allocate a node
-// per triangle and per vertex access, and copy exact coordinates on every exact fallback.
-struct Corners {
-  const Point* p[3];
-  const Point& operator[](int i) const { return *p[i]; }
-};
-
-Corners triangle(const Mesh& m, std::uint32_t t) {
-  const Triangle& f = m.triangles[t];
-  return {{&m.points[f[0]], &m.points[f[1]], &m.points[f[2]]}};
+Corners corners_of(const PointTable& table, const Mesh& mesh, int side, std::uint32_t facet) {
+  const Triangle& f = mesh.triangles[facet];
+  return {table.vertex(side, f[0]), table.vertex(side, f[1]), table.vertex(side, f[2])};
 }
 
-// sign(((a1 - a0) x (a2 - a0)) x ((b1 - b0) x (b2 - b0)) . (q - p)): the order of p and q along
-// the common line of the two planes, oriented by Na x Nb.
-CGAL::Sign along_common_line(const Corners& ta, const Corners& tb, const Point& p, const Point& q) {
-  return filtered_sign(
-      [](const auto& a0, const auto& a1, const auto& a2, const auto& b0, const auto& b1,
-         const auto& b2, const auto& p, const auto& q) {
-        return CGAL::cross_product(CGAL::cross_product(a1 - a0, a2 - a0),
-                                   CGAL::cross_product(b1 - b0, b2 - b0)) *
-               (q - p);
-      },
-      ta[0], ta[1], ta[2], tb[0], tb[1], tb[2], p, q);
+// The edges of a triangle through its corner k: k - 1 and k (edge i joins corners i and i + 1).
+std::uint8_t corner_edges(int k) {
+  return std::uint8_t((1u << k) | (1u << ((k + 2) % 3)));
 }
 
-// The signs of t's vertices against the plane of `other`; true when all three are strictly on
-// one side (the triangles cannot meet).
-bool signs_against_plane(const Corners& t, const Corners& other, std::int8_t (&signs)[3]) {
-  for (int i = 0; i < 3; ++i) signs[i] = std::int8_t(orient3d(other[0], other[1], other[2], t[i]));
-  return signs[0] != 0 && signs[0] == signs[1] && signs[1] == signs[2];
+int corner_of_edges(std::uint8_t edges) {
+  for (int k = 0; k < 3; ++k)
+    if (corner_edges(k) == edges) return k;
+  return -1;
 }
 
-bool on_an_edge(const Corners& t, const Point& p, const Point& q) {
+int popcount(std::uint8_t bits) {
+  return (bits & 1) + ((bits >> 1) & 1) + ((bits >> 2) & 1);
+}
+
+// The edges of triangle t that p lies on, for p in the closed triangle (in its plane, seen along
+// the axis `dropped`).
+std::uint8_t edges_through(const PointTable& table, int dropped, const Corners& t, PointId p) {
+  std::uint8_t edges = 0;
   for (int i = 0; i < 3; ++i)
-    if (collinear3d(t[i], t[(i + 1) % 3], p) && collinear3d(t[i], t[(i + 1) % 3], q)) return true;
-  return false;
+    if (table.orientation_2(dropped, t[i], t[(i + 1) % 3], p) == CGAL::ZERO) edges |= 1u << i;
+  return edges;
 }
 
-// Step 4, the seed's rule: with s = sign((Na x Nb) . (p2 - p1)), the interior of B lies on the
-// left of (p1, p2) in ta when s > 0, and the interior of A on the left of (p1, p2) in tb when
-// s < 0. Only for transversal segments (ZERO otherwise): on an edge, the local picture involves
-// more facets.
-CGAL::Sign transversal_orientation(const Corners& ta, const Corners& tb, const Point& from,
-                                   const Point& to) {
-  if (on_an_edge(ta, from, to) || on_an_edge(tb, from, to)) return CGAL::ZERO;
-  return along_common_line(ta, tb, from, to);
-}
-
-void add_transversal(CGAL::Sign sign, PointId p1, PointId p2, FacetCut& ca, FacetCut& cb) {
-  if (p1 == p2 || sign == CGAL::ZERO) return;
-  const bool positive = sign == CGAL::POSITIVE;
-  ca.transversal.push_back(positive ? OrientedSegment{p1, p2} : OrientedSegment{p2, p1});
-  cb.transversal.push_back(positive ? OrientedSegment{p2, p1} : OrientedSegment{p1, p2});
-}
-
-void add_segment(FacetCut& cut, PointId p, PointId q) {
-  cut.points.push_back(p);
-  cut.points.push_back(q);
-  if (p != q) cut.segments.push_back(undirected(p, q));
-}
-
-// The plane of a facet in homogeneous integer coordinates: A X + B Y + C Z + D W = 0 for the
-// homogeneous points (X, Y, Z, W) on it (the 4D cross product of its corners).
-struct ExactPlane {
-  std::array<mpz_class, 4> coefficients;
-};
-
-Homogeneous homogeneous_point(const Point& p) {
-  return detail::homogeneous_point(CGAL::exact(p));
-}
-
-ExactPlane exact_plane(const Homogeneous& a, const Homogeneous& b, const Homogeneous& c) {
-  auto det3 = [&](int i, int j, int k) -> mpz_class {
-    return a[i] * (b[j] * c[k] - b[k] * c[j]) - a[j] * (b[i] * c[k] - b[k] * c[i]) +
-           a[k] * (b[i] * c[j] - b[j] * c[i]);
-  };
-  return {{det3(1, 2, 3), -det3(0, 2, 3), det3(0, 1, 3), -det3(0, 1, 2)}};
-}
-
-// The point where segment pq crosses the plane, when p and q are strictly on opposite sides:
-// with d the plane's linear form, it is d(q) p - d(p) q in homogeneous coordinates (integers, so
-// the only gcds are the three that put the coordinates in lowest terms). Stored as an evaluated
-// leaf, so that neither the predicates that meet it later nor the exact output walk a lazy
-// construction graph.
-Point plane_crossing(const ExactPlane& plane, const Homogeneous& hp, const Homogeneous& hq) {
-  const auto& c = plane.coefficients;
-  const mpz_class dp = c[0] * hp[0] + c[1] * hp[1] + c[2] * hp[2] + c[3] * hp[3];
-  const mpz_class dq = c[0] * hq[0] + c[1] * hq[1] + c[2] * hq[2] + c[3] * hq[3];
-  Homogeneous r;
-  for (int i = 0; i < 4; ++i) r[i] = dq * hp[i] - dp * hq[i];
-  auto coordinate = [&](int i) {
-    mpq_class x(r[i], r[3]);
-    x.canonicalize();
-    return x;
-  };
-  return point_from_exact(
-      Kernel::Exact_kernel::Point_3(coordinate(0), coordinate(1), coordinate(2)));
-}
-
-Point plane_crossing(const ExactPlane& plane, const Point& p, const Point& q) {
-  return plane_crossing(plane, homogeneous_point(p), homogeneous_point(q));
-}
-
-// Homogeneous coordinates of the input vertices the crossings need, each converted once (a vertex
-// serves every crossing of its edges and every plane of its facets).
-class HomogeneousVertices {
- public:
-  HomogeneousVertices(const Mesh& mesh, std::vector<VertexIndex> vertices)
-      : vertices_(std::move(vertices)) {
-    std::sort(vertices_.begin(), vertices_.end());
-    vertices_.erase(std::unique(vertices_.begin(), vertices_.end()), vertices_.end());
-    forms_.resize(vertices_.size());
-    tbb::parallel_for(std::size_t(0), vertices_.size(), [&](std::size_t i) {
-      forms_[i] = homogeneous_point(mesh.points[vertices_[i]]);
-    });
-  }
-  const Homogeneous& operator()(VertexIndex v) const {
-    return forms_[std::lower_bound(vertices_.begin(), vertices_.end(), v) - vertices_.begin()];
-  }
-
- private:
-  std::vector<VertexIndex> vertices_;
-  std::vector<Homogeneous> forms_;
-};
-
-// The vertical plane through the line ab of the coordinate plane that drops axis `dropped`: the
-// points whose projection lies on that line. Crossing it with a segment of the common plane of
-// two coplanar triangles gives the exact point where the segment meets the line.
-ExactPlane plane_through_projected_line(int dropped, const Point& a, const Point& b) {
-  const auto ha = homogeneous_point(a), hb = homogeneous_point(b);
-  const int u = dropped == 0 ? 1 : 0, v = dropped == 2 ? 1 : 2;
-  ExactPlane plane;
-  plane.coefficients[dropped] = 0;
-  plane.coefficients[u] = ha[v] * hb[3] - ha[3] * hb[v];
-  plane.coefficients[v] = ha[3] * hb[u] - ha[u] * hb[3];
-  plane.coefficients[3] = ha[u] * hb[v] - ha[v] * hb[u];
-  return plane;
-}
-
-// The overlap of two coplanar, non-degenerate triangles: tb clipped by the three edges of ta in
-// the coordinate plane that drops the dominant axis of their normal (an exact projection: it
-// only selects coordinates). Kept vertices stay the input points; each new vertex is one exact
-// crossing. Returns nothing, one point, the two ends of a segment, or a convex polygon.
-template <int dropped>
-std::vector<Point> coplanar_overlap(const Corners& ta, const Corners& tb) {
-  const FilteredProjectedOrientation<dropped> orient;
-  const int turn = orient(ta[0], ta[1], ta[2]);  // +1 or -1: ta is not degenerate
-  std::vector<Point> polygon = {tb[0], tb[1], tb[2]}, clipped;
-  for (int i = 0; i < 3 && !polygon.empty(); ++i) {
-    const Point &a = ta[i], &b = ta[(i + 1) % 3];
-    clipped.clear();
-    std::vector<int> side(polygon.size());
-    for (std::size_t k = 0; k < polygon.size(); ++k) side[k] = turn * orient(a, b, polygon[k]);
-    for (std::size_t k = 0; k < polygon.size(); ++k) {
-      const std::size_t next = (k + 1) % polygon.size();
-      if (side[k] >= 0) clipped.push_back(polygon[k]);
-      if (side[k] * side[next] < 0)
-        clipped.push_back(
-            plane_crossing(plane_through_projected_line(dropped, a, b), polygon[k], polygon[next]));
-    }
-    std::swap(polygon, clipped);
-  }
-  // Touching contacts leave repeated points and flat polygons: reduce to distinct points, and a
-  // polygon without area to the ends of its segment.
-  std::vector<Point> distinct;
-  for (const Point& p : polygon)
-    if (distinct.empty() || p != distinct.back()) distinct.push_back(p);
-  while (distinct.size() > 1 && distinct.front() == distinct.back()) distinct.pop_back();
-  if (distinct.size() < 3) return distinct;
-  bool flat = true;
-  for (std::size_t k = 2; k < distinct.size() && flat; ++k)
-    flat = orient(distinct[0], distinct[1], distinct[k]) == CGAL::COLLINEAR;
-  if (!flat) return distinct;
-  // The extreme points along the segment's line, by exact lexicographic order (which is monotone
-  // along any line).
-  const auto [lo, hi] = std::minmax_element(
-      distinct.begin(), distinct.end(),
-      [](const Point& p, const Point& q) { return CGAL::compare_xyz(p, q) == CGAL::SMALLER; });
-  return {*lo, *hi};
-}
-
-std::vector<Point> coplanar_overlap(const Corners& ta, const Corners& tb) {
-  switch (dominant_axis(ta[0], ta[1], ta[2])) {
-    case 0:
-      return coplanar_overlap<0>(ta, tb);
-    case 1:
-      return coplanar_overlap<1>(ta, tb);
-    default:
-      return coplanar_overlap<2>(ta, tb);
-  }
-}
-
-// A crossing of an input edge (u, v), u < v, of mesh `side` with the plane of facet `facet` of
-// the other mesh. Every crossing is constructed once, whichever of the edge's facets needs it
-// (the seed's "every intersection point once").
+// A crossing of an input edge (u, v), u < v (ids of the edge's ends), with the plane of a facet of
+// the other mesh. Every crossing is one table entry, whichever of the edge's facets needs it (the
+// seed's "every intersection point once").
 struct CrossingKey {
-  std::uint32_t side, facet;
-  VertexIndex u, v;
+  std::uint32_t side, facet;  // the edge's mesh (0 in a soup) and the other mesh's facet
+  PointId u, v;
   bool operator<(const CrossingKey& o) const {
     return std::tie(side, facet, u, v) < std::tie(o.side, o.facet, o.u, o.v);
   }
@@ -245,33 +83,46 @@ struct CrossingKey {
   }
 };
 
-// One end of the chord a triangle cuts on the other triangle's plane: an input vertex (its point
-// id is known) or a crossing (its id is given in the final, sequential pass).
-struct ChordEnd {
-  const Point* point;
-  PointId vertex = kNoPoint;
-  std::uint32_t crossing = kNoPoint;
-  bool same(const ChordEnd& o) const {
-    return vertex != kNoPoint ? vertex == o.vertex : crossing == o.crossing;
+// Two input edges (ids of their ends, each pair sorted): the name of the point where they cross.
+using EdgeEdgeKey = std::pair<std::uint64_t, std::uint64_t>;
+struct EdgeEdgeHash {
+  std::size_t operator()(const EdgeEdgeKey& k) const {
+    return std::size_t(mix64(k.first ^ mix64(k.second)));
   }
-  static constexpr std::uint32_t kNoPoint = std::numeric_limits<std::uint32_t>::max();
 };
-
-// Edges of `f` whose ends lie strictly on opposite sides of the other plane.
-template <class Visit>
-void for_each_crossing_edge(const Triangle& f, const std::int8_t (&signs)[3], Visit&& visit) {
-  for (int i = 0; i < 3; ++i) {
-    const int j = (i + 1) % 3;
-    if (signs[i] != 0 && signs[j] != 0 && signs[i] != signs[j]) visit(i, j);
-  }
+EdgeEdgeKey edge_edge_key(PointId a0, PointId a1, PointId b0, PointId b1) {
+  return {edge_key(undirected(a0, a1)), edge_key(undirected(b0, b1))};
 }
 
-// What one candidate pair leaves on its two facets, before point ids are given.
+// How the final id of a point is found in the sequential pass.
+enum class Naming : std::uint8_t {
+  Known,     // its id is final
+  EdgeEdge,  // by the two edges it lies on (`key`)
+  Position,  // by exact position (soups)
+};
+
+// A point of a pair's intersection, with the edges of ta and of tb it lies on.
+struct PairPoint {
+  PointId id = kNoPoint;  // table id, or kNoPoint for a new coplanar crossing (`recipe`)
+  Recipe recipe;
+  Naming naming = Naming::Known;
+  EdgeEdgeKey key{};
+  std::uint8_t edges_a = 0, edges_b = 0;
+};
+
+// One end of the chord a triangle cuts on the other triangle's plane.
+struct ChordEnd {
+  PointId id;
+  std::int8_t role;   // 0: vertex of ta, 1: crossing of an edge of ta, 2, 3: the same for tb
+  std::int8_t index;  // the vertex's corner, or the crossing edge (edge i: corners i, i + 1)
+  std::uint32_t crossing = 0;
+};
+
+// What one candidate pair leaves on its two facets, before final ids are given.
 struct PairOutcome {
   enum class Kind : std::uint8_t { None, Point, Segment, Polygon } kind = Kind::None;
-  ChordEnd lo, hi;             // Point: lo; Segment: lo -> hi (non-coplanar pairs)
-  std::vector<Point> polygon;  // coplanar pairs: the point, segment ends or overlap polygon
-  CGAL::Sign orientation = CGAL::ZERO;  // transversal segments: sign((Na x Nb) . (hi - lo))
+  std::vector<PairPoint> points;  // Point: 1, Segment: 2 (from lo to hi), Polygon: its vertices
+  bool transversal = false;       // a segment whose interior is inside both open triangles
 };
 
 struct PairSigns {
@@ -279,150 +130,450 @@ struct PairSigns {
   bool separated = true, coplanar = false;
 };
 
+// Edges of a triangle whose ends lie strictly on opposite sides of the other plane.
+template <class Visit>
+void for_each_crossing_edge(const std::int8_t (&signs)[3], Visit&& visit) {
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    if (signs[i] != 0 && signs[j] != 0 && signs[i] != signs[j]) visit(i, j);
+  }
+}
+
+// ---- Coplanar pairs: the overlap polygon by clipping tb with ta's edge lines.
+
+// A vertex of the polygon being clipped: a point of the table, or a crossing of an edge of tb with
+// an edge line of ta made for this polygon (exact value computed only if a predicate needs it).
+struct PolygonVertex {
+  PointId id = kNoPoint;
+  Recipe recipe;
+  ApproxPoint approx;
+  mutable std::shared_ptr<const Homogeneous> exact;
+  std::int8_t edge_a = -1, edge_b = -1;  // a crossing: the edges of ta and tb it lies on
+  std::int8_t leaving = 0;               // the polygon edge to the next vertex lies on the line
+                                         // of tb's edge j (j) or of ta's edge i (3 + i)
+};
+
+class CoplanarClipper {
+ public:
+  CoplanarClipper(const PointTable& table, const Corners& ta, const Corners& tb,
+                  const Corners& ta_ids, const Corners& tb_ids, int dropped, bool soup)
+      : table_(table),
+        ta_(ta),
+        tb_(tb),
+        ta_ids_(ta_ids),
+        tb_ids_(tb_ids),
+        dropped_(dropped),
+        soup_(soup) {}
+
+  // The overlap of the two closed triangles: nothing, a point, a segment's ends or a convex
+  // polygon, each vertex with the edges of ta and tb it lies on.
+  std::vector<PairPoint> overlap() const {
+    const int turn = orientation(table_vertex(ta_[0]), table_vertex(ta_[1]), table_vertex(ta_[2]));
+    std::vector<PolygonVertex> polygon;
+    for (int j = 0; j < 3; ++j) {
+      PolygonVertex v = table_vertex(tb_ids_[j]);
+      v.leaving = std::int8_t(j);
+      polygon.push_back(v);
+    }
+    std::vector<PolygonVertex> clipped;
+    std::vector<int> side;
+    for (int i = 0; i < 3 && !polygon.empty(); ++i) {
+      const PolygonVertex a = table_vertex(ta_[i]), b = table_vertex(ta_[(i + 1) % 3]);
+      side.resize(polygon.size());
+      for (std::size_t k = 0; k < polygon.size(); ++k)
+        side[k] = turn * orientation(a, b, polygon[k]);
+      clipped.clear();
+      for (std::size_t k = 0; k < polygon.size(); ++k) {
+        const std::size_t next = (k + 1) % polygon.size();
+        if (side[k] >= 0) {
+          PolygonVertex v = polygon[k];
+          if (side[k] == 0 && side[next] < 0) v.leaving = std::int8_t(3 + i);
+          clipped.push_back(v);
+        }
+        if (side[k] * side[next] < 0) {
+          PolygonVertex v = crossing(i, polygon[k].leaving);
+          v.leaving = side[k] > 0 ? std::int8_t(3 + i) : polygon[k].leaving;
+          clipped.push_back(v);
+        }
+      }
+      std::swap(polygon, clipped);
+    }
+    // Touching contacts leave repeated points and flat polygons: reduce to distinct points, and
+    // a polygon without area to the ends of its segment.
+    std::vector<PolygonVertex> distinct;
+    for (const PolygonVertex& v : polygon)
+      if (distinct.empty() || !same(v, distinct.back())) distinct.push_back(v);
+    while (distinct.size() > 1 && same(distinct.front(), distinct.back())) distinct.pop_back();
+    if (distinct.size() >= 3) {
+      bool flat = true;
+      for (std::size_t k = 2; k < distinct.size() && flat; ++k)
+        flat = orientation(distinct[0], distinct[1], distinct[k]) == 0;
+      if (flat) {
+        // The extreme points along the segment's line, by lexicographic order (monotone along
+        // any line).
+        const auto [lo, hi] = std::minmax_element(
+            distinct.begin(), distinct.end(),
+            [&](const PolygonVertex& p, const PolygonVertex& q) { return less_xyz(p, q); });
+        distinct = {*lo, *hi};
+      }
+    }
+    std::vector<PairPoint> out;
+    for (const PolygonVertex& v : distinct) out.push_back(pair_point(v));
+    return out;
+  }
+
+ private:
+  PolygonVertex table_vertex(PointId id) const {
+    PolygonVertex v;
+    v.id = id;
+    v.approx = table_.approx(id);
+    return v;
+  }
+
+  const Homogeneous& exact(const PolygonVertex& v) const {
+    if (v.id != kNoPoint) return table_.exact(v.id);
+    if (!v.exact) {
+      const Recipe& r = v.recipe;
+      v.exact = std::make_shared<const Homogeneous>(
+          construct_homogeneous(r, table_.exact(r.p), table_.exact(r.q), table_.exact(r.a),
+                                table_.exact(r.b), table_.exact(r.a)));
+    }
+    return *v.exact;
+  }
+
+  int orientation(const PolygonVertex& p, const PolygonVertex& q, const PolygonVertex& r) const {
+    const int u = dropped_ == 0 ? 1 : 0, v = dropped_ == 2 ? 1 : 2;
+    if (p.id != kNoPoint && q.id != kNoPoint && r.id != kNoPoint)
+      return table_.orientation_2(dropped_, p.id, q.id, r.id);
+    {
+      CGAL::Protect_FPU_rounding<true> rounding;
+      const auto o =
+          CGAL::orientationC2(p.approx.cartesian(u), p.approx.cartesian(v), q.approx.cartesian(u),
+                              q.approx.cartesian(v), r.approx.cartesian(u), r.approx.cartesian(v));
+      if (CGAL::is_certain(o)) return CGAL::get_certain(o);
+    }
+    const Homogeneous &hp = exact(p), &hq = exact(q), &hr = exact(r);
+    const mpz_class d = hp[u] * (hq[v] * hr[3] - hq[3] * hr[v]) -
+                        hp[v] * (hq[u] * hr[3] - hq[3] * hr[u]) +
+                        hp[3] * (hq[u] * hr[v] - hq[v] * hr[u]);
+    return sgn(d);
+  }
+
+  bool less_xyz(const PolygonVertex& p, const PolygonVertex& q) const {
+    for (int axis = 0; axis < 3; ++axis) {
+      {
+        CGAL::Protect_FPU_rounding<true> rounding;
+        const CGAL::Uncertain<CGAL::Comparison_result> c =
+            CGAL::compare(p.approx.cartesian(axis), q.approx.cartesian(axis));
+        if (CGAL::is_certain(c)) {
+          if (CGAL::get_certain(c) != CGAL::EQUAL) return CGAL::get_certain(c) == CGAL::SMALLER;
+          continue;
+        }
+      }
+      const Homogeneous &hp = exact(p), &hq = exact(q);
+      const int c = sgn(hp[axis] * hq[3] - hq[axis] * hp[3]);
+      if (c != 0) return c < 0;
+    }
+    return false;
+  }
+
+  // Distinct vertices of one polygon are distinct positions, except equal table ids and equal
+  // crossings (one pair of edges).
+  static bool same(const PolygonVertex& p, const PolygonVertex& q) {
+    if (p.id != kNoPoint || q.id != kNoPoint) return p.id == q.id;
+    return p.edge_a == q.edge_a && p.edge_b == q.edge_b;
+  }
+
+  // Where the polygon edge lying on line `tag` crosses ta's edge line i.
+  PolygonVertex crossing(int i, int tag) const {
+    if (tag >= 3) {
+      // Two of ta's edge lines meet at their common corner.
+      const int other = tag - 3;
+      return table_vertex(ta_ids_[other == (i + 1) % 3 ? (i + 1) % 3 : i]);
+    }
+    PolygonVertex v;
+    v.recipe.kind = Recipe::Kind::EdgeProjectedLine;
+    v.recipe.dropped = std::int8_t(dropped_);
+    v.recipe.p = tb_[tag];
+    v.recipe.q = tb_[(tag + 1) % 3];
+    v.recipe.a = ta_[i];
+    v.recipe.b = ta_[(i + 1) % 3];
+    v.approx = table_.approximate(v.recipe);
+    v.edge_a = std::int8_t(i);
+    v.edge_b = std::int8_t(tag);
+    // The crossing lies strictly inside tb's edge, but it may be one of ta's corners on line i
+    // (tb's edge passing through it): corner k lies on lines k - 1 and k, so test the other one.
+    for (const int k : {i, (i + 1) % 3}) {
+      const int line = k == i ? (k + 2) % 3 : k;
+      if (orientation(table_vertex(ta_[line]), table_vertex(ta_[(line + 1) % 3]), v) == 0)
+        return table_vertex(ta_ids_[k]);
+    }
+    return v;
+  }
+
+  PairPoint pair_point(const PolygonVertex& v) const {
+    PairPoint out;
+    if (v.id != kNoPoint) {
+      out.id = v.id;
+      out.edges_a = edges_of(ta_ids_, v.id);
+      out.edges_b = edges_of(tb_ids_, v.id);
+      return out;
+    }
+    out.recipe = v.recipe;
+    out.naming = soup_ ? Naming::Position : Naming::EdgeEdge;
+    out.key = edge_edge_key(ta_ids_[v.edge_a], ta_ids_[(v.edge_a + 1) % 3], tb_ids_[v.edge_b],
+                            tb_ids_[(v.edge_b + 1) % 3]);
+    out.edges_a = std::uint8_t(1u << v.edge_a);
+    out.edges_b = std::uint8_t(1u << v.edge_b);
+    return out;
+  }
+
+  std::uint8_t edges_of(const Corners& ids, PointId id) const {
+    for (int k = 0; k < 3; ++k)
+      if (ids[k] == id) return corner_edges(k);
+    return edges_through(table_, dropped_, ids, id);
+  }
+
+  const PointTable& table_;
+  const Corners &ta_, &tb_;          // raw ids, for recipes and predicates
+  const Corners &ta_ids_, &tb_ids_;  // the same corners by their final ids
+  int dropped_;
+  bool soup_;
+};
+
 }  // namespace
 
 // The phases run in parallel where the pairs are independent and end with one sequential pass in
-// pair order that gives point ids, so the result is the same for any number of threads:
-//   1. orientation signs of each pair (separated pairs stop here);
-//   2. the distinct edge/plane crossings the pairs need, each constructed once;
-//   3. each pair's chord overlap (a segment, a point or nothing), or its coplanar overlap;
-//   4. point ids and the per-facet cuts.
-Intersection intersect(const Mesh& a, const Mesh& b,
-                       const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs) {
+// pair order that gives final ids, so the result is the same for any number of threads:
+//   1. identity of the input vertices near the other mesh;
+//   2. orientation signs of each pair (separated pairs stop here);
+//   3. the distinct edge/plane crossings the pairs need, as table entries, and the edges of the
+//      other facet each one lies on;
+//   4. each pair's chord overlap (a segment, a point or nothing), or its coplanar overlap;
+//   5. final ids and the per-facet cuts.
+Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
+                       const IntersectOptions& options) {
   Intersection x;
-  PointStore store(x);
+  x.points = PointTable(a, b, options.soup);
+  PointTable& table = x.points;
   const Mesh* meshes[2] = {&a, &b};
-  store.reserve(a.num_vertices() + b.num_vertices());
-  for (int side = 0; side < 2; ++side) {
-    x.vertex_id[side].reserve(meshes[side]->num_vertices());
-    for (const Point& p : meshes[side]->points) x.vertex_id[side].push_back(store.id(p));
-  }
-  const std::size_t input_points = store.size();
   const std::size_t np = pairs.size();
+  const std::size_t num_inputs = table.num_inputs();
 
+  // 1. Coincident vertices near the other mesh get the first one's id, so that a position has
+  // one name wherever the two meshes meet (and where separated features of one mesh touch).
+  x.vertex_rep.resize(num_inputs);
+  std::vector<PointId> merged;
+  {
+    std::vector<std::uint8_t> near(num_inputs, 0);
+    for (const auto& [ia, ib] : pairs) {
+      for (VertexIndex v : a.triangles[ia]) near[table.vertex(0, v)] = 1;
+      for (VertexIndex v : b.triangles[ib]) near[table.vertex(1, v)] = 1;
+    }
+    PositionIndex index;
+    for (PointId id = 0; id < num_inputs; ++id) {
+      x.vertex_rep[id] = id;
+      if (!near[id]) continue;
+      const PointId first = index.find_or_insert(table.input(id), id);
+      if (first != id) {
+        x.vertex_rep[id] = first;
+        merged.push_back(first);
+      }
+    }
+  }
+  auto rep = [&](PointId id) { return x.vertex_rep[id]; };
+
+  // 2. Signs.
   std::vector<PairSigns> signs(np);
   tbb::parallel_for(std::size_t(0), np, [&](std::size_t k) {
     const auto [ia, ib] = pairs[k];
-    const Corners ta = triangle(a, ia), tb = triangle(b, ib);
+    const Corners ta = corners_of(table, a, 0, ia), tb = corners_of(table, b, 1, ib);
     PairSigns& s = signs[k];
-    if (signs_against_plane(ta, tb, s.a) || signs_against_plane(tb, ta, s.b)) return;
+    auto against = [&](const Corners& t, const Corners& other, std::int8_t(&out)[3]) {
+      for (int i = 0; i < 3; ++i)
+        out[i] = std::int8_t(table.orientation(other[0], other[1], other[2], t[i]));
+      return out[0] != 0 && out[0] == out[1] && out[1] == out[2];
+    };
+    if (against(ta, tb, s.a) || against(tb, ta, s.b)) return;
     s.separated = false;
     s.coplanar = s.a[0] == 0 && s.a[1] == 0 && s.a[2] == 0;
   });
 
+  // 3. Crossings.
+  const std::uint32_t b_side = options.soup ? 0 : 1;
+  auto crossing_key = [&](int side, const Corners& t, int i, int j, std::uint32_t other_facet) {
+    const PointId u = rep(t[i]), v = rep(t[j]);
+    return CrossingKey{side == 0 ? 0 : b_side, other_facet, std::min(u, v), std::max(u, v)};
+  };
   std::vector<CrossingKey> keys;
   for (std::size_t k = 0; k < np; ++k) {
     if (signs[k].separated || signs[k].coplanar) continue;
     const auto [ia, ib] = pairs[k];
-    for_each_crossing_edge(a.triangles[ia], signs[k].a, [&](int i, int j) {
-      const VertexIndex u = a.triangles[ia][i], v = a.triangles[ia][j];
-      keys.push_back({0, ib, std::min(u, v), std::max(u, v)});
-    });
-    for_each_crossing_edge(b.triangles[ib], signs[k].b, [&](int i, int j) {
-      const VertexIndex u = b.triangles[ib][i], v = b.triangles[ib][j];
-      keys.push_back({1, ia, std::min(u, v), std::max(u, v)});
-    });
+    const Corners ta = corners_of(table, a, 0, ia), tb = corners_of(table, b, 1, ib);
+    for_each_crossing_edge(signs[k].a,
+                           [&](int i, int j) { keys.push_back(crossing_key(0, ta, i, j, ib)); });
+    for_each_crossing_edge(signs[k].b,
+                           [&](int i, int j) { keys.push_back(crossing_key(1, tb, i, j, ia)); });
   }
   std::sort(keys.begin(), keys.end());
   keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-  // Keys of one facet are adjacent: each group computes that facet's plane once.
-  std::vector<std::size_t> group_begin;
-  for (std::size_t i = 0; i < keys.size(); ++i)
-    if (i == 0 || keys[i].side != keys[i - 1].side || keys[i].facet != keys[i - 1].facet)
-      group_begin.push_back(i);
-  group_begin.push_back(keys.size());
-  std::vector<VertexIndex> used[2];  // per mesh: edge ends and plane corners
-  for (const CrossingKey& k : keys) {
-    used[k.side].push_back(k.u);
-    used[k.side].push_back(k.v);
-    for (VertexIndex v : meshes[1 - k.side]->triangles[k.facet]) used[1 - k.side].push_back(v);
+  auto facet_corners = [&](const CrossingKey& key) {
+    // The facet belongs to the mesh the edge is not from (in a soup, to the soup).
+    const int facet_side = options.soup ? 0 : 1 - int(key.side);
+    return corners_of(table, *meshes[facet_side], facet_side, key.facet);
+  };
+  std::vector<Recipe> recipes(keys.size());
+  for (std::size_t c = 0; c < keys.size(); ++c) {
+    const Corners f = facet_corners(keys[c]);
+    recipes[c] = {Recipe::Kind::EdgePlane, -1, keys[c].u, keys[c].v, f[0], f[1], f[2]};
   }
-  const HomogeneousVertices homogeneous_of[2] = {{a, std::move(used[0])}, {b, std::move(used[1])}};
-  std::vector<Point> crossing_points(keys.size());
-  tbb::parallel_for(std::size_t(0), group_begin.size() - 1, [&](std::size_t g) {
-    const CrossingKey& first = keys[group_begin[g]];
-    const HomogeneousVertices& edge_ends = homogeneous_of[first.side];
-    const HomogeneousVertices& corners = homogeneous_of[1 - first.side];
-    const Triangle& f = meshes[1 - first.side]->triangles[first.facet];
-    const ExactPlane plane = exact_plane(corners(f[0]), corners(f[1]), corners(f[2]));
-    for (std::size_t i = group_begin[g]; i < group_begin[g + 1]; ++i)
-      crossing_points[i] = plane_crossing(plane, edge_ends(keys[i].u), edge_ends(keys[i].v));
+  const PointId first_crossing = table.add_all(recipes);
+  // The edges of its facet each crossing lies on: the crossing of line uv with the facet's plane
+  // is on the line of the facet's edge (f_i, f_i+1) exactly when uv and that edge are coplanar.
+  std::vector<std::uint8_t> crossing_edges(keys.size(), 0);
+  tbb::parallel_for(std::size_t(0), keys.size(), [&](std::size_t c) {
+    const Corners f = facet_corners(keys[c]);
+    for (int i = 0; i < 3; ++i)
+      if (table.orientation(keys[c].u, keys[c].v, f[i], f[(i + 1) % 3]) == CGAL::ZERO)
+        crossing_edges[c] |= std::uint8_t(1u << i);
   });
+  auto crossing_index = [&](const CrossingKey& key) {
+    return std::uint32_t(std::lower_bound(keys.begin(), keys.end(), key) - keys.begin());
+  };
 
+  // 4. Outcomes.
   std::vector<PairOutcome> outcomes(np);
   tbb::parallel_for(std::size_t(0), np, [&](std::size_t k) {
     if (signs[k].separated) return;
     const auto [ia, ib] = pairs[k];
-    const Corners ta = triangle(a, ia), tb = triangle(b, ib);
+    const Corners ta = corners_of(table, a, 0, ia), tb = corners_of(table, b, 1, ib);
+    const Corners ta_ids = {rep(ta[0]), rep(ta[1]), rep(ta[2])};
+    const Corners tb_ids = {rep(tb[0]), rep(tb[1]), rep(tb[2])};
     PairOutcome& out = outcomes[k];
-    if (!signs[k].coplanar) {
-      // The chord each triangle cuts on the other's plane: its vertices on that plane and its
-      // crossing edges. Both chords lie on the planes' common line; their overlap is ta n tb.
-      auto chord = [&](std::uint32_t side, std::uint32_t facet, const Corners& t,
-                       const std::int8_t(&s)[3], std::uint32_t other_facet) {
-        const Triangle& f = meshes[side]->triangles[facet];
-        std::array<ChordEnd, 3> ends;
-        std::size_t count = 0;
-        for (int i = 0; i < 3; ++i)
-          if (s[i] == 0) ends[count++] = {&t[i], x.vertex_id[side][f[i]]};
-        for_each_crossing_edge(f, s, [&](int i, int j) {
-          const CrossingKey key{side, other_facet, std::min(f[i], f[j]), std::max(f[i], f[j])};
-          const auto c =
-              std::uint32_t(std::lower_bound(keys.begin(), keys.end(), key) - keys.begin());
-          ends[count++] = {&crossing_points[c], ChordEnd::kNoPoint, c};
-        });
-        return std::make_pair(ends, count);
-      };
-      const auto [ca, na] = chord(0, ia, ta, signs[k].a, ib);
-      const auto [cb, nb] = chord(1, ib, tb, signs[k].b, ia);
-      auto order = [&](const ChordEnd& p, const ChordEnd& q) {  // sign of q - p along the line
-        return p.same(q) ? CGAL::ZERO : along_common_line(ta, tb, *p.point, *q.point);
-      };
-      auto sorted = [&](const std::array<ChordEnd, 3>& e, std::size_t count) {
-        const ChordEnd& last = e[count - 1];
-        return order(e[0], last) == CGAL::NEGATIVE ? std::make_pair(last, e[0])
-                                                   : std::make_pair(e[0], last);
-      };
-      const auto [a1, a2] = sorted(ca, na);
-      const auto [b1, b2] = sorted(cb, nb);
-      const ChordEnd& lo = order(a1, b1) == CGAL::POSITIVE ? b1 : a1;  // the later start
-      const ChordEnd& hi = order(a2, b2) == CGAL::POSITIVE ? a2 : b2;  // the earlier end
-      const auto extent = order(lo, hi);
-      if (extent == CGAL::NEGATIVE) return;
-      out.lo = lo;
-      out.hi = hi;
-      if (extent == CGAL::ZERO) {
-        out.kind = PairOutcome::Kind::Point;
-        return;
+    if (signs[k].coplanar) {
+      const int dropped = table.dominant_axis(ta[0], ta[1], ta[2]);
+      out.points = CoplanarClipper(table, ta, tb, ta_ids, tb_ids, dropped, options.soup).overlap();
+      switch (out.points.size()) {
+        case 0:
+          break;
+        case 1:
+          out.kind = PairOutcome::Kind::Point;
+          break;
+        case 2:
+          out.kind = PairOutcome::Kind::Segment;  // along a line of both planes: not transversal
+          break;
+        default:
+          out.kind = PairOutcome::Kind::Polygon;
       }
-      out.kind = PairOutcome::Kind::Segment;
-      out.orientation = transversal_orientation(ta, tb, *lo.point, *hi.point);
       return;
     }
-    out.polygon = coplanar_overlap(ta, tb);
-    switch (out.polygon.size()) {
-      case 0:
-        return;
-      case 1:
-        out.kind = PairOutcome::Kind::Point;
-        return;
-      case 2:
-        out.kind = PairOutcome::Kind::Segment;
-        out.orientation = transversal_orientation(ta, tb, out.polygon[0], out.polygon[1]);
-        return;
-      default:
-        out.kind = PairOutcome::Kind::Polygon;
+    // The chord each triangle cuts on the other's plane: its vertices on that plane and its
+    // crossing edges. Both chords lie on the planes' common line; their overlap is ta n tb.
+    auto chord = [&](int side, const Corners& t, const Corners& ids, const std::int8_t(&s)[3],
+                     std::uint32_t other_facet) {
+      std::array<ChordEnd, 3> ends;
+      std::size_t count = 0;
+      for (int i = 0; i < 3; ++i)
+        if (s[i] == 0) ends[count++] = {ids[i], std::int8_t(2 * side), std::int8_t(i)};
+      for_each_crossing_edge(s, [&](int i, int j) {
+        const std::uint32_t c = crossing_index(crossing_key(side, t, i, j, other_facet));
+        ends[count++] = {PointId(first_crossing + c), std::int8_t(2 * side + 1), std::int8_t(i), c};
+      });
+      return std::make_pair(ends, count);
+    };
+    const auto [ca, na] = chord(0, ta, ta_ids, signs[k].a, ib);
+    const auto [cb, nb] = chord(1, tb, tb_ids, signs[k].b, ia);
+    auto order = [&](const ChordEnd& p, const ChordEnd& q) {  // sign of q - p along the line
+      return p.id == q.id ? CGAL::ZERO : table.along_line(ta, tb, p.id, q.id);
+    };
+    auto sorted = [&](const std::array<ChordEnd, 3>& e, std::size_t count) {
+      const ChordEnd& last = e[count - 1];
+      return order(e[0], last) == CGAL::NEGATIVE ? std::make_pair(last, e[0])
+                                                 : std::make_pair(e[0], last);
+    };
+    const auto [a1, a2] = sorted(ca, na);
+    const auto [b1, b2] = sorted(cb, nb);
+    const ChordEnd& lo = order(a1, b1) == CGAL::POSITIVE ? b1 : a1;  // the later start
+    const ChordEnd& hi = order(a2, b2) == CGAL::POSITIVE ? a2 : b2;  // the earlier end
+    const auto extent = order(lo, hi);
+    if (extent == CGAL::NEGATIVE) return;
+
+    // Where each end lies on the two triangles, and how its final id is found.
+    auto pair_point = [&](const ChordEnd& e) {
+      PairPoint p;
+      p.id = e.id;
+      const bool of_a = e.role < 2;
+      const Corners& own = of_a ? ta_ids : tb_ids;
+      const Corners& other = of_a ? tb_ids : ta_ids;
+      const Corners& other_raw = of_a ? tb : ta;
+      std::uint8_t own_edges, other_edges;
+      if (e.role % 2 == 0) {  // a vertex of its triangle, in the other's plane
+        own_edges = corner_edges(e.index);
+        other_edges = edges_through(
+            table, table.dominant_axis(other_raw[0], other_raw[1], other_raw[2]), other, e.id);
+      } else {  // an edge crossing the other's plane
+        own_edges = std::uint8_t(1u << e.index);
+        other_edges = crossing_edges[e.crossing];
+        switch (popcount(other_edges)) {
+          case 0:  // inside the other facet: unique in valid solids
+            if (options.soup) p.naming = Naming::Position;
+            break;
+          case 1: {  // on an edge of the other facet: named by the two edges
+            const CrossingKey& key = keys[e.crossing];
+            int j = 0;
+            while (!(other_edges & (1u << j))) ++j;
+            const PointId o0 = other[j], o1 = other[(j + 1) % 3];
+            p.naming = options.soup ? Naming::Position : Naming::EdgeEdge;
+            p.key =
+                of_a ? edge_edge_key(key.u, key.v, o0, o1) : edge_edge_key(o0, o1, key.u, key.v);
+            break;
+          }
+          default:  // at a corner of the other facet
+            p.id = other[corner_of_edges(other_edges)];
+        }
+      }
+      p.edges_a = of_a ? own_edges : other_edges;
+      p.edges_b = of_a ? other_edges : own_edges;
+      return p;
+    };
+    out.points.push_back(pair_point(lo));
+    if (extent == CGAL::ZERO) {
+      out.kind = PairOutcome::Kind::Point;
+      return;
     }
+    out.points.push_back(pair_point(hi));
+    out.kind = PairOutcome::Kind::Segment;
+    // lo -> hi runs along Na x Nb, so the seed's sign is positive; a segment along an edge of
+    // either triangle is not transversal (the local picture involves more facets).
+    const PairPoint &p = out.points[0], &q = out.points[1];
+    out.transversal = !(p.edges_a & q.edges_a) && !(p.edges_b & q.edges_b);
   });
 
-  // Sequential, in pair order: point ids do not depend on the thread count.
-  std::vector<PointId> crossing_id(keys.size(), ChordEnd::kNoPoint);
-  auto id_of = [&](const ChordEnd& e) {
-    if (e.vertex != ChordEnd::kNoPoint) return e.vertex;
-    PointId& id = crossing_id[e.crossing];
-    if (id == ChordEnd::kNoPoint) id = store.id(*e.point);
+  // 5. Sequential, in pair order: final ids do not depend on the thread count.
+  FlatMap<EdgeEdgeKey, PointId, EdgeEdgeHash> edge_edge;
+  PositionIndex positions;  // soups: every point by exact position
+  if (options.soup)
+    for (PointId id = 0; id < num_inputs; ++id)
+      if (rep(id) == id) positions.find_or_insert(table.input(id), id);
+  auto final_id = [&](const PairPoint& p) {
+    PointId id = p.id;
+    switch (p.naming) {
+      case Naming::Known:
+        return id;
+      case Naming::EdgeEdge: {
+        const PointId* known = edge_edge.find(p.key);
+        if (known) return *known;
+        if (id == kNoPoint) id = table.add(p.recipe);
+        edge_edge.emplace(p.key, id);
+        return id;
+      }
+      case Naming::Position:
+        if (id == kNoPoint) id = table.add(p.recipe);
+        return positions.find_or_insert(table.point(id), id);
+    }
     return id;
   };
+  std::vector<PointId> ids;
   for (std::size_t k = 0; k < np; ++k) {
     PairOutcome& out = outcomes[k];
     if (out.kind == PairOutcome::Kind::None) continue;
@@ -430,38 +581,47 @@ Intersection intersect(const Mesh& a, const Mesh& b,
     ++x.intersecting_pairs;
     FacetCut& ca = x.cuts[0][ia];
     FacetCut& cb = x.cuts[1][ib];
-    std::vector<PointId> ids;
-    if (!out.polygon.empty())
-      for (const Point& p : out.polygon) ids.push_back(store.id(p));
-    else if (out.kind == PairOutcome::Kind::Point)
-      ids = {id_of(out.lo)};
-    else
-      ids = {id_of(out.lo), id_of(out.hi)};
+    ids.clear();
+    for (const PairPoint& p : out.points) {
+      ids.push_back(final_id(p));
+      ca.points.push_back({ids.back(), p.edges_a});
+      cb.points.push_back({ids.back(), p.edges_b});
+    }
+    auto add_segment = [&](PointId p, PointId q) {
+      if (p == q) return;
+      ca.segments.push_back(undirected(p, q));
+      cb.segments.push_back(undirected(p, q));
+    };
     switch (out.kind) {
-      case PairOutcome::Kind::Point:
-        ca.points.push_back(ids[0]);
-        cb.points.push_back(ids[0]);
-        break;
       case PairOutcome::Kind::Segment:
-        add_segment(ca, ids[0], ids[1]);
-        add_segment(cb, ids[0], ids[1]);
-        add_transversal(out.orientation, ids[0], ids[1], ca, cb);
+        add_segment(ids[0], ids[1]);
+        if (out.transversal && ids[0] != ids[1]) {
+          // The seed's rule with s > 0: B's interior is on the left of lo -> hi in ta, A's on
+          // the left of hi -> lo in tb.
+          ca.transversal.push_back({ids[0], ids[1]});
+          cb.transversal.push_back({ids[1], ids[0]});
+        }
         break;
       case PairOutcome::Kind::Polygon:
         // Coplanar overlap: its boundary separates, in each facet, the part that lies on the
         // other surface from the rest.
-        for (std::size_t i = 0; i < ids.size(); ++i) {
-          add_segment(ca, ids[i], ids[(i + 1) % ids.size()]);
-          add_segment(cb, ids[i], ids[(i + 1) % ids.size()]);
-        }
+        for (std::size_t i = 0; i < ids.size(); ++i) add_segment(ids[i], ids[(i + 1) % ids.size()]);
         ca.coplanar_facets.push_back(ib);
         cb.coplanar_facets.push_back(ia);
+        x.coplanar_overlaps = true;
         break;
-      case PairOutcome::Kind::None:
+      default:
         break;
     }
   }
-  x.constructed_points = store.size() - input_points;
+
+  x.flags.assign(table.size(), 0);
+  for (PointId id : merged) x.flags[id] |= kMerged;
+  for (int side = 0; side < 2; ++side)
+    for (const auto& [facet, cut] : x.cuts[side])
+      for (const CutPoint& p : cut.points) x.flags[p.id] |= kOnSurface;
+  for (PointId id = PointId(num_inputs); id < table.size(); ++id)
+    if (x.flags[id] & kOnSurface) ++x.constructed_points;
   return x;
 }
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // n-ary union of convex solids: the Boolean's phases once over the soup of all pieces.
 //   pairs          triangles of different pieces whose boxes overlap (one tree over the soup)
-//   segments       detail::intersect on (soup, soup), every point shared by exact position
+//   segments       detail::intersect on (soup, soup), every point named by exact position
 //   retriangulate  one CDT per cut facet with the constraints from every other piece
 //   classify       patches (sub-triangles of one piece joined across unconstrained edges), each
 //                  labelled by exact orientation tests against the planes of the pieces whose box
@@ -16,7 +16,7 @@
 #include "boolean_internal.h"
 #include "filtered.h"
 #include "morphex/spatial.h"
-#include "union_find.h"
+#include "point_index.h"
 
 namespace morphex {
 namespace {
@@ -53,17 +53,21 @@ Containment locate(const Mesh& soup, std::uint32_t first, std::uint32_t last, co
 
 // Segments left on one facet by two other pieces may cross: the crossing is a point where three
 // surfaces meet. It is constructed exactly from the two 3D segments, so every facet through it
-// finds the same point and, through `ids`, the same point id; both segments are split there.
+// finds the same point and, through its exact position, the same point id; both segments are split
+// there.
 void split_crossing_segments(detail::Intersection& x) {
-  std::map<Point, detail::PointId> ids;
-  for (detail::PointId i = 0; i < x.points.size(); ++i) ids.emplace(x.points[i], i);
+  detail::PointTable& table = x.points;
+  detail::PositionIndex positions;
+  for (const auto& [facet, cut] : x.cuts[0])
+    for (const detail::CutPoint& p : cut.points) positions.find_or_insert(table.point(p.id), p.id);
   auto id_of = [&](const Point& p) {
-    const auto [it, inserted] = ids.emplace(p, detail::PointId(x.points.size()));
-    if (inserted) {
-      x.points.push_back(p);
+    const detail::PointId next = detail::PointId(table.size());
+    const detail::PointId id = positions.find_or_insert(p, next);
+    if (id == next) {
+      table.add_explicit(p);
       ++x.constructed_points;
     }
-    return it->second;
+    return id;
   };
   for (auto& [facet, cut] : x.cuts[0]) {
     auto& segments = cut.segments;
@@ -71,22 +75,24 @@ void split_crossing_segments(detail::Intersection& x) {
     segments.erase(std::unique(segments.begin(), segments.end()), segments.end());
     if (segments.size() < 2) continue;
     std::vector<CGAL::Bbox_3> boxes;
-    for (const auto& [a, b] : segments) boxes.push_back(x.points[a].bbox() + x.points[b].bbox());
+    for (const auto& [a, b] : segments)
+      boxes.push_back(table.point(a).bbox() + table.point(b).bbox());
     std::vector<std::vector<detail::PointId>> splits(segments.size());
     for (std::size_t i = 0; i < segments.size(); ++i)
       for (std::size_t j = i + 1; j < segments.size(); ++j) {
         const auto [a, b] = segments[i];
         const auto [c, d] = segments[j];
         if (a == c || a == d || b == c || b == d || !CGAL::do_overlap(boxes[i], boxes[j])) continue;
-        const Kernel::Segment_3 s(x.points[a], x.points[b]), t(x.points[c], x.points[d]);
+        const Kernel::Segment_3 s(table.point(a), table.point(b)),
+            t(table.point(c), table.point(d));
         if (!CGAL::do_intersect(s, t)) continue;
         const auto result = CGAL::intersection(s, t);
         const Point* p = result ? boost::get<Point>(&*result) : nullptr;
         if (!p) continue;  // collinear overlap: the CDT splits it at the existing vertices
-        const detail::PointId id = id_of(*p);
+        const detail::PointId id = id_of(point_from_exact(CGAL::exact(*p)));
         if (id != a && id != b) splits[i].push_back(id);
         if (id != c && id != d) splits[j].push_back(id);
-        cut.points.push_back(id);
+        cut.points.push_back({id, 0});
       }
     std::vector<detail::Edge> out;
     for (std::size_t i = 0; i < segments.size(); ++i) {
@@ -96,9 +102,9 @@ void split_crossing_segments(detail::Intersection& x) {
         out.push_back(segments[i]);
         continue;
       }
-      const Point& pa = x.points[a];
+      const Point pa = table.point(a);
       std::sort(inner.begin(), inner.end(), [&](detail::PointId u, detail::PointId v) {
-        return CGAL::compare_distance_to_point(pa, x.points[u], x.points[v]) == CGAL::SMALLER;
+        return CGAL::compare_distance_to_point(pa, table.point(u), table.point(v)) == CGAL::SMALLER;
       });
       inner.erase(std::unique(inner.begin(), inner.end()), inner.end());
       detail::PointId from = a;
@@ -110,6 +116,7 @@ void split_crossing_segments(detail::Intersection& x) {
     }
     segments = std::move(out);
   }
+  x.flags.resize(table.size(), detail::kOnSurface);
 }
 
 }  // namespace
@@ -146,7 +153,9 @@ Mesh compute_union_of_convex(std::vector<Mesh> convex_solids, UnionStats* stats)
   per_triangle = {};
 
   // Segments: the soup against itself. A facet's cuts from both roles are merged into one.
-  detail::Intersection x = detail::intersect(soup, soup, pairs);
+  detail::IntersectOptions soup_options;
+  soup_options.soup = true;
+  detail::Intersection x = detail::intersect(soup, soup, pairs, soup_options);
   for (auto& [facet, cut] : x.cuts[1]) {
     detail::FacetCut& into = x.cuts[0][facet];
     into.points.insert(into.points.end(), cut.points.begin(), cut.points.end());
@@ -156,39 +165,30 @@ Mesh compute_union_of_convex(std::vector<Mesh> convex_solids, UnionStats* stats)
   split_crossing_segments(x);
   const detail::Refined refined = detail::retriangulate(soup, 0, x);
 
-  // Patches: sub-triangles of one piece joined across edges that no segment constrains.
-  const std::size_t n = refined.triangles.size();
-  std::unordered_map<detail::Edge, std::uint8_t, detail::EdgeHash> constrained;
-  for (const detail::Edge& e : refined.on_other_surface) constrained[e] = 1;
-  detail::UnionFind patches(n);
-  // Several pieces may share an edge position: neighbours are looked up per (edge, piece).
-  struct EdgeOfPiece {
-    detail::Edge edge;
-    std::uint32_t piece;
-    bool operator==(const EdgeOfPiece& o) const { return edge == o.edge && piece == o.piece; }
+  // Patches of one piece: its uncut facets and sub-triangles joined without crossing a segment.
+  const std::size_t nf = soup.num_triangles(), n = refined.triangles.size();
+  detail::UnionFind patches = detail::connect_patches(soup, 0, refined, x, &piece_of);
+  std::vector<std::uint8_t> cut(nf, 0);
+  for (std::uint32_t f : refined.facets) cut[f] = 1;
+  // A node and the triangle it stands for: an uncut facet or a sub-triangle.
+  struct Member {
+    std::uint32_t node, facet;
+    std::array<detail::PointId, 3> v;
   };
-  struct EdgeOfPieceHash {
-    std::size_t operator()(const EdgeOfPiece& e) const {
-      return detail::EdgeHash()(e.edge) * 31 + e.piece;
+  std::vector<Member> members;
+  for (std::uint32_t f = 0; f < nf; ++f)
+    if (!cut[f]) {
+      const Triangle& t = soup.triangles[f];
+      members.push_back({f, f, {x.vertex_id(0, t[0]), x.vertex_id(0, t[1]), x.vertex_id(0, t[2])}});
     }
-  };
-  std::unordered_map<EdgeOfPiece, std::uint32_t, EdgeOfPieceHash> first_side;
-  first_side.reserve(2 * n);
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const auto& s = refined.triangles[i];
-    for (int k = 0; k < 3; ++k) {
-      const detail::Edge e = detail::undirected(s.v[k], s.v[(k + 1) % 3]);
-      if (constrained.count(e)) continue;
-      const auto [it, inserted] = first_side.emplace(EdgeOfPiece{e, piece_of[s.facet]}, i);
-      if (!inserted) patches.join(i, it->second);
-    }
-  }
-  std::vector<std::uint32_t> representative;  // one sub-triangle per patch
-  std::vector<std::uint32_t> patch_of(n);
+  for (std::uint32_t i = 0; i < n; ++i)
+    members.push_back({std::uint32_t(nf + i), refined.triangles[i].facet, refined.triangles[i].v});
+  std::vector<std::uint32_t> representative;  // one member per patch
+  std::vector<std::uint32_t> patch_of(members.size());
   std::unordered_map<std::uint32_t, std::uint32_t> patch_index;
-  for (std::uint32_t i = 0; i < n; ++i) {
+  for (std::uint32_t i = 0; i < members.size(); ++i) {
     const auto [it, inserted] =
-        patch_index.emplace(patches.find(i), std::uint32_t(representative.size()));
+        patch_index.emplace(patches.find(members[i].node), std::uint32_t(representative.size()));
     if (inserted) representative.push_back(i);
     patch_of[i] = it->second;
   }
@@ -208,9 +208,10 @@ Mesh compute_union_of_convex(std::vector<Mesh> convex_solids, UnionStats* stats)
 
   std::vector<std::uint8_t> keep(representative.size(), 1);
   tbb::parallel_for(std::size_t(0), representative.size(), [&](std::size_t p) {
-    const auto& s = refined.triangles[representative[p]];
+    const Member& s = members[representative[p]];
     const std::uint32_t own = piece_of[s.facet];
-    const Point q = CGAL::centroid(x.points[s.v[0]], x.points[s.v[1]], x.points[s.v[2]]);
+    const Point q =
+        CGAL::centroid(x.points.point(s.v[0]), x.points.point(s.v[1]), x.points.point(s.v[2]));
     piece_tree.for_each_overlap(q.bbox(), [&](std::uint32_t k) {
       if (!keep[p] || k == own) return;
       switch (locate(soup, first[k], first[k + 1], q, s.facet)) {
@@ -226,9 +227,10 @@ Mesh compute_union_of_convex(std::vector<Mesh> convex_solids, UnionStats* stats)
   });
 
   std::vector<Triangle> faces;
-  for (std::uint32_t i = 0; i < n; ++i)
-    if (keep[patch_of[i]]) faces.push_back(refined.triangles[i].v);
-  Mesh out = detail::separate_non_manifold(x.points, faces);
+  for (std::uint32_t i = 0; i < members.size(); ++i)
+    if (keep[patch_of[i]]) faces.push_back(members[i].v);
+  Mesh out =
+      detail::separate_non_manifold(x.points, faces, std::vector<std::uint8_t>(x.points.size(), 1));
   out = merge_coplanar_faces(out);
   make_exact(out);
   if (stats) {

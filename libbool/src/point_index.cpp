@@ -52,8 +52,8 @@ std::uint64_t hash_exact(const Point& p) {
 
 }  // namespace
 
-std::uint32_t PointIndex::rational_id(const Point& p) {
-  if (2 * (rational_count_ + 1) > rational_slots_.size()) {
+std::uint32_t PositionIndex::rational_find_or_insert(const Point& p, std::uint32_t id) {
+  if (2 * (rational_entries_.size() + 1) > rational_slots_.size()) {
     // Grow and re-insert by the stored hashes.
     std::vector<std::uint32_t> old_slots = std::move(rational_slots_);
     std::vector<std::uint64_t> old_hash = std::move(rational_hash_);
@@ -71,19 +71,19 @@ std::uint32_t PointIndex::rational_id(const Point& p) {
   const std::uint64_t h = hash_exact(p);
   const std::size_t mask = rational_slots_.size() - 1;
   for (std::size_t i = h & mask;; i = (i + 1) & mask) {
-    const std::uint32_t id = rational_slots_[i];
-    if (id == kEmpty) {
-      rational_slots_[i] = std::uint32_t(points_.size());
+    const std::uint32_t entry = rational_slots_[i];
+    if (entry == kEmpty) {
+      rational_slots_[i] = std::uint32_t(rational_entries_.size());
       rational_hash_[i] = h;
-      ++rational_count_;
-      points_.push_back(p);
-      return rational_slots_[i];
+      rational_entries_.push_back({p, id});
+      return id;
     }
-    if (rational_hash_[i] == h && CGAL::exact(points_[id]) == CGAL::exact(p)) return id;
+    if (rational_hash_[i] == h && CGAL::exact(rational_entries_[entry].point) == CGAL::exact(p))
+      return rational_entries_[entry].id;
   }
 }
 
-std::size_t PointIndex::Hash::operator()(const std::array<double, 3>& c) const {
+std::size_t PositionIndex::Hash::operator()(const std::array<double, 3>& c) const {
   std::uint64_t h = 0;
   for (double d : c) {
     std::uint64_t bits;
@@ -93,17 +93,13 @@ std::size_t PointIndex::Hash::operator()(const std::array<double, 3>& c) const {
   return std::size_t(h);
 }
 
-PointIndex::PointIndex(std::vector<Point>& points) : points_(points) {
-  if (!points.empty()) throw std::logic_error("PointIndex: the point vector must start empty");
+std::uint32_t PositionIndex::find_or_insert(const Point& p, std::uint32_t id) {
+  if (const auto key = double_coordinates(p)) return doubles_.emplace(*key, id).first;
+  return rational_find_or_insert(p, id);
 }
 
-std::uint32_t PointIndex::id(const Point& p) {
-  if (const auto key = double_coordinates(p)) {
-    const auto [id, inserted] = doubles_.emplace(*key, std::uint32_t(points_.size()));
-    if (inserted) points_.push_back(p);
-    return id;
-  }
-  return rational_id(p);
+PointIndex::PointIndex(std::vector<Point>& points) : points_(points) {
+  if (!points.empty()) throw std::logic_error("PointIndex: the point vector must start empty");
 }
 
 }  // namespace morphex::detail

@@ -19,6 +19,31 @@
 
 namespace morphex::detail {
 
+// 0, 1 or 2: the axis along which the normal of triangle abc is largest, so that dropping that
+// coordinate projects the triangle's plane without degeneracy (exact: it only selects coordinates).
+inline int dominant_axis(const Point& a, const Point& b, const Point& c) {
+  // The largest |normal coordinate|, ties to the lower axis; intervals decide unless two
+  // components are (nearly) equal in size, then the exact normal does.
+  {
+    CGAL::Protect_FPU_rounding<true> rounding;
+    const auto &pa = CGAL::approx(a), &pb = CGAL::approx(b), &pc = CGAL::approx(c);
+    const auto n = CGAL::cross_product(pb - pa, pc - pa);
+    const CGAL::Interval_nt<false> ax = CGAL::abs(n.x()), ay = CGAL::abs(n.y()),
+                                   az = CGAL::abs(n.z());
+    try {
+      if (ax >= ay && ax >= az) return 0;
+      return ay >= az ? 1 : 2;
+    } catch (const CGAL::Uncertain_conversion_exception&) {
+      // two components too close to order with intervals
+    }
+  }
+  const auto &ea = CGAL::exact(a), &eb = CGAL::exact(b), &ec = CGAL::exact(c);
+  const auto n = CGAL::cross_product(eb - ea, ec - ea);
+  const auto ax = CGAL::abs(n.x()), ay = CGAL::abs(n.y()), az = CGAL::abs(n.z());
+  if (ax >= ay && ax >= az) return 0;
+  return ay >= az ? 1 : 2;
+}
+
 // Dropped axis 0: the plane (y, z); 1: (x, z); 2: (x, y), as in CGAL's Projection_traits_3<K, dim>.
 template <int dropped>
 struct ProjectedCoordinates {

@@ -31,6 +31,11 @@ struct BooleanOptions {
   // Merge neighbouring coplanar result triangles and drop the vertices that are not corners
   // (merge_coplanar_faces): no new coordinates, far fewer faces after coplanar overlaps.
   bool merge_coplanar = true;
+  // Evaluate every constructed coordinate before returning. Off by default: coordinates are
+  // exact either way, and constructed points are CGAL lazy exact values, computed (in lowest
+  // terms) when a predicate, a volume or an exact file needs them, as CGAL's own constructions
+  // are; make_exact() evaluates a whole mesh later.
+  bool exact_output = false;
 };
 
 struct PhaseSeconds {

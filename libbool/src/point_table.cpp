@@ -1,0 +1,379 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "point_table.h"
+
+#include <CGAL/predicates/kernel_ftC2.h>
+#include <CGAL/predicates/kernel_ftC3.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "filtered.h"
+
+namespace morphex::detail {
+
+namespace {
+
+Homogeneous from_doubles(const double (&c)[3]) {
+  std::int64_t mantissa[3] = {0, 0, 0};
+  int exponent[3] = {0, 0, 0};
+  int lowest = 0;
+  for (int i = 0; i < 3; ++i) {
+    if (c[i] == 0) continue;
+    int e = 0;
+    const double f = std::frexp(c[i], &e);  // c = f 2^e, 1/2 <= |f| < 1
+    mantissa[i] = std::int64_t(std::ldexp(f, 53));
+    exponent[i] = e - 53;
+    lowest = std::min(lowest, exponent[i]);
+  }
+  Homogeneous h;
+  for (int i = 0; i < 3; ++i) {
+    h[i] = static_cast<long>(mantissa[i]);
+    if (mantissa[i] != 0)
+      mpz_mul_2exp(h[i].get_mpz_t(), h[i].get_mpz_t(), mp_bitcnt_t(exponent[i] - lowest));
+  }
+  h[3] = 1;
+  mpz_mul_2exp(h[3].get_mpz_t(), h[3].get_mpz_t(), mp_bitcnt_t(-lowest));
+  return h;
+}
+
+// The plane A X + B Y + C Z + D W = 0 through three homogeneous points (the 4D cross product).
+std::array<mpz_class, 4> plane_through(const Homogeneous& a, const Homogeneous& b,
+                                       const Homogeneous& c) {
+  auto det3 = [&](int i, int j, int k) -> mpz_class {
+    return a[i] * (b[j] * c[k] - b[k] * c[j]) - a[j] * (b[i] * c[k] - b[k] * c[i]) +
+           a[k] * (b[i] * c[j] - b[j] * c[i]);
+  };
+  return {det3(1, 2, 3), -det3(0, 2, 3), det3(0, 1, 3), -det3(0, 1, 2)};
+}
+
+// The plane through the line ab of the coordinate plane that drops axis `dropped`, parallel to
+// that axis: the points whose projection lies on the line.
+std::array<mpz_class, 4> plane_along_axis(int dropped, const Homogeneous& a, const Homogeneous& b) {
+  const int u = dropped == 0 ? 1 : 0, v = dropped == 2 ? 1 : 2;
+  std::array<mpz_class, 4> plane;
+  plane[dropped] = 0;
+  plane[u] = a[v] * b[3] - a[3] * b[v];
+  plane[v] = a[3] * b[u] - a[u] * b[3];
+  plane[3] = a[u] * b[v] - a[v] * b[u];
+  return plane;
+}
+
+mpz_class evaluate(const std::array<mpz_class, 4>& plane, const Homogeneous& p) {
+  return plane[0] * p[0] + plane[1] * p[1] + plane[2] * p[2] + plane[3] * p[3];
+}
+
+Interval hull(const Interval& a, const Interval& b) {
+  return Interval(std::min(a.inf(), b.inf()), std::max(a.sup(), b.sup()));
+}
+
+// Narrows `x` to `bound`, which is known to contain the exact value.
+Interval clamp(const Interval& x, const Interval& bound) {
+  const double lo = std::max(x.inf(), bound.inf()), hi = std::min(x.sup(), bound.sup());
+  return lo <= hi ? Interval(lo, hi) : bound;
+}
+
+// The lazily evaluated output point of a construction: its approximation is the table's; its
+// exact value is computed from the parents (or from homogeneous coordinates already known) on
+// first request, after which the parents are released, as CGAL's own lazy constructions do.
+using LazyPoint = Point::Rep;
+class ConstructedPointRep final : public LazyPoint::Self_rep {
+  using Base = LazyPoint::Self_rep;
+
+ public:
+  ConstructedPointRep(const ApproxPoint& approx, const Recipe& recipe,
+                      const std::array<Point, 5>& parents, const Homogeneous* known)
+      : Base(approx), recipe_(recipe), parents_(parents) {
+    if (known) known_ = std::make_unique<Homogeneous>(*known);
+  }
+
+  void update_exact() const override {
+    Homogeneous h;
+    if (known_) {
+      h = *known_;
+    } else {
+      std::array<Homogeneous, 5> parents;
+      for (int i = 0; i < 5; ++i) parents[i] = homogeneous_of(parents_[i]);
+      h = construct_homogeneous(recipe_, parents[0], parents[1], parents[2], parents[3],
+                                parents[4]);
+    }
+    auto* exact = new ExactPoint(cartesian(h));
+    this->set_at(exact);
+    this->set_ptr(exact);
+    parents_ = {};
+    known_.reset();
+  }
+
+ private:
+  Recipe recipe_;
+  mutable std::array<Point, 5> parents_;
+  mutable std::unique_ptr<Homogeneous> known_;
+};
+
+template <class Number>
+Number determinant_3(const Number& a00, const Number& a01, const Number& a02, const Number& a10,
+                     const Number& a11, const Number& a12, const Number& a20, const Number& a21,
+                     const Number& a22) {
+  return a00 * (a11 * a22 - a12 * a21) - a01 * (a10 * a22 - a12 * a20) +
+         a02 * (a10 * a21 - a11 * a20);
+}
+
+// (q - p) scaled by Wp Wq > 0, on homogeneous integers.
+std::array<mpz_class, 3> difference(const Homogeneous& p, const Homogeneous& q) {
+  return {q[0] * p[3] - p[0] * q[3], q[1] * p[3] - p[1] * q[3], q[2] * p[3] - p[2] * q[3]};
+}
+
+std::array<mpz_class, 3> cross(const std::array<mpz_class, 3>& a,
+                               const std::array<mpz_class, 3>& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+}  // namespace
+
+Homogeneous homogeneous_of(const ExactPoint& p) {
+  return homogeneous<3>({&p.x(), &p.y(), &p.z()});
+}
+
+Homogeneous homogeneous_of(const Point& p) {
+  if (has_double_coordinates(p)) {
+    const auto& a = CGAL::approx(p);
+    const double c[3] = {a.x().inf(), a.y().inf(), a.z().inf()};
+    return from_doubles(c);
+  }
+  return homogeneous_of(CGAL::exact(p));
+}
+
+Homogeneous construct_homogeneous(const Recipe& recipe, const Homogeneous& p, const Homogeneous& q,
+                                  const Homogeneous& a, const Homogeneous& b,
+                                  const Homogeneous& c) {
+  const auto plane = recipe.kind == Recipe::Kind::EdgePlane
+                         ? plane_through(a, b, c)
+                         : plane_along_axis(recipe.dropped, a, b);
+  // With d the plane's linear form, the crossing is d(q) p - d(p) q; d(p) and d(q) have strictly
+  // opposite signs, so its W is not zero; the sign is fixed so that W > 0.
+  const mpz_class dp = evaluate(plane, p), dq = evaluate(plane, q);
+  Homogeneous r;
+  for (int i = 0; i < 4; ++i) r[i] = dq * p[i] - dp * q[i];
+  if (sgn(r[3]) < 0)
+    for (auto& x : r) x = -x;
+  return r;
+}
+
+ExactPoint cartesian(const Homogeneous& h) {
+  auto coordinate = [&](int i) {
+    mpq_class x(h[i], h[3]);
+    x.canonicalize();
+    return x;
+  };
+  return ExactPoint(coordinate(0), coordinate(1), coordinate(2));
+}
+
+PointTable::PointTable(const Mesh& a, const Mesh& b, bool same_mesh)
+    : same_mesh_(same_mesh),
+      num_a_(PointId(a.num_vertices())),
+      num_inputs_(PointId(same_mesh ? a.num_vertices() : a.num_vertices() + b.num_vertices())),
+      input_exact_(new std::atomic<Homogeneous*>[num_inputs_]()) {
+  mesh_[0] = &a;
+  mesh_[1] = same_mesh ? &a : &b;
+}
+
+PointTable::~PointTable() {
+  if (input_exact_)
+    for (PointId i = 0; i < num_inputs_; ++i) delete input_exact_[i].load();
+  for (auto& slot : constructed_exact_) delete slot.load();
+}
+
+const Homogeneous& PointTable::exact(PointId id) const {
+  std::atomic<Homogeneous*>& slot = exact_slot(id);
+  if (Homogeneous* known = slot.load(std::memory_order_acquire)) return *known;
+  auto fresh = std::make_unique<Homogeneous>(compute_exact(id));
+  Homogeneous* expected = nullptr;
+  if (slot.compare_exchange_strong(expected, fresh.get(), std::memory_order_acq_rel))
+    return *fresh.release();
+  return *expected;  // another thread was first
+}
+
+Homogeneous PointTable::compute_exact(PointId id) const {
+  if (id < num_inputs_) return homogeneous_of(input(id));
+  const Recipe& r = recipe(id);
+  if (r.kind == Recipe::Kind::Explicit) return homogeneous_of(explicit_[r.p]);
+  return construct_homogeneous(r, exact(r.p), exact(r.q), exact(r.a), exact(r.b),
+                               exact(r.kind == Recipe::Kind::EdgePlane ? r.c : r.a));
+}
+
+Point PointTable::point(PointId id) const {
+  if (id < num_inputs_) return input(id);
+  const Recipe& r = recipe(id);
+  if (r.kind == Recipe::Kind::Explicit) return explicit_[r.p];
+  const PointId c = r.kind == Recipe::Kind::EdgePlane ? r.c : r.a;
+  const std::array<Point, 5> parents = {point(r.p), point(r.q), point(r.a), point(r.b), point(c)};
+  const Homogeneous* known = exact_slot(id).load(std::memory_order_acquire);
+  return Point(LazyPoint(new ConstructedPointRep(approx(id), r, parents, known)));
+}
+
+ApproxPoint PointTable::approximate(const Recipe& r) const {
+  CGAL::Protect_FPU_rounding<true> rounding;
+  const ApproxPoint &p = approx(r.p), &q = approx(r.q), &a = approx(r.a), &b = approx(r.b);
+  Interval dp, dq;
+  if (r.kind == Recipe::Kind::EdgePlane) {
+    const auto n = CGAL::cross_product(b - a, approx(r.c) - a);
+    dp = n * (p - a);
+    dq = n * (q - a);
+  } else {
+    const int u = r.dropped == 0 ? 1 : 0, v = r.dropped == 2 ? 1 : 2;
+    auto side = [&](const ApproxPoint& x) {
+      return (b.cartesian(u) - a.cartesian(u)) * (x.cartesian(v) - a.cartesian(v)) -
+             (b.cartesian(v) - a.cartesian(v)) * (x.cartesian(u) - a.cartesian(u));
+    };
+    dp = side(p);
+    dq = side(q);
+  }
+  // The crossing is p + t (q - p) with t = d(p) / (d(p) - d(q)) in (0, 1), and lies in the box
+  // of p and q: both bounds tighten the interval evaluation.
+  const Interval t = clamp(dp / (dp - dq), Interval(0, 1));
+  Interval c[3];
+  for (int i = 0; i < 3; ++i)
+    c[i] = clamp(p.cartesian(i) + t * (q.cartesian(i) - p.cartesian(i)),
+                 hull(p.cartesian(i), q.cartesian(i)));
+  return ApproxPoint(c[0], c[1], c[2]);
+}
+
+PointId PointTable::add(const Recipe& recipe) {
+  const PointId id = PointId(size());
+  approx_.push_back(approximate(recipe));
+  recipes_.push_back(recipe);
+  constructed_exact_.emplace_back(nullptr);
+  return id;
+}
+
+PointId PointTable::add_all(const std::vector<Recipe>& recipes) {
+  const PointId first = PointId(size());
+  std::vector<ApproxPoint> approximations(recipes.size());
+  tbb::parallel_for(std::size_t(0), recipes.size(),
+                    [&](std::size_t i) { approximations[i] = approximate(recipes[i]); });
+  for (std::size_t i = 0; i < recipes.size(); ++i) {
+    approx_.push_back(approximations[i]);
+    recipes_.push_back(recipes[i]);
+    constructed_exact_.emplace_back(nullptr);
+  }
+  return first;
+}
+
+PointId PointTable::add_explicit(const Point& p) {
+  const PointId id = PointId(size());
+  Recipe r;
+  r.kind = Recipe::Kind::Explicit;
+  r.p = PointId(explicit_.size());
+  explicit_.push_back(p);
+  approx_.push_back(CGAL::approx(p));
+  recipes_.push_back(r);
+  constructed_exact_.emplace_back(nullptr);
+  return id;
+}
+
+CGAL::Sign PointTable::orientation(PointId p, PointId q, PointId r, PointId s) const {
+  {
+    CGAL::Protect_FPU_rounding<true> rounding;
+    const ApproxPoint &ap = approx(p), &aq = approx(q), &ar = approx(r), &as = approx(s);
+    const CGAL::Uncertain<CGAL::Sign> o =
+        CGAL::orientationC3(ap.x(), ap.y(), ap.z(), aq.x(), aq.y(), aq.z(), ar.x(), ar.y(), ar.z(),
+                            as.x(), as.y(), as.z());
+    if (CGAL::is_certain(o)) return CGAL::get_certain(o);
+  }
+  // det [p 1; q 1; r 1; s 1] = -det(q - p, r - p, s - p), and the W factors are positive.
+  return CGAL::Sign(-sign_of_det4(exact(p), exact(q), exact(r), exact(s)));
+}
+
+CGAL::Sign PointTable::orientation_2(int dropped, PointId p, PointId q, PointId r) const {
+  const int u = dropped == 0 ? 1 : 0, v = dropped == 2 ? 1 : 2;
+  {
+    CGAL::Protect_FPU_rounding<true> rounding;
+    const ApproxPoint &ap = approx(p), &aq = approx(q), &ar = approx(r);
+    const auto o = CGAL::orientationC2(ap.cartesian(u), ap.cartesian(v), aq.cartesian(u),
+                                       aq.cartesian(v), ar.cartesian(u), ar.cartesian(v));
+    if (CGAL::is_certain(o)) return CGAL::get_certain(o);
+  }
+  const Homogeneous &hp = exact(p), &hq = exact(q), &hr = exact(r);
+  // det [p 1; q 1; r 1] in homogeneous rows, the W factors positive.
+  return CGAL::Sign(
+      sgn(determinant_3<mpz_class>(hp[u], hp[v], hp[3], hq[u], hq[v], hq[3], hr[u], hr[v], hr[3])));
+}
+
+CGAL::Sign PointTable::side_of_oriented_circle(int dropped, PointId p, PointId q, PointId r,
+                                               PointId t) const {
+  const int u = dropped == 0 ? 1 : 0, v = dropped == 2 ? 1 : 2;
+  {
+    CGAL::Protect_FPU_rounding<true> rounding;
+    const ApproxPoint &ap = approx(p), &aq = approx(q), &ar = approx(r), &at = approx(t);
+    const auto s = CGAL::side_of_oriented_circleC2(
+        ap.cartesian(u), ap.cartesian(v), aq.cartesian(u), aq.cartesian(v), ar.cartesian(u),
+        ar.cartesian(v), at.cartesian(u), at.cartesian(v));
+    if (CGAL::is_certain(s)) return CGAL::get_certain(s);
+  }
+  // det [x y x^2+y^2 1] over p, q, r, t is positive when t is inside the circle of the
+  // counter-clockwise p, q, r, as CGAL's side_of_oriented_circle; each homogeneous row
+  // (U W, V W, U^2 + V^2, W^2) is the Cartesian row times W^2 > 0.
+  auto row = [&](PointId id) {
+    const Homogeneous& h = exact(id);
+    return Homogeneous{h[u] * h[3], h[v] * h[3], h[u] * h[u] + h[v] * h[v], h[3] * h[3]};
+  };
+  return CGAL::Sign(sign_of_det4(row(p), row(q), row(r), row(t)));
+}
+
+CGAL::Comparison_result PointTable::compare(int axis, PointId p, PointId q) const {
+  if (p == q) return CGAL::EQUAL;
+  {
+    CGAL::Protect_FPU_rounding<true> rounding;
+    const CGAL::Uncertain<CGAL::Comparison_result> c =
+        CGAL::compare(approx(p).cartesian(axis), approx(q).cartesian(axis));
+    if (CGAL::is_certain(c)) return CGAL::get_certain(c);
+  }
+  const Homogeneous &hp = exact(p), &hq = exact(q);
+  return CGAL::Comparison_result(sgn(hp[axis] * hq[3] - hq[axis] * hp[3]));
+}
+
+bool PointTable::equal(PointId p, PointId q) const {
+  for (int axis = 0; axis < 3; ++axis)
+    if (compare(axis, p, q) != CGAL::EQUAL) return false;
+  return true;
+}
+
+CGAL::Sign PointTable::along_line(const std::array<PointId, 3>& a, const std::array<PointId, 3>& b,
+                                  PointId p, PointId q) const {
+  {
+    CGAL::Protect_FPU_rounding<true> rounding;
+    const ApproxPoint &a0 = approx(a[0]), &b0 = approx(b[0]);
+    const auto na = CGAL::cross_product(approx(a[1]) - a0, approx(a[2]) - a0);
+    const auto nb = CGAL::cross_product(approx(b[1]) - b0, approx(b[2]) - b0);
+    const CGAL::Uncertain<CGAL::Sign> s =
+        CGAL::sign(CGAL::cross_product(na, nb) * (approx(q) - approx(p)));
+    if (CGAL::is_certain(s)) return CGAL::get_certain(s);
+  }
+  // Every difference is scaled by a product of positive W factors: the sign is unchanged.
+  const auto na = cross(difference(exact(a[0]), exact(a[1])), difference(exact(a[0]), exact(a[2])));
+  const auto nb = cross(difference(exact(b[0]), exact(b[1])), difference(exact(b[0]), exact(b[2])));
+  const auto line = cross(na, nb);
+  const auto d = difference(exact(p), exact(q));
+  return CGAL::Sign(sgn(line[0] * d[0] + line[1] * d[1] + line[2] * d[2]));
+}
+
+int PointTable::dominant_axis(PointId p, PointId q, PointId r) const {
+  {
+    CGAL::Protect_FPU_rounding<true> rounding;
+    const ApproxPoint& ap = approx(p);
+    const auto n = CGAL::cross_product(approx(q) - ap, approx(r) - ap);
+    const Interval ax = CGAL::abs(n.x()), ay = CGAL::abs(n.y()), az = CGAL::abs(n.z());
+    try {
+      if (ax >= ay && ax >= az) return 0;
+      return ay >= az ? 1 : 2;
+    } catch (const CGAL::Uncertain_conversion_exception&) {
+      // two components too close to order with intervals
+    }
+  }
+  const auto n = cross(difference(exact(p), exact(q)), difference(exact(p), exact(r)));
+  const mpz_class ax = abs(n[0]), ay = abs(n[1]), az = abs(n[2]);
+  if (ax >= ay && ax >= az) return 0;
+  return ay >= az ? 1 : 2;
+}
+
+}  // namespace morphex::detail

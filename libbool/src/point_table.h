@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The points of one Boolean, by id: A's vertices, then B's, then the points the Boolean constructs.
+//
+// A constructed point is kept as its recipe (an input edge crossing an input plane, or an input
+// line in a coordinate projection) with an interval approximation computed from the inputs'
+// approximations. Its exact value is computed only when a predicate cannot be decided on
+// intervals, in homogeneous integer coordinates (X, Y, Z, W), W > 0, which need no rational gcds,
+// and cached. The output receives each constructed point as a lazily evaluated exact CGAL point:
+// exact coordinates in lowest terms are computed when someone asks for them (a predicate, a
+// volume, an exact file), as CGAL's own constructions are.
+//
+// Predicates take ids: intervals first, then the exact homogeneous stage.
+#pragma once
+
+#include <CGAL/Interval_nt.h>
+#include <gmpxx.h>
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <vector>
+
+#include "morphex/mesh.h"
+
+namespace morphex::detail {
+
+using PointId = std::uint32_t;
+using Interval = CGAL::Interval_nt<false>;
+using ApproxPoint = Kernel::Approximate_kernel::Point_3;
+using ExactPoint = Kernel::Exact_kernel::Point_3;
+using Homogeneous = std::array<mpz_class, 4>;  // the point (X/W, Y/W, Z/W), W > 0
+
+// How a constructed point is made from input points.
+struct Recipe {
+  enum class Kind : std::uint8_t {
+    EdgePlane,          // the edge pq crossing the plane abc (p, q strictly on both sides)
+    EdgeProjectedLine,  // the edge pq crossing the line ab, all seen along the axis `dropped`
+                        // (p, q strictly on both sides of the line)
+    Explicit,           // an exact point given by the caller
+  };
+  Kind kind = Kind::Explicit;
+  std::int8_t dropped = -1;
+  PointId p = 0, q = 0, a = 0, b = 0, c = 0;
+};
+
+// Exact homogeneous coordinates of an exact rational point (W = lcm of the denominators), and of a
+// point whose coordinates are doubles (W a power of two, no rational arithmetic at all).
+Homogeneous homogeneous_of(const ExactPoint& p);
+Homogeneous homogeneous_of(const Point& p);
+// The constructed point of `recipe` from its parents' homogeneous coordinates.
+Homogeneous construct_homogeneous(const Recipe& recipe, const Homogeneous& p, const Homogeneous& q,
+                                  const Homogeneous& a, const Homogeneous& b, const Homogeneous& c);
+// Cartesian coordinates in lowest terms.
+ExactPoint cartesian(const Homogeneous& h);
+
+class PointTable {
+ public:
+  PointTable() = default;
+  // `same_mesh`: a and b are one mesh (a soup against itself): vertex v has one id on both sides.
+  PointTable(const Mesh& a, const Mesh& b, bool same_mesh = false);
+  PointTable(const PointTable&) = delete;
+  PointTable& operator=(const PointTable&) = delete;
+  PointTable(PointTable&&) = default;
+  PointTable& operator=(PointTable&&) = default;
+  ~PointTable();
+
+  PointId vertex(int side, std::uint32_t v) const {
+    return side == 0 || same_mesh_ ? v : PointId(num_a_ + v);
+  }
+  std::size_t num_inputs() const { return num_inputs_; }
+  std::size_t size() const { return num_inputs_ + recipes_.size(); }
+  bool is_input(PointId id) const { return id < num_inputs_; }
+  const Recipe& recipe(PointId id) const { return recipes_[id - num_inputs_]; }
+
+  const ApproxPoint& approx(PointId id) const {
+    if (id < num_inputs_) return CGAL::approx(input(id));
+    return approx_[id - num_inputs_];
+  }
+  // Exact homogeneous coordinates, computed once (thread-safe).
+  const Homogeneous& exact(PointId id) const;
+  // The exact point: the input point itself, or a lazily evaluated construction.
+  Point point(PointId id) const;
+  const Point& input(PointId id) const {
+    return id < num_a_ ? mesh_[0]->points[id] : mesh_[1]->points[id - num_a_];
+  }
+
+  // The interval approximation of a construction from the table's points, as add() stores it.
+  ApproxPoint approximate(const Recipe& recipe) const;
+  // Appends constructed points (sequential); add_all computes the approximations in parallel.
+  PointId add(const Recipe& recipe);
+  PointId add_all(const std::vector<Recipe>& recipes);  // the id of the first
+  PointId add_explicit(const Point& p);
+
+  // Predicates, exact: intervals first, then homogeneous integers.
+  CGAL::Sign orientation(PointId p, PointId q, PointId r, PointId s) const;
+  // orientation of (p, q, r) seen along the axis `dropped` (coordinates u < v of the other two).
+  CGAL::Sign orientation_2(int dropped, PointId p, PointId q, PointId r) const;
+  // CGAL's side_of_oriented_circle of the projected points.
+  CGAL::Sign side_of_oriented_circle(int dropped, PointId p, PointId q, PointId r, PointId t) const;
+  CGAL::Comparison_result compare(int axis, PointId p, PointId q) const;
+  bool equal(PointId p, PointId q) const;
+  // sign(((a1 - a0) x (a2 - a0)) x ((b1 - b0) x (b2 - b0)) . (q - p)): the order of p and q along
+  // the common line of the planes of triangles a and b.
+  CGAL::Sign along_line(const std::array<PointId, 3>& a, const std::array<PointId, 3>& b, PointId p,
+                        PointId q) const;
+  // 0, 1 or 2: the axis of the largest normal coordinate of triangle pqr (ties to the lower axis).
+  int dominant_axis(PointId p, PointId q, PointId r) const;
+
+ private:
+  Homogeneous compute_exact(PointId id) const;
+  std::atomic<Homogeneous*>& exact_slot(PointId id) const {
+    return id < num_inputs_ ? input_exact_[id] : constructed_exact_[id - num_inputs_];
+  }
+
+  const Mesh* mesh_[2] = {nullptr, nullptr};
+  bool same_mesh_ = false;
+  PointId num_a_ = 0, num_inputs_ = 0;
+  std::deque<Recipe> recipes_;
+  std::deque<ApproxPoint> approx_;
+  std::deque<Point> explicit_;
+  std::unique_ptr<std::atomic<Homogeneous*>[]> input_exact_;
+  mutable std::deque<std::atomic<Homogeneous*>> constructed_exact_;
+};
+
+}  // namespace morphex::detail
