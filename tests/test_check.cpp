@@ -181,9 +181,30 @@ TEST(Spatial, TreeFindsExactlyTheOverlappingBoxes) {
   const CGAL::Bbox_3 query(0.1, 0.1, 0.1, 0.9, 0.9, 0.9);
   std::vector<std::uint32_t> found, expected;
   tree.for_each_overlap(query, [&](std::uint32_t t) { found.push_back(t); });
-  for (std::uint32_t t = 0; t < m.num_triangles(); ++t)
-    if (CGAL::do_overlap(tree.box(t), query)) expected.push_back(t);
+  for (std::uint32_t t = 0; t < m.num_triangles(); ++t) {
+    if (tree.float_box(t).overlaps(FloatBox::of(query))) expected.push_back(t);
+    // conservative: the stored box holds the triangle's exact points
+    const Triangle& f = m.triangles[t];
+    const CGAL::Bbox_3 exact =
+        m.points[f[0]].bbox() + m.points[f[1]].bbox() + m.points[f[2]].bbox();
+    EXPECT_TRUE(CGAL::do_overlap(tree.box(t), exact) && tree.box(t).xmin() <= exact.xmin() &&
+                tree.box(t).xmax() >= exact.xmax() && tree.box(t).zmin() <= exact.zmin() &&
+                tree.box(t).zmax() >= exact.zmax())
+        << t;
+  }
   std::sort(found.begin(), found.end());
   EXPECT_EQ(found, expected);
   EXPECT_FALSE(found.empty());
+}
+
+TEST(Spatial, OverlappingPairsOfTwoTreesAreThoseOfAllPairs) {
+  const Mesh a = make_icosphere(2, FT(1));
+  const Mesh b = translated(make_icosphere(3, FT(1)), Vector(FT(1) / 3, FT(1) / 5, FT(1) / 7));
+  const TriangleTree ta(a), tb(b);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> expected;
+  for (std::uint32_t i = 0; i < a.num_triangles(); ++i)
+    for (std::uint32_t j = 0; j < b.num_triangles(); ++j)
+      if (ta.float_box(i).overlaps(tb.float_box(j))) expected.emplace_back(i, j);
+  EXPECT_EQ(TriangleTree::overlapping_pairs(ta, tb), expected);
+  EXPECT_FALSE(expected.empty());
 }

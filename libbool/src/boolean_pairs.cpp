@@ -1,30 +1,36 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Step 2: candidate triangle pairs. The tree is built on the mesh with fewer triangles (the seed's
-// O((n + m) log n) bound) and queried with the boxes of the other.
+// Step 2: candidate triangle pairs. When the meshes are of comparable size, a tree on each and
+// one traversal of both together, which prunes the parts of either mesh far from the other at
+// once; when one mesh is much smaller (a coarse box against a fine sphere), the seed's tree on
+// the smaller mesh alone, queried with the boxes of the other.
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
 #include "boolean_internal.h"
 #include "morphex/spatial.h"
 
 namespace morphex::detail {
 
-namespace {
-CGAL::Bbox_3 triangle_box(const Mesh& m, std::uint32_t t) {
-  const Triangle& f = m.triangles[t];
-  return m.points[f[0]].bbox() + m.points[f[1]].bbox() + m.points[f[2]].bbox();
-}
-}  // namespace
-
-std::vector<std::pair<std::uint32_t, std::uint32_t>> candidate_pairs(const Mesh& a, const Mesh& b) {
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-  const bool tree_on_a = a.num_triangles() <= b.num_triangles();
+Pairs candidate_pairs(const Mesh& a, const Mesh& b) {
+  if (a.empty() || b.empty()) return {};
+  const std::size_t na = a.num_triangles(), nb = b.num_triangles();
+  if (std::max(na, nb) < 8 * std::min(na, nb))
+    return TriangleTree::overlapping_pairs(TriangleTree(a), TriangleTree(b));
+  const bool tree_on_a = na < nb;
   const Mesh& indexed = tree_on_a ? a : b;
   const Mesh& queries = tree_on_a ? b : a;
-  if (indexed.empty() || queries.empty()) return pairs;
   const TriangleTree tree(indexed);
-  for (std::uint32_t q = 0; q < queries.num_triangles(); ++q) {
-    tree.for_each_overlap(triangle_box(queries, q), [&](std::uint32_t t) {
-      pairs.emplace_back(tree_on_a ? t : q, tree_on_a ? q : t);
-    });
-  }
+  std::vector<Pairs> found(queries.num_triangles());
+  tbb::parallel_for(std::uint32_t(0), std::uint32_t(queries.num_triangles()), [&](std::uint32_t q) {
+    const Triangle& f = queries.triangles[q];
+    const CGAL::Bbox_3 box =
+        queries.points[f[0]].bbox() + queries.points[f[1]].bbox() + queries.points[f[2]].bbox();
+    tree.for_each_overlap(
+        box, [&](std::uint32_t t) { found[q].emplace_back(tree_on_a ? t : q, tree_on_a ? q : t); });
+  });
+  Pairs pairs;
+  for (const Pairs& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
+  tbb::parallel_sort(pairs.begin(), pairs.end());
   return pairs;
 }
 

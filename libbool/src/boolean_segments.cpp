@@ -383,11 +383,18 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
   }
   auto rep = [&](PointId id) { return x.vertex_rep[id]; };
 
+  // Corners by the ids of their positions: predicates on coincident corners of the two meshes
+  // (identical meshes, shared vertices) are then decided by the ids alone.
+  auto corner_ids = [&](int side, std::uint32_t facet) {
+    const Corners raw = corners_of(table, *meshes[side], side, facet);
+    return Corners{rep(raw[0]), rep(raw[1]), rep(raw[2])};
+  };
+
   // 2. Signs.
   std::vector<PairSigns> signs(np);
   tbb::parallel_for(std::size_t(0), np, [&](std::size_t k) {
     const auto [ia, ib] = pairs[k];
-    const Corners ta = corners_of(table, a, 0, ia), tb = corners_of(table, b, 1, ib);
+    const Corners ta = corner_ids(0, ia), tb = corner_ids(1, ib);
     PairSigns& s = signs[k];
     auto against = [&](const Corners& t, const Corners& other, std::int8_t(&out)[3]) {
       for (int i = 0; i < 3; ++i)
@@ -409,7 +416,7 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
   for (std::size_t k = 0; k < np; ++k) {
     if (signs[k].separated || signs[k].coplanar) continue;
     const auto [ia, ib] = pairs[k];
-    const Corners ta = corners_of(table, a, 0, ia), tb = corners_of(table, b, 1, ib);
+    const Corners ta = corner_ids(0, ia), tb = corner_ids(1, ib);
     for_each_crossing_edge(signs[k].a,
                            [&](int i, int j) { keys.push_back(crossing_key(0, ta, i, j, ib)); });
     for_each_crossing_edge(signs[k].b,
@@ -420,7 +427,7 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
   auto facet_corners = [&](const CrossingKey& key) {
     // The facet belongs to the mesh the edge is not from (in a soup, to the soup).
     const int facet_side = options.soup ? 0 : 1 - int(key.side);
-    return corners_of(table, *meshes[facet_side], facet_side, key.facet);
+    return corner_ids(facet_side, key.facet);
   };
   std::vector<Recipe> recipes(keys.size());
   for (std::size_t c = 0; c < keys.size(); ++c) {
@@ -446,9 +453,8 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
   tbb::parallel_for(std::size_t(0), np, [&](std::size_t k) {
     if (signs[k].separated) return;
     const auto [ia, ib] = pairs[k];
-    const Corners ta = corners_of(table, a, 0, ia), tb = corners_of(table, b, 1, ib);
-    const Corners ta_ids = {rep(ta[0]), rep(ta[1]), rep(ta[2])};
-    const Corners tb_ids = {rep(tb[0]), rep(tb[1]), rep(tb[2])};
+    const Corners ta = corner_ids(0, ia), tb = corner_ids(1, ib);
+    const Corners &ta_ids = ta, &tb_ids = tb;
     PairOutcome& out = outcomes[k];
     if (signs[k].coplanar) {
       const int dropped = table.dominant_axis(ta[0], ta[1], ta[2]);

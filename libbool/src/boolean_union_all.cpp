@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "morphex/boolean.h"
+#include "morphex/spatial.h"
 
 namespace morphex {
 namespace {
@@ -17,25 +18,6 @@ CGAL::Bbox_3 bbox_of(const Mesh& mesh) {
   CGAL::Bbox_3 box;
   for (const Point& p : mesh.points) box += p.bbox();
   return box;
-}
-
-// Interleaves the top 21 bits of three normalised coordinates.
-std::uint64_t morton_code(const std::array<double, 3>& unit) {
-  auto spread = [](std::uint64_t v) {
-    v &= 0x1fffff;
-    v = (v | v << 32) & 0x1f00000000ffffULL;
-    v = (v | v << 16) & 0x1f0000ff0000ffULL;
-    v = (v | v << 8) & 0x100f00f00f00f00fULL;
-    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-    v = (v | v << 2) & 0x1249249249249249ULL;
-    return v;
-  };
-  std::uint64_t code = 0;
-  for (int i = 0; i < 3; ++i) {
-    const double clamped = std::clamp(unit[i], 0.0, 1.0);
-    code |= spread(static_cast<std::uint64_t>(clamped * double(0x1fffff))) << i;
-  }
-  return code;
 }
 
 struct Operand {
@@ -105,15 +87,7 @@ Mesh compute_union(std::vector<Mesh> solids, UnionStats* stats) {
   if (items.empty()) return {};
 
   std::vector<std::uint64_t> codes(items.size());
-  for (std::size_t i = 0; i < items.size(); ++i) {
-    std::array<double, 3> unit;
-    for (int k = 0; k < 3; ++k) {
-      const double extent = all.max(k) - all.min(k);
-      const double centre = 0.5 * (items[i].box.min(k) + items[i].box.max(k));
-      unit[k] = extent > 0 ? (centre - all.min(k)) / extent : 0.0;
-    }
-    codes[i] = morton_code(unit);
-  }
+  for (std::size_t i = 0; i < items.size(); ++i) codes[i] = morton_code(items[i].box, all);
   std::vector<std::size_t> order(items.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(),

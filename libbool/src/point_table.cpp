@@ -272,6 +272,7 @@ PointId PointTable::add_explicit(const Point& p) {
 }
 
 CGAL::Sign PointTable::orientation(PointId p, PointId q, PointId r, PointId s) const {
+  if (p == q || p == r || p == s || q == r || q == s || r == s) return CGAL::ZERO;
   {
     CGAL::Protect_FPU_rounding<true> rounding;
     const ApproxPoint &ap = approx(p), &aq = approx(q), &ar = approx(r), &as = approx(s);
@@ -285,6 +286,7 @@ CGAL::Sign PointTable::orientation(PointId p, PointId q, PointId r, PointId s) c
 }
 
 CGAL::Sign PointTable::orientation_2(int dropped, PointId p, PointId q, PointId r) const {
+  if (p == q || q == r || p == r) return CGAL::ZERO;
   const int u = dropped == 0 ? 1 : 0, v = dropped == 2 ? 1 : 2;
   {
     CGAL::Protect_FPU_rounding<true> rounding;

@@ -2,8 +2,13 @@
 #include "morphex/spatial.h"
 
 #include <CGAL/intersections.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <type_traits>
@@ -13,12 +18,101 @@
 namespace morphex {
 
 namespace {
-constexpr std::uint32_t kLeafSize = 4;
 
-double centre(const CGAL::Bbox_3& b, int axis) {
-  return 0.5 * (b.min(axis) + b.max(axis));
+float round_down(double d) {
+  float f = static_cast<float>(d);
+  return f > d ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
 }
+float round_up(double d) {
+  float f = static_cast<float>(d);
+  return f < d ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+
+// Morton code of a box centre on a 1024^3 grid over `frame`: 30 bits, enough to order the
+// triangles of any mesh this library handles into compact leaves.
+std::uint32_t morton_code_30(const FloatBox& box, const FloatBox& frame) {
+  auto spread = [](std::uint32_t v) {
+    v &= 0x3ff;
+    v = (v | v << 16) & 0x030000ff;
+    v = (v | v << 8) & 0x0300f00f;
+    v = (v | v << 4) & 0x030c30c3;
+    v = (v | v << 2) & 0x09249249;
+    return v;
+  };
+  std::uint32_t code = 0;
+  for (int k = 0; k < 3; ++k) {
+    const float extent = frame.hi[k] - frame.lo[k];
+    const float centre = 0.5f * (box.lo[k] + box.hi[k]);
+    const float unit = extent > 0 ? std::clamp((centre - frame.lo[k]) / extent, 0.0f, 1.0f) : 0;
+    code |= spread(static_cast<std::uint32_t>(unit * 1023.0f)) << k;
+  }
+  return code;
+}
+
+// Stable least-significant-digit radix sort of (key << 32 | index) by the 30-bit key.
+void radix_sort_by_key(std::vector<std::uint64_t>& items) {
+  std::vector<std::uint64_t> buffer(items.size());
+  for (int shift = 32; shift < 62; shift += 10) {
+    std::uint32_t count[1025] = {};
+    for (std::uint64_t x : items) ++count[((x >> shift) & 0x3ff) + 1];
+    for (int d = 0; d < 1024; ++d) count[d + 1] += count[d];
+    for (std::uint64_t x : items) buffer[count[(x >> shift) & 0x3ff]++] = x;
+    items.swap(buffer);
+  }
+}
+
+std::array<double, 3> unit_position(const CGAL::Bbox_3& box, const CGAL::Bbox_3& frame) {
+  std::array<double, 3> unit;
+  for (int k = 0; k < 3; ++k) {
+    const double extent = frame.max(k) - frame.min(k);
+    const double centre = 0.5 * (box.min(k) + box.max(k));
+    unit[k] = extent > 0 ? (centre - frame.min(k)) / extent : 0.0;
+  }
+  return unit;
+}
+
 }  // namespace
+
+FloatBox FloatBox::of(const CGAL::Bbox_3& b) {
+  FloatBox out;
+  for (int k = 0; k < 3; ++k) {
+    out.lo[k] = round_down(b.min(k));
+    out.hi[k] = round_up(b.max(k));
+  }
+  return out;
+}
+
+FloatBox FloatBox::of(const Point& p) {
+  const auto& a = CGAL::approx(p);
+  FloatBox out;
+  for (int k = 0; k < 3; ++k) {
+    out.lo[k] = round_down(a.cartesian(k).inf());
+    out.hi[k] = round_up(a.cartesian(k).sup());
+  }
+  return out;
+}
+
+std::uint64_t morton_code(const std::array<double, 3>& unit) {
+  auto spread = [](std::uint64_t v) {
+    v &= 0x1fffff;
+    v = (v | v << 32) & 0x1f00000000ffffULL;
+    v = (v | v << 16) & 0x1f0000ff0000ffULL;
+    v = (v | v << 8) & 0x100f00f00f00f00fULL;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+    v = (v | v << 2) & 0x1249249249249249ULL;
+    return v;
+  };
+  std::uint64_t code = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double clamped = std::clamp(unit[i], 0.0, 1.0);
+    code |= spread(static_cast<std::uint64_t>(clamped * double(0x1fffff))) << i;
+  }
+  return code;
+}
+
+std::uint64_t morton_code(const CGAL::Bbox_3& box, const CGAL::Bbox_3& frame) {
+  return morton_code(unit_position(box, frame));
+}
 
 Kernel::Triangle_3 triangle_of(const Mesh& mesh, std::uint32_t t) {
   const Triangle& f = mesh.triangles[t];
@@ -28,48 +122,117 @@ Kernel::Triangle_3 triangle_of(const Mesh& mesh, std::uint32_t t) {
 TriangleTree::TriangleTree(const Mesh& mesh) {
   const std::uint32_t n = std::uint32_t(mesh.num_triangles());
   if (n == 0) return;
-  boxes_.reserve(n);
-  for (const Triangle& f : mesh.triangles)
-    boxes_.push_back(mesh.points[f[0]].bbox() + mesh.points[f[1]].bbox() +
-                     mesh.points[f[2]].bbox());
+  constexpr std::size_t kGrain = 8192;
+  std::vector<FloatBox> vertex_boxes(mesh.num_vertices());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, vertex_boxes.size(), kGrain),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t v = r.begin(); v < r.end(); ++v)
+                        vertex_boxes[v] = FloatBox::of(mesh.points[v]);
+                    });
+  boxes_.resize(n);
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, kGrain),
+                    [&](const tbb::blocked_range<std::uint32_t>& r) {
+                      for (std::uint32_t t = r.begin(); t < r.end(); ++t) {
+                        const Triangle& f = mesh.triangles[t];
+                        FloatBox b = vertex_boxes[f[0]];
+                        b += vertex_boxes[f[1]];
+                        b += vertex_boxes[f[2]];
+                        boxes_[t] = b;
+                      }
+                    });
+  FloatBox frame;
+  for (const FloatBox& b : vertex_boxes) frame += b;
+  std::vector<std::uint64_t> keyed(n);
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, kGrain),
+                    [&](const tbb::blocked_range<std::uint32_t>& r) {
+                      for (std::uint32_t t = r.begin(); t < r.end(); ++t)
+                        keyed[t] = (std::uint64_t(morton_code_30(boxes_[t], frame)) << 32) | t;
+                    });
+  radix_sort_by_key(keyed);
   order_.resize(n);
-  std::iota(order_.begin(), order_.end(), 0);
-  nodes_.reserve(2 * (n / kLeafSize + 1));
-  nodes_.emplace_back();
-  build(0, 0, n, 0);
+  sorted_boxes_.resize(n);
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, kGrain),
+                    [&](const tbb::blocked_range<std::uint32_t>& r) {
+                      for (std::uint32_t i = r.begin(); i < r.end(); ++i) {
+                        order_[i] = std::uint32_t(keyed[i]);
+                        sorted_boxes_[i] = boxes_[order_[i]];
+                      }
+                    });
+
+  levels_.emplace_back((n + kLeafSize - 1) / kLeafSize);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, levels_[0].size(), kGrain / kLeafSize),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t leaf = r.begin(); leaf < r.end(); ++leaf) {
+                        FloatBox box;
+                        const std::size_t end = std::min<std::size_t>(n, (leaf + 1) * kLeafSize);
+                        for (std::size_t i = leaf * kLeafSize; i < end; ++i)
+                          box += sorted_boxes_[i];
+                        levels_[0][leaf] = box;
+                      }
+                    });
+  while (levels_.back().size() > 1) {
+    const std::vector<FloatBox>& below = levels_.back();
+    std::vector<FloatBox> level((below.size() + 1) / 2);
+    for (std::size_t i = 0; i < level.size(); ++i) {
+      level[i] = below[2 * i];
+      if (2 * i + 1 < below.size()) level[i] += below[2 * i + 1];
+    }
+    levels_.push_back(std::move(level));
+  }
 }
 
-// Children of an inner node are stored side by side, so the node keeps only the first's index.
-void TriangleTree::build(std::uint32_t node, std::uint32_t begin, std::uint32_t end, int depth) {
-  CGAL::Bbox_3 box = boxes_[order_[begin]];
-  for (std::uint32_t i = begin + 1; i < end; ++i) box += boxes_[order_[i]];
-  nodes_[node].box = box;
-  // Depth is bounded so that the fixed traversal stack (64 entries) cannot overflow.
-  if (end - begin <= kLeafSize || depth >= 30) {
-    nodes_[node].first = begin;
-    nodes_[node].count = end - begin;
-    return;
-  }
-  int axis = 0;
-  for (int a = 1; a < 3; ++a)
-    if (box.max(a) - box.min(a) > box.max(axis) - box.min(axis)) axis = a;
-  const std::uint32_t mid = begin + (end - begin) / 2;
-  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
-                   [&](std::uint32_t x, std::uint32_t y) {
-                     return centre(boxes_[x], axis) < centre(boxes_[y], axis);
-                   });
-  const std::uint32_t left = std::uint32_t(nodes_.size());
-  nodes_[node].first = left;
-  nodes_[node].count = 0;
-  nodes_.emplace_back();
-  nodes_.emplace_back();
-  build(left, begin, mid, depth + 1);
-  build(left + 1, mid, end, depth + 1);
+std::vector<std::pair<std::uint32_t, std::uint32_t>> TriangleTree::overlapping_pairs(
+    const TriangleTree& a, const TriangleTree& b) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  if (a.levels_.empty() || b.levels_.empty()) return pairs;
+  // Independent tasks: the nodes of a level of `a` wide enough to keep every thread busy, each
+  // traversed together with all of `b`; their pairs are concatenated in node order.
+  std::uint32_t task_level = std::uint32_t(a.levels_.size() - 1);
+  while (task_level > 0 && a.levels_[task_level].size() < 256) --task_level;
+  const Node root_b{std::uint32_t(b.levels_.size() - 1), 0};
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found(
+      a.levels_[task_level].size());
+  tbb::parallel_for(std::uint32_t(0), std::uint32_t(found.size()), [&](std::uint32_t task) {
+    auto& out = found[task];
+    std::pair<Node, Node> stack[256];
+    int top = 0;
+    stack[top++] = {Node{task_level, task}, root_b};
+    while (top > 0) {
+      const auto [na, nb] = stack[--top];
+      const FloatBox& box_b = b.node_box(nb);
+      if (!a.node_box(na).overlaps(box_b)) continue;
+      if (na.level == 0 && nb.level == 0) {
+        a.for_each_triangle(na, [&](std::uint32_t t, const FloatBox& box_t) {
+          if (!box_t.overlaps(box_b)) return;
+          b.for_each_triangle(nb, [&](std::uint32_t u, const FloatBox& box_u) {
+            if (box_t.overlaps(box_u)) out.emplace_back(t, u);
+          });
+        });
+        continue;
+      }
+      // Descend the higher node (the one covering more triangles).
+      Node kids[2];
+      if (na.level >= nb.level) {
+        const std::uint32_t count = a.children(na, kids);
+        for (std::uint32_t k = 0; k < count; ++k) stack[top++] = {kids[k], nb};
+      } else {
+        const std::uint32_t count = b.children(nb, kids);
+        for (std::uint32_t k = 0; k < count; ++k) stack[top++] = {na, kids[k]};
+      }
+    }
+  });
+  std::size_t total = 0;
+  for (const auto& f : found) total += f.size();
+  pairs.reserve(total);
+  for (const auto& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
+  tbb::parallel_sort(pairs.begin(), pairs.end());
+  return pairs;
 }
 
 // Slab test for every origin in the box `origin`, padded so that rounding can only add boxes.
-bool TriangleTree::ray_may_hit(const CGAL::Bbox_3& box, const CGAL::Bbox_3& origin,
+bool TriangleTree::ray_may_hit(const FloatBox& float_box, const CGAL::Bbox_3& origin,
                                const std::array<double, 3>& d) const {
+  const CGAL::Bbox_3 box = float_box.bbox();
   double t_enter = 0, t_exit = std::numeric_limits<double>::infinity();
   for (int a = 0; a < 3; ++a) {
     const double pad = 1e-9 * (std::abs(box.min(a)) + std::abs(box.max(a)) +

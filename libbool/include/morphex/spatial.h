@@ -5,14 +5,45 @@
 
 #include <CGAL/Bbox_3.h>
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
+#include <limits>
+#include <utility>
 #include <vector>
 
 #include "morphex/mesh.h"
 
 namespace morphex {
 
-// Boxes come from the interval approximation of the exact points, so they are conservative.
+// An axis-aligned box in single precision, rounded outward from the interval approximation of
+// exact points: conservative, and half the size of a CGAL::Bbox_3.
+struct FloatBox {
+  float lo[3] = {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity(),
+                 std::numeric_limits<float>::infinity()};
+  float hi[3] = {-std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
+                 -std::numeric_limits<float>::infinity()};
+
+  static FloatBox of(const Point& p);
+  static FloatBox of(const CGAL::Bbox_3& b);
+  FloatBox& operator+=(const FloatBox& o) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], o.lo[k]);
+      hi[k] = std::max(hi[k], o.hi[k]);
+    }
+    return *this;
+  }
+  bool overlaps(const FloatBox& o) const {
+    return lo[0] <= o.hi[0] && o.lo[0] <= hi[0] && lo[1] <= o.hi[1] && o.lo[1] <= hi[1] &&
+           lo[2] <= o.hi[2] && o.lo[2] <= hi[2];
+  }
+  CGAL::Bbox_3 bbox() const { return {lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]}; }
+};
+
+// A bounding-volume hierarchy over the triangles of a mesh, on conservative boxes. Built in
+// linear time: triangles in Morton order of their box centres (a radix sort), grouped by
+// kLeafSize into leaves, and levels of boxes above them, each box covering two of the level below
+// (a pyramid). The build runs in parallel and its result does not depend on the thread count.
 class TriangleTree {
  public:
   explicit TriangleTree(const Mesh& mesh);
@@ -20,7 +51,8 @@ class TriangleTree {
   // Calls f(triangle index) for every triangle whose box overlaps `box`.
   template <class F>
   void for_each_overlap(const CGAL::Bbox_3& box, F&& f) const {
-    traverse([&](const CGAL::Bbox_3& b) { return CGAL::do_overlap(b, box); }, f);
+    const FloatBox query = FloatBox::of(box);
+    traverse([&](const FloatBox& b) { return b.overlaps(query); }, f);
   }
 
   // Calls f(triangle index) for every triangle whose box the ray origin + t * direction (t >= 0)
@@ -29,48 +61,78 @@ class TriangleTree {
   void for_each_on_ray(const CGAL::Bbox_3& origin, const std::array<double, 3>& direction,
                        F&& f) const;
 
-  const CGAL::Bbox_3& box(std::uint32_t t) const { return boxes_[t]; }
-  const std::vector<CGAL::Bbox_3>& boxes() const { return boxes_; }
+  // Every pair (i, j), i a triangle of a and j of b, whose boxes overlap, sorted by (i, j); the
+  // two trees are traversed together, in parallel.
+  static std::vector<std::pair<std::uint32_t, std::uint32_t>> overlapping_pairs(
+      const TriangleTree& a, const TriangleTree& b);
+
+  CGAL::Bbox_3 box(std::uint32_t t) const { return boxes_[t].bbox(); }
+  const FloatBox& float_box(std::uint32_t t) const { return boxes_[t]; }
+  std::size_t size() const { return boxes_.size(); }
+
+  static constexpr std::uint32_t kLeafSize = 4;
 
  private:
+  // Node i of level l covers nodes 2i and 2i + 1 of level l - 1; node i of level 0 (a leaf)
+  // covers the triangles in positions [kLeafSize i, kLeafSize (i + 1)) of the Morton order.
   struct Node {
-    CGAL::Bbox_3 box;
-    std::uint32_t first = 0;  // first child (inner node) or first entry of order_ (leaf)
-    std::uint32_t count = 0;  // number of triangles in a leaf, 0 for inner nodes
+    std::uint32_t level, index;
   };
-  void build(std::uint32_t node, std::uint32_t begin, std::uint32_t end, int depth);
+  const FloatBox& node_box(const Node& n) const { return levels_[n.level][n.index]; }
+  std::uint32_t children(const Node& n, Node (&out)[2]) const {
+    const std::uint32_t first = 2 * n.index, below = n.level - 1;
+    out[0] = {below, first};
+    out[1] = {below, first + 1};
+    return first + 1 < levels_[below].size() ? 2 : 1;
+  }
+  // f(triangle, its box) for the triangles of a leaf.
+  template <class F>
+  void for_each_triangle(const Node& leaf, F&& f) const {
+    const std::uint32_t end =
+        std::min<std::uint32_t>(std::uint32_t(order_.size()), (leaf.index + 1) * kLeafSize);
+    for (std::uint32_t i = leaf.index * kLeafSize; i < end; ++i) f(order_[i], sorted_boxes_[i]);
+  }
   // Visits the leaves' triangles whose boxes pass `keep`, pruning subtrees whose box fails it.
   template <class Keep, class F>
   void traverse(Keep&& keep, F&& f) const {
-    if (nodes_.empty()) return;
-    std::uint32_t stack[64];
+    if (levels_.empty()) return;
+    Node stack[64];
     int top = 0;
-    stack[top++] = 0;
+    stack[top++] = {std::uint32_t(levels_.size() - 1), 0};
     while (top > 0) {
-      const Node& node = nodes_[stack[--top]];
-      if (!keep(node.box)) continue;
-      if (node.count > 0) {
-        for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
-          if (keep(boxes_[order_[i]])) f(order_[i]);
+      const Node node = stack[--top];
+      if (!keep(node_box(node))) continue;
+      if (node.level == 0) {
+        for_each_triangle(node, [&](std::uint32_t t, const FloatBox& b) {
+          if (keep(b)) f(t);
+        });
       } else {
-        stack[top++] = node.first;
-        stack[top++] = node.first + 1;
+        Node kids[2];
+        const std::uint32_t count = children(node, kids);
+        for (std::uint32_t k = count; k-- > 0;) stack[top++] = kids[k];
       }
     }
   }
-  bool ray_may_hit(const CGAL::Bbox_3& box, const CGAL::Bbox_3& origin,
+  bool ray_may_hit(const FloatBox& box, const CGAL::Bbox_3& origin,
                    const std::array<double, 3>& direction) const;
 
-  std::vector<CGAL::Bbox_3> boxes_;
-  std::vector<std::uint32_t> order_;
-  std::vector<Node> nodes_;
+  std::vector<FloatBox> boxes_;                // by triangle
+  std::vector<std::uint32_t> order_;           // triangles in Morton order
+  std::vector<FloatBox> sorted_boxes_;         // boxes_ in that order
+  std::vector<std::vector<FloatBox>> levels_;  // levels_.back() has the root alone
 };
 
 template <class F>
 void TriangleTree::for_each_on_ray(const CGAL::Bbox_3& origin,
                                    const std::array<double, 3>& direction, F&& f) const {
-  traverse([&](const CGAL::Bbox_3& b) { return ray_may_hit(b, origin, direction); }, f);
+  traverse([&](const FloatBox& b) { return ray_may_hit(b, origin, direction); }, f);
 }
+
+// Interleaves the top 21 bits of three coordinates in [0, 1] (clamped): a position along the
+// Morton space-filling curve.
+std::uint64_t morton_code(const std::array<double, 3>& unit);
+// The Morton code of the centre of `box` within `frame`.
+std::uint64_t morton_code(const CGAL::Bbox_3& box, const CGAL::Bbox_3& frame);
 
 // Kernel triangle of a mesh face.
 Kernel::Triangle_3 triangle_of(const Mesh& mesh, std::uint32_t t);
