@@ -98,13 +98,15 @@ Mesh separate_non_manifold(const PointTable& points, const std::vector<Triangle>
     std::uint32_t faces[2];
   };
   std::vector<WedgePair> wedge_pairs;
+  std::vector<std::pair<PointId, std::uint32_t>> leaving, arriving;  // (w, slot) at one point
   for (std::size_t begin = 0; begin < corners.size();) {
     std::size_t end = begin + 1;
     while (end < corners.size() && corners[end].first == corners[begin].first) ++end;
     const PointId v = corners[begin].first;
     // Half-edges v -> w leave the corner (f, k); half-edges w -> v arrive at it from (f, k - 1).
     // Join each corner to the corner whose arriving half-edge is the mate of its leaving one.
-    std::vector<std::pair<PointId, std::uint32_t>> leaving, arriving;  // (w, slot)
+    leaving.clear();
+    arriving.clear();
     for (std::size_t i = begin; i < end; ++i) {
       leaving.emplace_back(next(corners[i].second), std::uint32_t(i));
       arriving.emplace_back(previous(corners[i].second), std::uint32_t(i));
@@ -239,39 +241,42 @@ Mesh assemble(const Mesh& a, const Mesh& b, const Intersection& x, const Refined
     }
   }
 
-  // A vertex can only become removable by merging coplanar faces where two of the input facets
-  // around it are coplanar: look at the special points (the only new vertices), unless coplanar
-  // facets already overlapped.
+  // A vertex can only become removable by merging coplanar faces when the faces around it lie in
+  // at most two planes. Around a special point the facets of each mesh are coplanar with each
+  // other or the point stays (A's and B's facets meet there transversally, unless coplanar facets
+  // overlapped, which already asks for the merge); one test usually refutes it.
   *may_merge = x.coplanar_overlaps;
   if (!*may_merge) {
     std::vector<std::pair<PointId, std::uint32_t>> around;  // (special point, face)
     for (std::uint32_t f = 0; f < faces.size(); ++f)
       for (PointId p : faces[f])
         if (x.special(p)) around.emplace_back(p, f);
-    std::sort(around.begin(), around.end());
+    tbb::parallel_sort(around.begin(), around.end());
     auto corners_of = [&](const FaceOrigin& o) {
-      const Mesh& m = *meshes[o.mesh];
-      const Triangle& t = m.triangles[o.face];
+      const Triangle& t = meshes[o.mesh]->triangles[o.face];
       return std::array<PointId, 3>{x.points.vertex(o.mesh, t[0]), x.points.vertex(o.mesh, t[1]),
                                     x.points.vertex(o.mesh, t[2])};
     };
-    std::vector<FaceOrigin> facets;
+    auto coplanar = [&](const FaceOrigin& f, const FaceOrigin& g) {
+      if (f.mesh == g.mesh && f.face == g.face) return true;
+      const auto a = corners_of(f), b = corners_of(g);
+      return std::all_of(b.begin(), b.end(), [&](PointId p) {
+        return x.points.orientation(a[0], a[1], a[2], p) == CGAL::ZERO;
+      });
+    };
     for (std::size_t i = 0; i < around.size() && !*may_merge;) {
       std::size_t j = i;
-      facets.clear();
-      for (; j < around.size() && around[j].first == around[i].first; ++j) {
-        const FaceOrigin& o = origin[around[j].second];
-        if (std::none_of(facets.begin(), facets.end(),
-                         [&](const FaceOrigin& e) { return e.mesh == o.mesh && e.face == o.face; }))
-          facets.push_back(o);
+      while (j < around.size() && around[j].first == around[i].first) ++j;
+      bool flat[2] = {true, true};
+      const FaceOrigin* first[2] = {nullptr, nullptr};
+      for (std::size_t k = i; k < j && (flat[0] || flat[1]); ++k) {
+        const FaceOrigin& o = origin[around[k].second];
+        if (!first[o.mesh])
+          first[o.mesh] = &o;
+        else if (flat[o.mesh])
+          flat[o.mesh] = coplanar(*first[o.mesh], o);
       }
-      for (std::size_t s = 0; s < facets.size() && !*may_merge; ++s)
-        for (std::size_t t = s + 1; t < facets.size() && !*may_merge; ++t) {
-          const auto f = corners_of(facets[s]), g = corners_of(facets[t]);
-          *may_merge = std::all_of(g.begin(), g.end(), [&](PointId p) {
-            return x.points.orientation(f[0], f[1], f[2], p) == CGAL::ZERO;
-          });
-        }
+      *may_merge = flat[0] && flat[1];
       i = j;
     }
   }

@@ -20,13 +20,20 @@ Pairs candidate_pairs(const Mesh& a, const Mesh& b) {
   const Mesh& indexed = tree_on_a ? a : b;
   const Mesh& queries = tree_on_a ? b : a;
   const TriangleTree tree(indexed);
-  std::vector<Pairs> found(queries.num_triangles());
-  tbb::parallel_for(std::uint32_t(0), std::uint32_t(queries.num_triangles()), [&](std::uint32_t q) {
-    const Triangle& f = queries.triangles[q];
-    const CGAL::Bbox_3 box =
-        queries.points[f[0]].bbox() + queries.points[f[1]].bbox() + queries.points[f[2]].bbox();
-    tree.for_each_overlap(
-        box, [&](std::uint32_t t) { found[q].emplace_back(tree_on_a ? t : q, tree_on_a ? q : t); });
+  // Queries in blocks, each block's pairs in its own vector, concatenated in block order.
+  constexpr std::uint32_t kBlock = 1024;
+  const auto nq = std::uint32_t(queries.num_triangles());
+  std::vector<Pairs> found((nq + kBlock - 1) / kBlock);
+  tbb::parallel_for(std::uint32_t(0), std::uint32_t(found.size()), [&](std::uint32_t block) {
+    for (std::uint32_t q = block * kBlock; q < std::min(nq, (block + 1) * kBlock); ++q) {
+      const Triangle& f = queries.triangles[q];
+      FloatBox box = FloatBox::of(queries.points[f[0]]);
+      box += FloatBox::of(queries.points[f[1]]);
+      box += FloatBox::of(queries.points[f[2]]);
+      tree.for_each_overlap(box, [&](std::uint32_t t) {
+        found[block].emplace_back(tree_on_a ? t : q, tree_on_a ? q : t);
+      });
+    }
   });
   Pairs pairs;
   for (const Pairs& f : found) pairs.insert(pairs.end(), f.begin(), f.end());

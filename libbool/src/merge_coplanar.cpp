@@ -8,6 +8,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <numeric>
 #include <optional>
@@ -18,6 +19,7 @@
 #include "filtered.h"
 #include "flat_map.h"
 #include "morphex/boolean.h"
+#include "morphex/spatial.h"
 #include "point_index.h"
 #include "projection_traits.h"
 
@@ -96,6 +98,51 @@ std::optional<std::vector<Triangle>> triangulate_region(
   return out;
 }
 
+// For each vertex flagged in `of_interest`, whether another vertex of the mesh has its position.
+// Vertices are bucketed by the grid cells their interval boxes cover (coincident points have
+// overlapping boxes), and only vertices sharing a cell with a flagged one are compared exactly.
+std::vector<std::uint8_t> coincident(const Mesh& mesh,
+                                     const std::vector<std::uint8_t>& of_interest) {
+  const std::size_t nv = mesh.num_vertices();
+  std::vector<std::uint8_t> shared(nv, 0);
+  std::vector<FloatBox> boxes(nv);
+  FloatBox frame;
+  for (std::size_t v = 0; v < nv; ++v) {
+    boxes[v] = FloatBox::of(mesh.points[v]);
+    frame += boxes[v];
+  }
+  // Cells about 2^-20 of the extent: far wider than any point's interval box, so that a box
+  // covers one cell, rarely two along an axis.
+  double cell = 0;
+  for (int k = 0; k < 3; ++k) cell = std::max(cell, double(frame.hi[k]) - double(frame.lo[k]));
+  cell = cell > 0 ? std::ldexp(cell, -20) : 1;
+  auto for_each_cell = [&](const FloatBox& b, auto&& visit) {
+    std::int64_t lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::int64_t(std::floor((double(b.lo[k]) - double(frame.lo[k])) / cell));
+      hi[k] = std::int64_t(std::floor((double(b.hi[k]) - double(frame.lo[k])) / cell));
+    }
+    for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+      for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+        for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+          visit(detail::mix64(std::uint64_t(x) * 0x9e3779b97f4a7c15ull ^ std::uint64_t(y) << 21 ^
+                              std::uint64_t(z) << 42));
+  };
+  std::unordered_map<std::uint64_t, std::vector<VertexIndex>> cells;
+  for (VertexIndex v = 0; v < nv; ++v)
+    if (of_interest[v])
+      for_each_cell(boxes[v], [&](std::uint64_t key) { cells[key].push_back(v); });
+  for (VertexIndex u = 0; u < nv; ++u)
+    for_each_cell(boxes[u], [&](std::uint64_t key) {
+      const auto it = cells.find(key);
+      if (it == cells.end()) return;
+      for (const VertexIndex v : it->second)
+        if (v != u && boxes[u].overlaps(boxes[v]) && mesh.points[u] == mesh.points[v])
+          shared[v] = 1;
+    });
+  return shared;
+}
+
 }  // namespace
 
 Mesh merge_coplanar_faces(const Mesh& solid) {
@@ -156,7 +203,11 @@ Mesh merge_coplanar_faces(const Mesh& solid, const std::vector<FaceOrigin>* orig
   }
   if (region_seed.size() == nf) return solid;  // nothing coplanar to merge
 
-  // Removable vertices: inside one region, or on a straight crease between exactly two.
+  // Removable vertices: inside one region, or on a straight crease between exactly two. Both
+  // regions need two faces or more (a corner of a lone triangle stays), which leaves few
+  // candidates; only those are examined further.
+  std::vector<std::uint32_t> region_size(region_seed.size(), 0);
+  for (std::uint32_t f = 0; f < nf; ++f) ++region_size[region[f]];
   std::vector<std::uint32_t> first_region(nv, kNone), second_region(nv, kNone);
   std::vector<std::uint8_t> many_regions(nv, 0);
   for (std::uint32_t f = 0; f < nf; ++f)
@@ -169,50 +220,52 @@ Mesh merge_coplanar_faces(const Mesh& solid, const std::vector<FaceOrigin>* orig
       else
         many_regions[v] = 1;
     }
-  // A region holding a vertex whose position another vertex shares (a separated non-manifold
-  // feature or a contact) keeps all its triangles and vertices: its edges may be needed to keep the
-  // touching parts meeting only at common vertices and edges.
-  std::vector<std::uint8_t> frozen_region(region_seed.size(), 0);
-  std::vector<std::uint8_t> shared_position(nv, 0);
-  {
-    std::vector<Point> distinct;
-    detail::PointIndex index(distinct);
-    std::vector<VertexIndex> first_at(nv, kNone);  // position id -> first vertex there
-    for (VertexIndex v = 0; v < nv; ++v) {
-      const std::uint32_t id = index.id(p[v]);
-      if (first_at.size() <= id) first_at.resize(id + 1, kNone);
-      if (first_at[id] == kNone)
-        first_at[id] = v;
-      else
-        shared_position[first_at[id]] = shared_position[v] = 1;
-    }
+  std::vector<VertexIndex> candidates;
+  std::vector<std::uint8_t> is_candidate(nv, 0);
+  for (VertexIndex v = 0; v < nv; ++v) {
+    if (first_region[v] == kNone || many_regions[v] || region_size[first_region[v]] < 2) continue;
+    if (second_region[v] != kNone && region_size[second_region[v]] < 2) continue;
+    candidates.push_back(v);
+    is_candidate[v] = 1;
   }
-  for (std::uint32_t f = 0; f < nf; ++f)
-    for (VertexIndex v : solid.triangles[f])
-      if (shared_position[v]) frozen_region[region[f]] = 1;
-  std::vector<std::uint8_t> in_frozen_region(nv, 0);
-  for (std::uint32_t f = 0; f < nf; ++f)
-    if (frozen_region[region[f]])
-      for (VertexIndex v : solid.triangles[f]) in_frozen_region[v] = 1;
+  if (candidates.empty()) return solid;
 
-  std::vector<std::vector<VertexIndex>> crease_neighbours(nv);
+  // A region holding a candidate whose position another vertex shares (a separated non-manifold
+  // feature or a contact) keeps all its triangles and vertices: its edges may be needed to keep
+  // the touching parts meeting only at common vertices and edges.
+  std::vector<std::uint8_t> frozen_region(region_seed.size(), 0);
+  {
+    const std::vector<std::uint8_t> shared = coincident(solid, is_candidate);
+    for (std::uint32_t f = 0; f < nf; ++f)
+      for (VertexIndex v : solid.triangles[f])
+        if (shared[v]) frozen_region[region[f]] = 1;
+  }
+
+  // The crease neighbours of the candidates: the other ends of their edges between two regions.
+  std::vector<std::uint32_t> crease_count(nv, 0);
+  std::vector<std::array<VertexIndex, 2>> crease(nv);
   for (std::uint32_t f = 0; f < nf; ++f)
     for (int i = 0; i < 3; ++i) {
       const VertexIndex u = solid.triangles[f][i], v = solid.triangles[f][(i + 1) % 3];
+      if (!is_candidate[u]) continue;
       const std::uint32_t g = twin_face(u, v);
-      if (g == kNone || region[g] != region[f]) crease_neighbours[u].push_back(v);
+      if (g != kNone && region[g] == region[f]) continue;
+      if (crease_count[u] < 2) crease[u][crease_count[u]] = v;
+      ++crease_count[u];
     }
   std::vector<std::uint8_t> removable(nv, 0);
   std::vector<std::uint8_t> region_changes(region_seed.size(), 0);
-  for (VertexIndex v = 0; v < nv; ++v) {
-    if (first_region[v] == kNone || many_regions[v] || in_frozen_region[v]) continue;
+  for (const VertexIndex v : candidates) {
+    if (frozen_region[first_region[v]] ||
+        (second_region[v] != kNone && frozen_region[second_region[v]]))
+      continue;
     bool remove = false;
     if (second_region[v] == kNone)
-      remove = crease_neighbours[v].empty();
-    else if (crease_neighbours[v].size() == 2) {
-      const Point& a = p[crease_neighbours[v][0]];
-      const Point& b = p[crease_neighbours[v][1]];
-      remove = CGAL::collinear(a, p[v], b) &&
+      remove = crease_count[v] == 0;
+    else if (crease_count[v] == 2) {
+      const Point& a = p[crease[v][0]];
+      const Point& b = p[crease[v][1]];
+      remove = detail::collinear3d(a, p[v], b) &&
                CGAL::collinear_are_strictly_ordered_along_line(a, p[v], b);
     }
     if (!remove) continue;
@@ -221,10 +274,17 @@ Mesh merge_coplanar_faces(const Mesh& solid, const std::vector<FaceOrigin>* orig
     if (second_region[v] != kNone) region_changes[second_region[v]] = 1;
   }
 
-  // Boundary of each changed region, with runs of removable vertices skipped.
+  // Only the faces around removable vertices change: per region, their union is re-triangulated
+  // from its boundary, with runs of removable vertices skipped (a large planar face that loses
+  // two vertices keeps the rest of its triangles).
   std::vector<std::vector<std::uint32_t>> faces_of(region_seed.size());
-  for (std::uint32_t f = 0; f < nf; ++f)
-    if (region_changes[region[f]]) faces_of[region[f]].push_back(f);
+  std::vector<std::uint8_t> changes(nf, 0);
+  for (std::uint32_t f = 0; f < nf; ++f) {
+    const Triangle& t = solid.triangles[f];
+    if (!removable[t[0]] && !removable[t[1]] && !removable[t[2]]) continue;
+    changes[f] = 1;
+    faces_of[region[f]].push_back(f);
+  }
   std::vector<Triangle> out;
   out.reserve(nf);
   std::unordered_map<VertexIndex, VertexIndex> next;  // along one region's boundary
@@ -236,7 +296,7 @@ Mesh merge_coplanar_faces(const Mesh& solid, const std::vector<FaceOrigin>* orig
       for (int i = 0; i < 3; ++i) {
         const VertexIndex u = solid.triangles[f][i], v = solid.triangles[f][(i + 1) % 3];
         const std::uint32_t g = twin_face(u, v);
-        if (g != kNone && region[g] == r) continue;
+        if (g != kNone && region[g] == r && changes[g]) continue;
         directed.emplace_back(u, v);
         if (removable[u]) next[u] = v;  // a removable crease vertex has one way on
       }
@@ -252,7 +312,7 @@ Mesh merge_coplanar_faces(const Mesh& solid, const std::vector<FaceOrigin>* orig
       }
       boundary.emplace_back(u, w);
     }
-    const Triangle& seed = solid.triangles[region_seed[r]];
+    const Triangle& seed = solid.triangles[faces_of[r].front()];
     std::optional<std::vector<Triangle>> merged;
     if (ok) switch (detail::dominant_axis(p[seed[0]], p[seed[1]], p[seed[2]])) {
         case 0:
@@ -270,7 +330,7 @@ Mesh merge_coplanar_faces(const Mesh& solid, const std::vector<FaceOrigin>* orig
     out.insert(out.end(), merged->begin(), merged->end());
   }
   for (std::uint32_t f = 0; f < nf; ++f)
-    if (!region_changes[region[f]]) out.push_back(solid.triangles[f]);
+    if (!changes[f]) out.push_back(solid.triangles[f]);
 
   // Compact: keep referenced vertices in their original order.
   std::vector<VertexIndex> new_index(nv, kNone);

@@ -50,9 +50,12 @@ class TriangleTree {
 
   // Calls f(triangle index) for every triangle whose box overlaps `box`.
   template <class F>
+  void for_each_overlap(const FloatBox& box, F&& f) const {
+    traverse([&](const FloatBox& b) { return b.overlaps(box); }, f);
+  }
+  template <class F>
   void for_each_overlap(const CGAL::Bbox_3& box, F&& f) const {
-    const FloatBox query = FloatBox::of(box);
-    traverse([&](const FloatBox& b) { return b.overlaps(query); }, f);
+    for_each_overlap(FloatBox::of(box), f);
   }
 
   // Calls f(triangle index) for every triangle whose box the ray origin + t * direction (t >= 0)
