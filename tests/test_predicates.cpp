@@ -8,7 +8,9 @@
 
 #include "filtered.h"
 #include "point_index.h"
+#include "point_table.h"
 #include "projection_traits.h"
+#include "triangle_overlap.h"
 
 using namespace morphex;
 
@@ -118,4 +120,121 @@ TEST(PointIndex, EqualPositionsShareOneIdWhateverTheirConstruction) {
     const auto [it, inserted] = seen.emplace(id, p);
     if (!inserted) ASSERT_EQ(it->second, p);
   }
+}
+
+// The point table's predicates on ids (intervals, then homogeneous integers) against CGAL's on
+// the same points, among them constructions (edge/plane crossings kept as recipes, lazy).
+TEST(PointTable, PredicatesAndConstructionsAgreeWithCgal) {
+  RandomPoints random(15);
+  Mesh a, b;
+  for (int i = 0; i < 600; ++i) a.points.push_back(random.point());
+  // b: half of its points lie on planes or lines through points of a (degenerate predicates)
+  for (int i = 0; i < 600; ++i) {
+    const Point &p = a.points[(7 * i) % 600], &q = a.points[(7 * i + 1) % 600],
+                &r = a.points[(7 * i + 2) % 600];
+    b.points.push_back(i % 2 ? random.point()
+                             : p + random.weight() * (q - p) + random.weight() * (r - p));
+  }
+  detail::PointTable table(a, b);
+  auto id = [&](int side, int v) { return table.vertex(side, std::uint32_t(v)); };
+  // Crossings of a's edges with planes of three a points, where the ends are on both sides.
+  std::vector<detail::PointId> crossings;
+  std::vector<Point> expected_crossings;
+  for (int i = 0; crossings.size() < 200 && i < 3000; ++i) {
+    const int p = i % 600, q = (i * 13 + 5) % 600, u = (i * 7 + 1) % 600, v = (i * 11 + 2) % 600,
+              w = (i * 17 + 3) % 600;
+    const Point &pp = a.points[p], &pq = a.points[q];
+    const Kernel::Plane_3 plane(a.points[u], a.points[v], a.points[w]);
+    if (plane.is_degenerate()) continue;
+    const auto sp = plane.oriented_side(pp), sq = plane.oriented_side(pq);
+    if (sp == CGAL::ON_ORIENTED_BOUNDARY || sq == CGAL::ON_ORIENTED_BOUNDARY || sp == sq) continue;
+    detail::Recipe recipe{
+        detail::Recipe::Kind::EdgePlane, -1, id(0, p), id(0, q), id(0, u), id(0, v), id(0, w)};
+    crossings.push_back(table.add(recipe));
+    const auto x = CGAL::intersection(plane, Kernel::Segment_3(pp, pq));
+    expected_crossings.push_back(*boost::get<Point>(&*x));
+  }
+  ASSERT_GE(crossings.size(), 100u);
+  for (std::size_t i = 0; i < crossings.size(); ++i) {
+    EXPECT_EQ(table.point(crossings[i]), expected_crossings[i]) << i;
+    const auto approx = table.approx(crossings[i]);
+    for (int k = 0; k < 3; ++k)  // the interval holds the exact value
+      EXPECT_TRUE(approx.cartesian(k).inf() <=
+                      CGAL::to_double(expected_crossings[i].cartesian(k)) &&
+                  CGAL::to_double(expected_crossings[i].cartesian(k)) <= approx.cartesian(k).sup());
+  }
+  // Every predicate on ids of inputs and crossings against CGAL on the points.
+  std::vector<detail::PointId> ids;
+  for (int v = 0; v < 600; ++v) ids.push_back(id(v % 2, v));
+  ids.insert(ids.end(), crossings.begin(), crossings.end());
+  std::mt19937 pick(16);
+  std::uniform_int_distribution<std::size_t> any(0, ids.size() - 1);
+  for (int i = 0; i < 3000; ++i) {
+    const detail::PointId p = ids[any(pick)], q = ids[any(pick)], r = ids[any(pick)],
+                          s = ids[any(pick)];
+    const Point P = table.point(p), Q = table.point(q), R = table.point(r), S = table.point(s);
+    ASSERT_EQ(table.orientation(p, q, r, s), CGAL::orientation(P, Q, R, S)) << i;
+    ASSERT_EQ(table.orientation_2(2, p, q, r),
+              CGAL::Projection_traits_xy_3<Kernel>().orientation_2_object()(P, Q, R))
+        << i;
+    ASSERT_EQ(table.orientation_2(0, p, q, r),
+              CGAL::Projection_traits_yz_3<Kernel>().orientation_2_object()(P, Q, R))
+        << i;
+    ASSERT_EQ(table.side_of_oriented_circle(1, p, q, r, s),
+              CGAL::Projection_traits_xz_3<Kernel>().side_of_oriented_circle_2_object()(P, Q, R, S))
+        << i;
+    ASSERT_EQ(table.compare(1, p, q), CGAL::compare(P.y(), Q.y())) << i;
+  }
+  // Degenerate on purpose: points of b on planes of a, and a crossing on its own plane.
+  for (int i = 0; i < 600; i += 2) {
+    const int j = (7 * i) % 600;
+    ASSERT_EQ(table.orientation(id(0, j), id(0, (j + 1) % 600), id(0, (j + 2) % 600), id(1, i)),
+              CGAL::COPLANAR)
+        << i;
+  }
+  for (std::size_t i = 0; i < crossings.size(); ++i) {
+    const detail::Recipe& r = table.recipe(crossings[i]);
+    ASSERT_EQ(table.orientation(r.a, r.b, r.c, crossings[i]), CGAL::COPLANAR) << i;
+  }
+}
+
+// Guigue and Devillers' overlap test against CGAL's do_intersect on triangles with vertices on
+// tiny grids, where zero signs (touching, shared vertices, edges in the other's plane) abound.
+TEST(TriangleOverlap, AgreesWithCgalOnDegenerateTriangles) {
+  std::mt19937 random(17);
+  int tested = 0, meeting = 0;
+  for (int grid : {1, 2, 3, 8}) {
+    std::uniform_int_distribution<int> coordinate(0, grid);
+    for (int i = 0; i < 4000; ++i) {
+      Mesh a, b;
+      for (int k = 0; k < 3; ++k) {
+        a.points.emplace_back(coordinate(random), coordinate(random), coordinate(random));
+        b.points.emplace_back(coordinate(random), coordinate(random), coordinate(random));
+      }
+      if (CGAL::collinear(a.points[0], a.points[1], a.points[2]) ||
+          CGAL::collinear(b.points[0], b.points[1], b.points[2]))
+        continue;
+      detail::PointTable table(a, b);
+      const std::array<detail::PointId, 3> t1{0, 1, 2}, t2{3, 4, 5};
+      std::int8_t s1[3], s2[3];
+      for (int k = 0; k < 3; ++k) {
+        s1[k] = std::int8_t(table.orientation(t2[0], t2[1], t2[2], t1[k]));
+        s2[k] = std::int8_t(table.orientation(t1[0], t1[1], t1[2], t2[k]));
+      }
+      const bool one_side_1 = s1[0] != 0 && s1[0] == s1[1] && s1[1] == s1[2];
+      const bool one_side_2 = s2[0] != 0 && s2[0] == s2[1] && s2[1] == s2[2];
+      const bool coplanar = s1[0] == 0 && s1[1] == 0 && s1[2] == 0;
+      if (one_side_1 || one_side_2 || coplanar) continue;
+      const bool truth =
+          CGAL::do_intersect(Kernel::Triangle_3(a.points[0], a.points[1], a.points[2]),
+                             Kernel::Triangle_3(b.points[0], b.points[1], b.points[2]));
+      ASSERT_EQ(detail::TriangleOverlap(table)(t1, t2, s1, s2), truth)
+          << "grid " << grid << " " << i;
+      ++tested;
+      meeting += truth;
+    }
+  }
+  EXPECT_GT(tested, 5000);
+  EXPECT_GT(meeting, 1000);
+  EXPECT_LT(meeting, tested);
 }

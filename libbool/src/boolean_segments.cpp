@@ -31,6 +31,7 @@
 #include "filtered.h"
 #include "flat_map.h"
 #include "point_index.h"
+#include "triangle_overlap.h"
 
 namespace morphex::detail {
 
@@ -390,7 +391,8 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
     return Corners{rep(raw[0]), rep(raw[1]), rep(raw[2])};
   };
 
-  // 2. Signs.
+  // 2. Signs, and the exact overlap test of the pairs that are not coplanar.
+  const TriangleOverlap overlap(table);
   std::vector<PairSigns> signs(np);
   tbb::parallel_for(std::size_t(0), np, [&](std::size_t k) {
     const auto [ia, ib] = pairs[k];
@@ -402,8 +404,8 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
       return out[0] != 0 && out[0] == out[1] && out[1] == out[2];
     };
     if (against(ta, tb, s.a) || against(tb, ta, s.b)) return;
-    s.separated = false;
     s.coplanar = s.a[0] == 0 && s.a[1] == 0 && s.a[2] == 0;
+    s.separated = !s.coplanar && !overlap(ta, tb, s.a, s.b);
   });
 
   // 3. Crossings.
