@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "filtered.h"
+#include "fixed_integer.h"
 
 namespace morphex::detail {
 
@@ -282,7 +283,9 @@ CGAL::Sign PointTable::orientation(PointId p, PointId q, PointId r, PointId s) c
     if (CGAL::is_certain(o)) return CGAL::get_certain(o);
   }
   // det [p 1; q 1; r 1; s 1] = -det(q - p, r - p, s - p), and the W factors are positive.
-  return CGAL::Sign(-sign_of_det4(exact(p), exact(q), exact(r), exact(s)));
+  const Homogeneous* rows[4] = {&exact(p), &exact(q), &exact(r), &exact(s)};
+  if (const auto sign = fixed_sign_of_det4(rows)) return CGAL::Sign(-*sign);
+  return CGAL::Sign(-sign_of_det4(*rows[0], *rows[1], *rows[2], *rows[3]));
 }
 
 CGAL::Sign PointTable::orientation_2(int dropped, PointId p, PointId q, PointId r) const {

@@ -1,0 +1,166 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Signs of integer determinants without heap allocation, for the exact stage of the predicates.
+//
+// The exact stage works on homogeneous integer coordinates (point_table.h) of a few hundred bits.
+// mpz arithmetic allocates for every temporary, which made the determinants cost several times
+// their multiplications. Here numbers live in fixed stack buffers of limbs and GMP's low-level
+// mpn routines do the arithmetic; a determinant too large for the buffers falls back to mpz.
+#pragma once
+
+#include <gmp.h>
+#include <gmpxx.h>
+
+#include <array>
+#include <cstring>
+#include <optional>
+
+namespace morphex::detail {
+
+// A signed integer of at most Limbs limbs (magnitude, size in limbs, sign).
+template <int Limbs>
+struct FixedInteger {
+  mp_limb_t limb[Limbs];
+  int size = 0;  // 0 for zero
+  int sign = 0;  // -1, 0, +1
+
+  static std::optional<FixedInteger> of(const mpz_class& z) {
+    FixedInteger x;
+    const std::size_t n = mpz_size(z.get_mpz_t());
+    if (n > std::size_t(Limbs)) return std::nullopt;
+    x.size = int(n);
+    x.sign = sgn(z);
+    for (std::size_t i = 0; i < n; ++i) x.limb[i] = mpz_getlimbn(z.get_mpz_t(), i);
+    return x;
+  }
+};
+
+// a * b, or nullopt when it may not fit in Out limbs.
+template <int Out, int A, int B>
+std::optional<FixedInteger<Out>> multiply(const FixedInteger<A>& a, const FixedInteger<B>& b) {
+  FixedInteger<Out> r;
+  if (a.size == 0 || b.size == 0) return r;
+  if (a.size + b.size > Out) return std::nullopt;
+  if (a.size >= b.size)
+    mpn_mul(r.limb, a.limb, a.size, b.limb, b.size);
+  else
+    mpn_mul(r.limb, b.limb, b.size, a.limb, a.size);
+  r.size = a.size + b.size;
+  while (r.size > 0 && r.limb[r.size - 1] == 0) --r.size;
+  r.sign = a.sign * b.sign;
+  return r;
+}
+
+// acc += sign * x, or false when the sum may not fit.
+template <int Acc, int X>
+bool accumulate(FixedInteger<Acc>& acc, const FixedInteger<X>& x, int sign) {
+  const int xs = x.sign * sign;
+  if (xs == 0) return true;
+  if (acc.sign == 0) {
+    if (x.size > Acc) return false;
+    std::memcpy(acc.limb, x.limb, sizeof(mp_limb_t) * std::size_t(x.size));
+    acc.size = x.size;
+    acc.sign = xs;
+    return true;
+  }
+  if (acc.sign == xs) {  // magnitudes add
+    const int n = std::max(acc.size, x.size);
+    if (n + 1 > Acc) return false;
+    mp_limb_t carry;
+    if (acc.size >= x.size) {
+      carry = mpn_add(acc.limb, acc.limb, acc.size, x.limb, x.size);
+    } else {
+      mp_limb_t sum[Acc];
+      carry = mpn_add(sum, x.limb, x.size, acc.limb, acc.size);
+      std::memcpy(acc.limb, sum, sizeof(mp_limb_t) * std::size_t(x.size));
+    }
+    acc.size = n;
+    if (carry) acc.limb[acc.size++] = carry;
+    return true;
+  }
+  // magnitudes subtract: the larger keeps its sign
+  const int cmp =
+      acc.size != x.size ? (acc.size > x.size ? 1 : -1) : mpn_cmp(acc.limb, x.limb, acc.size);
+  if (cmp == 0) {
+    acc.size = 0;
+    acc.sign = 0;
+    return true;
+  }
+  if (cmp > 0) {
+    mpn_sub(acc.limb, acc.limb, acc.size, x.limb, x.size);
+  } else {
+    if (x.size > Acc) return false;
+    mp_limb_t difference[Acc];
+    mpn_sub(difference, x.limb, x.size, acc.limb, acc.size);
+    std::memcpy(acc.limb, difference, sizeof(mp_limb_t) * std::size_t(x.size));
+    acc.size = x.size;
+    acc.sign = xs;
+  }
+  while (acc.size > 0 && acc.limb[acc.size - 1] == 0) --acc.size;
+  if (acc.size == 0) acc.sign = 0;
+  return true;
+}
+
+// The sign of the 3x3 determinant of integer rows (each of `Columns` >= 3 entries, the three
+// given columns), or nullopt when an entry or a partial result is too large for the buffers.
+template <std::size_t Columns>
+std::optional<int> fixed_sign_of_det3(const std::array<mpz_class, Columns>* rows[3], int c0, int c1,
+                                      int c2) {
+  constexpr int E = 6;  // entries up to 384 bits
+  FixedInteger<E> m[3][3];
+  const int cols[3] = {c0, c1, c2};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const auto x = FixedInteger<E>::of((*rows[i])[cols[j]]);
+      if (!x) return std::nullopt;
+      m[i][j] = *x;
+    }
+  FixedInteger<3 * E + 1> det;
+  // expansion along the first row: m00 (m11 m22 - m12 m21) - m01 (...) + m02 (...)
+  const int signs[3] = {1, -1, 1};
+  for (int k = 0; k < 3; ++k) {
+    const int a = (k + 1) % 3, b = (k + 2) % 3;
+    const int lo = std::min(a, b), hi = std::max(a, b);
+    FixedInteger<2 * E + 1> minor;
+    const auto p = multiply<2 * E>(m[1][lo], m[2][hi]);
+    const auto q = multiply<2 * E>(m[1][hi], m[2][lo]);
+    if (!p || !q || !accumulate(minor, *p, 1) || !accumulate(minor, *q, -1)) return std::nullopt;
+    const auto term = multiply<3 * E + 1>(m[0][k], minor);
+    if (!term || !accumulate(det, *term, signs[k])) return std::nullopt;
+  }
+  return det.sign;
+}
+
+// The sign of the 4x4 determinant of integer rows, by the 2x2 minors of the first two and the
+// last two rows, or nullopt when too large for the buffers.
+inline std::optional<int> fixed_sign_of_det4(const std::array<mpz_class, 4>* rows[4]) {
+  constexpr int E = 4;  // entries up to 256 bits
+  FixedInteger<E> m[4][4];
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      const auto x = FixedInteger<E>::of((*rows[i])[j]);
+      if (!x) return std::nullopt;
+      m[i][j] = *x;
+    }
+  auto minor = [&](int r, int i, int j) -> std::optional<FixedInteger<2 * E + 1>> {
+    FixedInteger<2 * E + 1> out;
+    const auto p = multiply<2 * E>(m[r][i], m[r + 1][j]);
+    const auto q = multiply<2 * E>(m[r][j], m[r + 1][i]);
+    if (!p || !q || !accumulate(out, *p, 1) || !accumulate(out, *q, -1)) return std::nullopt;
+    return out;
+  };
+  // det = sum over column pairs (i, j) of the first two rows of +- minor01(i,j) minor23(rest)
+  static constexpr int pairs[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
+                                      {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
+  static constexpr int signs[6] = {1, -1, 1, 1, -1, 1};
+  FixedInteger<4 * E + 3> det;
+  for (int k = 0; k < 6; ++k) {
+    const auto top = minor(0, pairs[k][0], pairs[k][1]);
+    const auto bottom = minor(2, pairs[k][2], pairs[k][3]);
+    if (!top || !bottom) return std::nullopt;
+    const auto term = multiply<4 * E + 2>(*top, *bottom);
+    if (!term || !accumulate(det, *term, signs[k])) return std::nullopt;
+  }
+  return det.sign;
+}
+
+}  // namespace morphex::detail
