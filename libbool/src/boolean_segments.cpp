@@ -20,6 +20,7 @@
 // Unlike the seed, point-only contacts are kept (as Steiner points) and coplanar overlaps insert
 // their boundary, so every sub-triangle ends up entirely inside, outside or on the other surface.
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <array>
@@ -391,25 +392,71 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
     return Corners{rep(raw[0]), rep(raw[1]), rep(raw[2])};
   };
 
-  // 2. Signs, and the exact overlap test of the pairs that are not coplanar.
-  const TriangleOverlap overlap(table);
+  // 2. Signs, and the exact overlap test of the pairs that are not coplanar. The signs are
+  // (vertex, facet plane) questions that neighbouring pairs share: intervals decide most; the
+  // undecided ones (coplanar pieces in morphology) are gathered and each evaluated exactly once.
+  const std::uint32_t b_side = options.soup ? 0 : 1;
+  constexpr std::int8_t kUndecided = 2;
+  // A question: the facet (side, index) whose plane, and the point.
+  auto question = [&](std::uint32_t side, std::uint32_t facet, PointId point) {
+    return (std::uint64_t((side << 31) | facet) << 32) | point;
+  };
   std::vector<PairSigns> signs(np);
   tbb::parallel_for(std::size_t(0), np, [&](std::size_t k) {
     const auto [ia, ib] = pairs[k];
     const Corners ta = corner_ids(0, ia), tb = corner_ids(1, ib);
     PairSigns& s = signs[k];
     auto against = [&](const Corners& t, const Corners& other, std::int8_t(&out)[3]) {
-      for (int i = 0; i < 3; ++i)
-        out[i] = std::int8_t(table.orientation(other[0], other[1], other[2], t[i]));
-      return out[0] != 0 && out[0] == out[1] && out[1] == out[2];
+      for (int i = 0; i < 3; ++i) {
+        const auto o = table.orientation_filter(other[0], other[1], other[2], t[i]);
+        out[i] = o.is_certain() ? std::int8_t(o.make_certain()) : kUndecided;
+      }
+      return out[0] != 0 && out[0] != kUndecided && out[0] == out[1] && out[1] == out[2];
     };
-    if (against(ta, tb, s.a) || against(tb, ta, s.b)) return;
+    s.separated = against(ta, tb, s.a) || against(tb, ta, s.b);
+  });
+  std::vector<std::uint64_t> questions;
+  for (std::size_t k = 0; k < np; ++k) {
+    if (signs[k].separated) continue;
+    const auto [ia, ib] = pairs[k];
+    const Corners ta = corner_ids(0, ia), tb = corner_ids(1, ib);
+    for (int i = 0; i < 3; ++i) {
+      if (signs[k].a[i] == kUndecided) questions.push_back(question(b_side, ib, ta[i]));
+      if (signs[k].b[i] == kUndecided) questions.push_back(question(0, ia, tb[i]));
+    }
+  }
+  tbb::parallel_sort(questions.begin(), questions.end());
+  questions.erase(std::unique(questions.begin(), questions.end()), questions.end());
+  std::vector<std::int8_t> answers(questions.size());
+  tbb::parallel_for(std::size_t(0), questions.size(), [&](std::size_t i) {
+    const std::uint32_t plane = std::uint32_t(questions[i] >> 32);
+    const std::uint32_t side = plane >> 31, facet = plane & 0x7fffffffu;
+    const Corners f = corner_ids(options.soup ? 0 : int(side), facet);
+    answers[i] = std::int8_t(table.orientation_exact(f[0], f[1], f[2], PointId(questions[i])));
+  });
+  auto answer = [&](std::uint64_t q) {
+    return answers[std::lower_bound(questions.begin(), questions.end(), q) - questions.begin()];
+  };
+  const TriangleOverlap overlap(table);
+  tbb::parallel_for(std::size_t(0), np, [&](std::size_t k) {
+    PairSigns& s = signs[k];
+    if (s.separated) return;
+    const auto [ia, ib] = pairs[k];
+    const Corners ta = corner_ids(0, ia), tb = corner_ids(1, ib);
+    for (int i = 0; i < 3; ++i) {
+      if (s.a[i] == kUndecided) s.a[i] = answer(question(b_side, ib, ta[i]));
+      if (s.b[i] == kUndecided) s.b[i] = answer(question(0, ia, tb[i]));
+    }
+    auto one_side = [](const std::int8_t(&x)[3]) {
+      return x[0] != 0 && x[0] == x[1] && x[1] == x[2];
+    };
+    s.separated = one_side(s.a) || one_side(s.b);
+    if (s.separated) return;
     s.coplanar = s.a[0] == 0 && s.a[1] == 0 && s.a[2] == 0;
     s.separated = !s.coplanar && !overlap(ta, tb, s.a, s.b);
   });
 
   // 3. Crossings.
-  const std::uint32_t b_side = options.soup ? 0 : 1;
   auto crossing_key = [&](int side, const Corners& t, int i, int j, std::uint32_t other_facet) {
     const PointId u = rep(t[i]), v = rep(t[j]);
     return CrossingKey{side == 0 ? 0 : b_side, other_facet, std::min(u, v), std::max(u, v)};

@@ -11,6 +11,7 @@
 #include <gmpxx.h>
 
 #include <array>
+#include <utility>
 
 #include "morphex/mesh.h"
 
@@ -121,18 +122,22 @@ CGAL::Orientation exact_orientation_2(const ExactPoint& p, const ExactPoint& q,
 }
 
 // CGAL::collinear(p, q, r), with the exact stage on integers: three points are collinear when
-// their projections on the three coordinate planes all are.
+// their projections on the three coordinate planes all are. The interval stage decides without
+// branching on uncertain comparisons (an exception per undecided case would cost more than the
+// exact stage).
 inline bool collinear3d(const Point& p, const Point& q, const Point& r) {
   {
     CGAL::Protect_FPU_rounding<true> rounding;
     const auto &ap = CGAL::approx(p), &aq = CGAL::approx(q), &ar = CGAL::approx(r);
-    try {
-      const CGAL::Uncertain<bool> c =
-          CGAL::collinearC3(ap.x(), ap.y(), ap.z(), aq.x(), aq.y(), aq.z(), ar.x(), ar.y(), ar.z());
-      if (CGAL::is_certain(c)) return CGAL::get_certain(c);
-    } catch (const CGAL::Uncertain_conversion_exception&) {
-      // collinearC3 branches on comparisons the intervals could not decide
+    bool all_zero = true;
+    for (const auto [u, v] : {std::pair<int, int>{0, 1}, {1, 2}, {0, 2}}) {
+      const CGAL::Uncertain<CGAL::Sign> o =
+          CGAL::orientationC2(ap.cartesian(u), ap.cartesian(v), aq.cartesian(u), aq.cartesian(v),
+                              ar.cartesian(u), ar.cartesian(v));
+      if (o.is_certain() && o.make_certain() != CGAL::ZERO) return false;
+      all_zero = all_zero && o.is_certain();
     }
+    if (all_zero) return true;
   }
   const auto &ep = CGAL::exact(p), &eq = CGAL::exact(q), &er = CGAL::exact(r);
   return exact_orientation_2<0, 1>(ep, eq, er) == CGAL::COLLINEAR &&

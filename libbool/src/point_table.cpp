@@ -272,16 +272,16 @@ PointId PointTable::add_explicit(const Point& p) {
   return id;
 }
 
-CGAL::Sign PointTable::orientation(PointId p, PointId q, PointId r, PointId s) const {
+CGAL::Uncertain<CGAL::Sign> PointTable::orientation_filter(PointId p, PointId q, PointId r,
+                                                           PointId s) const {
   if (p == q || p == r || p == s || q == r || q == s || r == s) return CGAL::ZERO;
-  {
-    CGAL::Protect_FPU_rounding<true> rounding;
-    const ApproxPoint &ap = approx(p), &aq = approx(q), &ar = approx(r), &as = approx(s);
-    const CGAL::Uncertain<CGAL::Sign> o =
-        CGAL::orientationC3(ap.x(), ap.y(), ap.z(), aq.x(), aq.y(), aq.z(), ar.x(), ar.y(), ar.z(),
-                            as.x(), as.y(), as.z());
-    if (CGAL::is_certain(o)) return CGAL::get_certain(o);
-  }
+  CGAL::Protect_FPU_rounding<true> rounding;
+  const ApproxPoint &ap = approx(p), &aq = approx(q), &ar = approx(r), &as = approx(s);
+  return CGAL::orientationC3(ap.x(), ap.y(), ap.z(), aq.x(), aq.y(), aq.z(), ar.x(), ar.y(), ar.z(),
+                             as.x(), as.y(), as.z());
+}
+
+CGAL::Sign PointTable::orientation_exact(PointId p, PointId q, PointId r, PointId s) const {
   // det [p 1; q 1; r 1; s 1] = -det(q - p, r - p, s - p), and the W factors are positive.
   const Homogeneous* rows[4] = {&exact(p), &exact(q), &exact(r), &exact(s)};
   if (const auto sign = fixed_sign_of_det4(rows)) return CGAL::Sign(-*sign);
@@ -363,17 +363,22 @@ CGAL::Sign PointTable::along_line(const std::array<PointId, 3>& a, const std::ar
 }
 
 int PointTable::dominant_axis(PointId p, PointId q, PointId r) const {
+  // Any axis along which the normal is certainly not zero gives an exact projection; the largest
+  // certain component keeps the projected predicates well conditioned.
   {
     CGAL::Protect_FPU_rounding<true> rounding;
     const ApproxPoint& ap = approx(p);
     const auto n = CGAL::cross_product(approx(q) - ap, approx(r) - ap);
-    const Interval ax = CGAL::abs(n.x()), ay = CGAL::abs(n.y()), az = CGAL::abs(n.z());
-    try {
-      if (ax >= ay && ax >= az) return 0;
-      return ay >= az ? 1 : 2;
-    } catch (const CGAL::Uncertain_conversion_exception&) {
-      // two components too close to order with intervals
+    int best = -1;
+    double best_bound = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double bound = CGAL::abs(n.cartesian(k)).inf();
+      if (bound > best_bound) {
+        best = k;
+        best_bound = bound;
+      }
     }
+    if (best >= 0) return best;
   }
   const auto n = cross(difference(exact(p), exact(q)), difference(exact(p), exact(r)));
   const mpz_class ax = abs(n[0]), ay = abs(n[1]), az = abs(n[2]);

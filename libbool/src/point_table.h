@@ -94,7 +94,13 @@ class PointTable {
   PointId add_explicit(const Point& p);
 
   // Predicates, exact: intervals first, then homogeneous integers.
-  CGAL::Sign orientation(PointId p, PointId q, PointId r, PointId s) const;
+  CGAL::Sign orientation(PointId p, PointId q, PointId r, PointId s) const {
+    const CGAL::Uncertain<CGAL::Sign> o = orientation_filter(p, q, r, s);
+    return o.is_certain() ? o.make_certain() : orientation_exact(p, q, r, s);
+  }
+  // Its two stages, for callers that gather the undecided cases to evaluate each once.
+  CGAL::Uncertain<CGAL::Sign> orientation_filter(PointId p, PointId q, PointId r, PointId s) const;
+  CGAL::Sign orientation_exact(PointId p, PointId q, PointId r, PointId s) const;
   // orientation of (p, q, r) seen along the axis `dropped` (coordinates u < v of the other two).
   CGAL::Sign orientation_2(int dropped, PointId p, PointId q, PointId r) const;
   // CGAL's side_of_oriented_circle of the projected points.

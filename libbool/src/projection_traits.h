@@ -19,23 +19,26 @@
 
 namespace morphex::detail {
 
-// 0, 1 or 2: the axis along which the normal of triangle abc is largest, so that dropping that
-// coordinate projects the triangle's plane without degeneracy (exact: it only selects coordinates).
+// 0, 1 or 2: an axis along which the normal of triangle abc is not zero, so that dropping that
+// coordinate projects the triangle's plane without degeneracy (exact: it only selects
+// coordinates). Any such axis is exact; the one with the largest certain part of the normal keeps
+// the projected predicates well conditioned, and only a normal too small for intervals asks for
+// the exact one.
 inline int dominant_axis(const Point& a, const Point& b, const Point& c) {
-  // The largest |normal coordinate|, ties to the lower axis; intervals decide unless two
-  // components are (nearly) equal in size, then the exact normal does.
   {
     CGAL::Protect_FPU_rounding<true> rounding;
     const auto &pa = CGAL::approx(a), &pb = CGAL::approx(b), &pc = CGAL::approx(c);
     const auto n = CGAL::cross_product(pb - pa, pc - pa);
-    const CGAL::Interval_nt<false> ax = CGAL::abs(n.x()), ay = CGAL::abs(n.y()),
-                                   az = CGAL::abs(n.z());
-    try {
-      if (ax >= ay && ax >= az) return 0;
-      return ay >= az ? 1 : 2;
-    } catch (const CGAL::Uncertain_conversion_exception&) {
-      // two components too close to order with intervals
+    int best = -1;
+    double best_bound = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double bound = CGAL::abs(n.cartesian(k)).inf();
+      if (bound > best_bound) {
+        best = k;
+        best_bound = bound;
+      }
     }
+    if (best >= 0) return best;
   }
   const auto &ea = CGAL::exact(a), &eb = CGAL::exact(b), &ec = CGAL::exact(c);
   const auto n = CGAL::cross_product(eb - ea, ec - ea);
