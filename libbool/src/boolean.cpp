@@ -68,7 +68,7 @@ BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
   stats.candidate_pairs = pairs.size();
   stats.seconds.pairs = clock.lap();
 
-  const detail::Intersection x = detail::intersect(a, b, pairs);
+  detail::Intersection x = detail::intersect(a, b, pairs);
   stats.intersecting_pairs = x.intersecting_pairs;
   stats.intersection_points = x.constructed_points;
   stats.cut_facets_a = x.cuts[0].size();
@@ -90,12 +90,9 @@ BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
   stats.orientation_conflicts = counts[0].rule_conflicts + counts[1].rule_conflicts;
   stats.seconds.classify = clock.lap();
 
-  std::vector<FaceOrigin> origin;
-  bool may_merge = false;
-  result.mesh = detail::assemble(a, b, x, refined, labels, op, &origin, &may_merge);
-  if (options.merge_coplanar && !options.provenance && may_merge)
-    result.mesh = detail::merge_coplanar_faces(result.mesh, &origin);
-  if (options.provenance) result.provenance = std::move(origin);
+  result.mesh =
+      detail::assemble(a, b, x, refined, labels, op, options.merge_coplanar && !options.provenance,
+                       options.provenance ? &result.provenance : nullptr);
   if (options.exact_output) make_exact(result.mesh);
   stats.seconds.assemble = clock.lap();
   return result;

@@ -74,9 +74,9 @@ constexpr std::uint32_t kNone = 0xffffffffu;
 // wedges along the edge but one piece around each end (a solid minus two boxes sharing an edge),
 // each end is a single fan, and both pairs of faces would share one edge. Each such extra pair is
 // split at the edge's midpoint, a vertex of its own (coincident midpoints only touch).
-Mesh separate_non_manifold(const PointTable& points, const std::vector<Triangle>& faces,
-                           const std::vector<std::uint8_t>& special,
-                           std::vector<FaceOrigin>* origin) {
+IdMesh separate_non_manifold(PointTable& points, const std::vector<Triangle>& faces,
+                             const std::vector<std::uint8_t>& special,
+                             std::vector<FaceOrigin>* origin) {
   const std::size_t nf = faces.size();
   // Corners at special points, grouped by point.
   std::vector<std::pair<PointId, std::uint32_t>> corners;
@@ -162,7 +162,7 @@ Mesh separate_non_manifold(const PointTable& points, const std::vector<Triangle>
     begin = end;
   }
 
-  Mesh out;
+  IdMesh out;
   out.triangles.resize(nf);
   std::vector<VertexIndex> vertex_of_point(points.size(), kNone);
   std::vector<VertexIndex> vertex_of_fan(corners.size(), kNone);
@@ -171,8 +171,8 @@ Mesh separate_non_manifold(const PointTable& points, const std::vector<Triangle>
     VertexIndex& v =
         special[p] ? vertex_of_fan[fans.find(*slot_of_corner.find(c))] : vertex_of_point[p];
     if (v == kNone) {
-      v = VertexIndex(out.points.size());
-      out.points.push_back(points.point(p));
+      v = VertexIndex(out.vertex_point.size());
+      out.vertex_point.push_back(p);
     }
     out.triangles[c / 3][c % 3] = v;
   }
@@ -197,8 +197,9 @@ Mesh separate_non_manifold(const PointTable& points, const std::vector<Triangle>
                         (i + 1 < copies.size() && copies[i].first == copies[i + 1].first);
     if (!shared) continue;
     const VertexIndex a = VertexIndex(copies[i].first >> 32), b = VertexIndex(copies[i].first);
-    const auto m = VertexIndex(out.points.size());
-    out.points.push_back(CGAL::midpoint(out.points[a], out.points[b]));
+    const auto m = VertexIndex(out.vertex_point.size());
+    out.vertex_point.push_back(points.add_explicit(
+        CGAL::midpoint(points.point(out.vertex_point[a]), points.point(out.vertex_point[b]))));
     for (const std::uint32_t f : wedge_pairs[copies[i].second].faces) {
       const Triangle t = out.triangles[f];
       int k = 0;
@@ -211,9 +212,9 @@ Mesh separate_non_manifold(const PointTable& points, const std::vector<Triangle>
   return out;
 }
 
-Mesh assemble(const Mesh& a, const Mesh& b, const Intersection& x, const Refined refined[2],
-              const Labels labels[2], BooleanOp op, std::vector<FaceOrigin>* provenance,
-              bool* may_merge) {
+Mesh assemble(const Mesh& a, const Mesh& b, Intersection& x, const Refined refined[2],
+              const Labels labels[2], BooleanOp op, bool merge,
+              std::vector<FaceOrigin>* provenance) {
   std::vector<Triangle> faces;
   std::vector<FaceOrigin> origin;
   const Mesh* meshes[2] = {&a, &b};
@@ -245,8 +246,8 @@ Mesh assemble(const Mesh& a, const Mesh& b, const Intersection& x, const Refined
   // at most two planes. Around a special point the facets of each mesh are coplanar with each
   // other or the point stays (A's and B's facets meet there transversally, unless coplanar facets
   // overlapped, which already asks for the merge); one test usually refutes it.
-  *may_merge = x.coplanar_overlaps;
-  if (!*may_merge) {
+  bool may_merge = merge && x.coplanar_overlaps;
+  if (merge && !may_merge) {
     std::vector<std::pair<PointId, std::uint32_t>> around;  // (special point, face)
     for (std::uint32_t f = 0; f < faces.size(); ++f)
       for (PointId p : faces[f])
@@ -264,7 +265,7 @@ Mesh assemble(const Mesh& a, const Mesh& b, const Intersection& x, const Refined
         return x.points.orientation(a[0], a[1], a[2], p) == CGAL::ZERO;
       });
     };
-    for (std::size_t i = 0; i < around.size() && !*may_merge;) {
+    for (std::size_t i = 0; i < around.size() && !may_merge;) {
       std::size_t j = i;
       while (j < around.size() && around[j].first == around[i].first) ++j;
       bool flat[2] = {true, true};
@@ -276,14 +277,39 @@ Mesh assemble(const Mesh& a, const Mesh& b, const Intersection& x, const Refined
         else if (flat[o.mesh])
           flat[o.mesh] = coplanar(*first[o.mesh], o);
       }
-      *may_merge = flat[0] && flat[1];
+      may_merge = flat[0] && flat[1];
       i = j;
     }
   }
 
-  Mesh out = separate_non_manifold(x.points, faces, x.flags, &origin);
-  if (provenance) *provenance = std::move(origin);
-  return out;
+  IdMesh surface = separate_non_manifold(x.points, faces, x.flags, &origin);
+  if (may_merge) {
+    // Each face lies in its input facet's plane (oriented as the face: B's facets are reversed in
+    // a difference), one plane per facet.
+    std::vector<std::array<PointId, 3>> planes;
+    std::vector<std::uint32_t> plane_of(origin.size());
+    std::vector<std::uint32_t> plane_of_facet[2] = {
+        std::vector<std::uint32_t>(a.num_triangles(), kNone),
+        std::vector<std::uint32_t>(b.num_triangles(), kNone)};
+    for (std::size_t f = 0; f < origin.size(); ++f) {
+      const FaceOrigin& o = origin[f];
+      std::uint32_t& plane = plane_of_facet[o.mesh][o.face];
+      if (plane == kNone) {
+        const Triangle& t = meshes[o.mesh]->triangles[o.face];
+        plane = std::uint32_t(planes.size());
+        std::array<PointId, 3> corners = {x.points.vertex(o.mesh, t[0]),
+                                          x.points.vertex(o.mesh, t[1]),
+                                          x.points.vertex(o.mesh, t[2])};
+        if (op == BooleanOp::Difference && o.mesh == 1) std::swap(corners[1], corners[2]);
+        planes.push_back(corners);
+      }
+      plane_of[f] = plane;
+    }
+    merge_coplanar(x.points, surface, planes, plane_of);
+  } else if (provenance) {
+    *provenance = std::move(origin);
+  }
+  return materialize(x.points, surface);
 }
 
 }  // namespace morphex::detail

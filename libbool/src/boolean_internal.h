@@ -136,22 +136,37 @@ struct ClassifyCounts {
 Labels classify(const Mesh& mesh, const Mesh& other, int side, const Refined& refined,
                 const Intersection& x, ClassifyCounts& counts);
 
-// Turns faces over point ids into a closed 2-manifold mesh: non-manifold edges are paired by exact
-// radial order and each vertex gets one copy per fan. Only points whose `special` entry is not
-// zero can be non-manifold, so only their corners are examined; every other id becomes one vertex.
-// Faces split to separate an edge are appended, with their origin appended to `origin` if given.
-Mesh separate_non_manifold(const PointTable& points, const std::vector<Triangle>& faces,
-                           const std::vector<std::uint8_t>& special,
-                           std::vector<FaceOrigin>* origin = nullptr);
+// A surface over point ids: vertex v is the point vertex_point[v] (the vertices of a separated
+// non-manifold feature share a point).
+struct IdMesh {
+  std::vector<PointId> vertex_point;
+  std::vector<Triangle> triangles;
+};
 
-// merge_coplanar_faces, told where each face comes from (`origin`, optional): faces cut from one
-// input facet are coplanar by construction and need no predicate.
-Mesh merge_coplanar_faces(const Mesh& solid, const std::vector<FaceOrigin>* origin);
+// Turns faces over point ids into a closed 2-manifold surface: non-manifold edges are paired by
+// exact radial order and each vertex gets one copy per fan. Only points whose `special` entry is
+// not zero can be non-manifold, so only their corners are examined; every other id becomes one
+// vertex. Faces split to separate an edge (at a midpoint added to `points`) are appended, with
+// their origin appended to `origin` if given.
+IdMesh separate_non_manifold(PointTable& points, const std::vector<Triangle>& faces,
+                             const std::vector<std::uint8_t>& special,
+                             std::vector<FaceOrigin>* origin = nullptr);
 
-// Step 7: selection, output, separation of non-manifold features. `may_merge` is set when a
-// vertex of the result may be removable by merge_coplanar_faces (coplanar facets met).
-Mesh assemble(const Mesh& a, const Mesh& b, const Intersection& x, const Refined refined[2],
-              const Labels labels[2], BooleanOp op, std::vector<FaceOrigin>* provenance,
-              bool* may_merge);
+// merge_coplanar_faces on a surface over point ids, where face f lies in the plane of the
+// triangle planes[plane_of[f]] (three point ids, oriented as the face): coplanarity is decided on
+// those planes, once per pair.
+void merge_coplanar(const PointTable& points, IdMesh& surface,
+                    const std::vector<std::array<PointId, 3>>& planes,
+                    const std::vector<std::uint32_t>& plane_of);
+
+// The mesh with the surface's points (input points, lazily evaluated constructions).
+Mesh materialize(const PointTable& points, const IdMesh& surface);
+
+// Step 7: selection, separation of non-manifold features, coplanar merging when `merge` and
+// coplanar facets met, output. `provenance`, if given, receives each output face's input facet
+// (merging changes faces, so the caller asks for one or the other).
+Mesh assemble(const Mesh& a, const Mesh& b, Intersection& x, const Refined refined[2],
+              const Labels labels[2], BooleanOp op, bool merge,
+              std::vector<FaceOrigin>* provenance);
 
 }  // namespace morphex::detail

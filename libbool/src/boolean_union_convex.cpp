@@ -227,11 +227,24 @@ Mesh compute_union_of_convex(std::vector<Mesh> convex_solids, UnionStats* stats)
   });
 
   std::vector<Triangle> faces;
+  std::vector<FaceOrigin> origin;
   for (std::uint32_t i = 0; i < members.size(); ++i)
-    if (keep[patch_of[i]]) faces.push_back(members[i].v);
-  Mesh out =
-      detail::separate_non_manifold(x.points, faces, std::vector<std::uint8_t>(x.points.size(), 1));
-  out = merge_coplanar_faces(out);
+    if (keep[patch_of[i]]) {
+      faces.push_back(members[i].v);
+      origin.push_back({0, members[i].facet});
+    }
+  detail::IdMesh surface = detail::separate_non_manifold(
+      x.points, faces, std::vector<std::uint8_t>(x.points.size(), 1), &origin);
+  // Each face lies in the plane of its soup facet.
+  std::vector<std::array<detail::PointId, 3>> planes;
+  std::vector<std::uint32_t> plane_of;
+  for (const FaceOrigin& o : origin) {
+    const Triangle& t = soup.triangles[o.face];
+    plane_of.push_back(std::uint32_t(planes.size()));
+    planes.push_back({x.vertex_id(0, t[0]), x.vertex_id(0, t[1]), x.vertex_id(0, t[2])});
+  }
+  detail::merge_coplanar(x.points, surface, planes, plane_of);
+  Mesh out = detail::materialize(x.points, surface);
   make_exact(out);
   if (stats) {
     stats->candidate_pairs += pairs.size();

@@ -1,47 +1,51 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Coplanar merging: after a Boolean, coplanar overlaps leave planar regions cut into many
-// triangles by segments that no longer bound anything. Each region is re-triangulated from its
-// boundary alone, without the vertices that are not corners of the solid. Only existing points are
-// used, so the result is exact and unchanged as a set; both sides of a crease drop the same
-// vertices, so no T-junction appears.
+// triangles by segments that no longer bound anything. The faces around each removable vertex
+// (inside a region, or on a straight crease between two) are re-triangulated from their boundary
+// without it. Only existing points are used, so the result is exact and unchanged as a set; both
+// sides of a crease drop the same vertices, so no T-junction appears.
+//
+// The work is done on point ids of a PointTable, before output points exist: every face lies in a
+// known plane (its input facet's), so coplanarity is decided on the input facets' corners (small,
+// cached exact coordinates) and once per pair of planes, never on constructed points.
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <optional>
 #include <queue>
 #include <unordered_map>
 
 #include "boolean_internal.h"
-#include "filtered.h"
 #include "flat_map.h"
 #include "morphex/boolean.h"
 #include "morphex/spatial.h"
-#include "point_index.h"
-#include "projection_traits.h"
+#include "table_traits.h"
 
 namespace morphex {
+namespace detail {
 namespace {
 
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 
-// The region's new triangles, or nullopt when the region must stay as it is.
-template <class Traits>
+// The new triangles of a set of faces, from its boundary (edges over surface vertices), or nullopt
+// when it must stay as it is.
+template <int dropped>
 std::optional<std::vector<Triangle>> triangulate_region(
-    const Mesh& mesh, const std::vector<std::pair<VertexIndex, VertexIndex>>& boundary,
-    const Triangle& seed) {
+    const PointTable& table, const IdMesh& surface,
+    const std::vector<std::pair<VertexIndex, VertexIndex>>& boundary, const Triangle& seed) {
+  using Traits = TableTraits<dropped>;
   using Vb = CGAL::Triangulation_vertex_base_with_info_2<VertexIndex, Traits>;
   using Fb = CGAL::Constrained_triangulation_face_base_2<Traits>;
   using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
   using Cdt = CGAL::Constrained_Delaunay_triangulation_2<
       Traits, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
-  Cdt cdt;
+  Cdt cdt{Traits(&table)};
   auto insert = [&](VertexIndex v) -> std::optional<typename Cdt::Vertex_handle> {
     const std::size_t before = cdt.number_of_vertices();
-    auto h = cdt.insert(mesh.points[v]);
+    auto h = cdt.insert(TablePoint{surface.vertex_point[v], 0});
     if (cdt.number_of_vertices() > before)
       h->info() = v;
     else if (h->info() != v)
@@ -55,7 +59,7 @@ std::optional<std::vector<Triangle>> triangulate_region(
       cdt.insert_constraint(*a, *b);
     }
   } catch (const std::exception&) {
-    return std::nullopt;  // crossing constraints would need new points: keep the region
+    return std::nullopt;  // crossing constraints would need new points: keep the faces
   }
   // Inside = odd number of boundary crossings from the unbounded face.
   std::unordered_map<typename Cdt::Face_handle, int> depth;
@@ -85,9 +89,9 @@ std::optional<std::vector<Triangle>> triangulate_region(
     }
     next_level = std::move(crossing);
   }
-  const auto orient = Traits().orientation_2_object();
+  const auto& p = surface.vertex_point;
   const bool flip =
-      orient(mesh.points[seed[0]], mesh.points[seed[1]], mesh.points[seed[2]]) == CGAL::NEGATIVE;
+      table.orientation_2(dropped, p[seed[0]], p[seed[1]], p[seed[2]]) == CGAL::NEGATIVE;
   std::vector<Triangle> out;
   for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
     if (depth[f] % 2 == 0) continue;
@@ -98,17 +102,18 @@ std::optional<std::vector<Triangle>> triangulate_region(
   return out;
 }
 
-// For each vertex flagged in `of_interest`, whether another vertex of the mesh has its position.
-// Vertices are bucketed by the grid cells their interval boxes cover (coincident points have
-// overlapping boxes), and only vertices sharing a cell with a flagged one are compared exactly.
-std::vector<std::uint8_t> coincident(const Mesh& mesh,
+// For each vertex flagged in `of_interest`, whether another vertex has its position: the same
+// point, or an equal one. Vertices are bucketed by the grid cells their interval boxes cover
+// (coincident points have overlapping boxes), and only vertices sharing a cell with a flagged one
+// are compared exactly.
+std::vector<std::uint8_t> coincident(const PointTable& table, const IdMesh& surface,
                                      const std::vector<std::uint8_t>& of_interest) {
-  const std::size_t nv = mesh.num_vertices();
+  const std::size_t nv = surface.vertex_point.size();
   std::vector<std::uint8_t> shared(nv, 0);
   std::vector<FloatBox> boxes(nv);
   FloatBox frame;
   for (std::size_t v = 0; v < nv; ++v) {
-    boxes[v] = FloatBox::of(mesh.points[v]);
+    boxes[v] = FloatBox::of(table.approx(surface.vertex_point[v]).bbox());
     frame += boxes[v];
   }
   // Cells about 2^-20 of the extent: far wider than any point's interval box, so that a box
@@ -116,56 +121,91 @@ std::vector<std::uint8_t> coincident(const Mesh& mesh,
   double cell = 0;
   for (int k = 0; k < 3; ++k) cell = std::max(cell, double(frame.hi[k]) - double(frame.lo[k]));
   cell = cell > 0 ? std::ldexp(cell, -20) : 1;
-  auto for_each_cell = [&](const FloatBox& b, auto&& visit) {
-    std::int64_t lo[3], hi[3];
+  auto cell_range = [&](const FloatBox& b, std::int64_t(&lo)[3], std::int64_t(&hi)[3]) {
+    std::int64_t count = 1;
     for (int k = 0; k < 3; ++k) {
       lo[k] = std::int64_t(std::floor((double(b.lo[k]) - double(frame.lo[k])) / cell));
       hi[k] = std::int64_t(std::floor((double(b.hi[k]) - double(frame.lo[k])) / cell));
+      count *= std::min<std::int64_t>(hi[k] - lo[k] + 1, 1 << 20);
     }
+    return count;
+  };
+  // Boxes over a few cells (constructions whose intervals are wide) are compared directly.
+  constexpr std::int64_t kMaxCells = 8;
+  auto for_each_cell = [&](const std::int64_t(&lo)[3], const std::int64_t(&hi)[3], auto&& visit) {
     for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
       for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
         for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
-          visit(detail::mix64(std::uint64_t(x) * 0x9e3779b97f4a7c15ull ^ std::uint64_t(y) << 21 ^
-                              std::uint64_t(z) << 42));
+          visit(mix64(std::uint64_t(x) * 0x9e3779b97f4a7c15ull ^ std::uint64_t(y) << 21 ^
+                      std::uint64_t(z) << 42));
+  };
+  auto compare = [&](VertexIndex u, VertexIndex v) {
+    if (v != u && boxes[u].overlaps(boxes[v]) &&
+        table.equal(surface.vertex_point[u], surface.vertex_point[v]))
+      shared[v] = 1;
   };
   std::unordered_map<std::uint64_t, std::vector<VertexIndex>> cells;
-  for (VertexIndex v = 0; v < nv; ++v)
-    if (of_interest[v])
-      for_each_cell(boxes[v], [&](std::uint64_t key) { cells[key].push_back(v); });
-  for (VertexIndex u = 0; u < nv; ++u)
-    for_each_cell(boxes[u], [&](std::uint64_t key) {
+  std::vector<VertexIndex> flagged, wide_flagged;
+  for (VertexIndex v = 0; v < nv; ++v) {
+    if (!of_interest[v]) continue;
+    flagged.push_back(v);
+    std::int64_t lo[3], hi[3];
+    if (cell_range(boxes[v], lo, hi) > kMaxCells)
+      wide_flagged.push_back(v);
+    else
+      for_each_cell(lo, hi, [&](std::uint64_t key) { cells[key].push_back(v); });
+  }
+  if (flagged.empty()) return shared;
+  for (VertexIndex u = 0; u < nv; ++u) {
+    for (const VertexIndex v : wide_flagged) compare(u, v);
+    std::int64_t lo[3], hi[3];
+    if (cell_range(boxes[u], lo, hi) > kMaxCells) {
+      for (const VertexIndex v : flagged) compare(u, v);
+      continue;
+    }
+    for_each_cell(lo, hi, [&](std::uint64_t key) {
       const auto it = cells.find(key);
       if (it == cells.end()) return;
-      for (const VertexIndex v : it->second)
-        if (v != u && boxes[u].overlaps(boxes[v]) && mesh.points[u] == mesh.points[v])
-          shared[v] = 1;
+      for (const VertexIndex v : it->second) compare(u, v);
     });
+  }
   return shared;
 }
 
 }  // namespace
 
-Mesh merge_coplanar_faces(const Mesh& solid) {
-  return detail::merge_coplanar_faces(solid, nullptr);
-}
-
-namespace detail {
-
-Mesh merge_coplanar_faces(const Mesh& solid, const std::vector<FaceOrigin>* origin) {
-  const std::size_t nf = solid.triangles.size(), nv = solid.points.size();
-  if (nf == 0) return solid;
+void merge_coplanar(const PointTable& table, IdMesh& surface,
+                    const std::vector<std::array<PointId, 3>>& planes,
+                    const std::vector<std::uint32_t>& plane_of) {
+  const std::size_t nf = surface.triangles.size(), nv = surface.vertex_point.size();
+  if (nf == 0) return;
+  const auto& tri = surface.triangles;
+  const auto& point = surface.vertex_point;
   FlatMap<std::uint64_t, std::uint32_t, Hash64> face_of_edge(3 * nf);
   for (std::uint32_t f = 0; f < nf; ++f)
-    for (int i = 0; i < 3; ++i)
-      face_of_edge.emplace(detail::edge_key(solid.triangles[f][i], solid.triangles[f][(i + 1) % 3]),
-                           f);
+    for (int i = 0; i < 3; ++i) face_of_edge.emplace(edge_key(tri[f][i], tri[f][(i + 1) % 3]), f);
   auto twin_face = [&](VertexIndex u, VertexIndex v) {
-    const std::uint32_t* face = face_of_edge.find(detail::edge_key(v, u));
+    const std::uint32_t* face = face_of_edge.find(edge_key(v, u));
     return face ? *face : kNone;
   };
-  const auto& p = solid.points;
+  // Two planes are one when each corner of the second is on the first and the normals agree;
+  // decided once per pair of planes.
+  FlatMap<std::uint64_t, std::uint8_t, Hash64> same_plane_cache;
+  auto same_plane = [&](std::uint32_t a, std::uint32_t b) {
+    if (a == b) return true;
+    const std::uint64_t key = edge_key(std::min(a, b), std::max(a, b));
+    if (const std::uint8_t* known = same_plane_cache.find(key)) return *known != 0;
+    const auto &pa = planes[a], &pb = planes[b];
+    const bool same = std::all_of(pb.begin(), pb.end(),
+                                  [&](PointId q) {
+                                    return table.orientation(pa[0], pa[1], pa[2], q) == CGAL::ZERO;
+                                  }) &&
+                      table.normal_dot(pa, pb) == CGAL::POSITIVE;
+    same_plane_cache.emplace(key, same);
+    return same;
+  };
 
-  // Regions: flood fill across edges whose two faces are coplanar with agreeing normals.
+  // Regions: flood fill across edges whose two faces lie in one plane, alike oriented.
   std::vector<std::uint32_t> region(nf, kNone);
   std::vector<std::uint32_t> region_seed;
   std::vector<std::uint32_t> stack;
@@ -176,32 +216,17 @@ Mesh merge_coplanar_faces(const Mesh& solid, const std::vector<FaceOrigin>* orig
     region[start] = r;
     stack.push_back(start);
     while (!stack.empty()) {
-      const std::uint32_t stack_face = stack.back();
-      const Triangle& t = solid.triangles[stack_face];
+      const std::uint32_t f = stack.back();
       stack.pop_back();
       for (int i = 0; i < 3; ++i) {
-        const VertexIndex u = t[i], v = t[(i + 1) % 3], w = t[(i + 2) % 3];
-        const std::uint32_t g = twin_face(u, v);
-        if (g == kNone || region[g] != kNone) continue;
-        // Pieces of one input facet are coplanar and alike oriented: no predicate needed.
-        const bool same_facet = origin && (*origin)[g].mesh == (*origin)[stack_face].mesh &&
-                                (*origin)[g].face == (*origin)[stack_face].face;
-        const Triangle& s = solid.triangles[g];
-        if (same_facet) {
-          region[g] = r;
-          stack.push_back(g);
-          continue;
-        }
-        const VertexIndex x = s[0] != u && s[0] != v ? s[0] : s[1] != u && s[1] != v ? s[1] : s[2];
-        if (detail::orient3d(p[u], p[v], p[w], p[x]) != CGAL::COPLANAR ||
-            CGAL::coplanar_orientation(p[u], p[v], p[w], p[x]) != CGAL::NEGATIVE)
-          continue;
+        const std::uint32_t g = twin_face(tri[f][i], tri[f][(i + 1) % 3]);
+        if (g == kNone || region[g] != kNone || !same_plane(plane_of[f], plane_of[g])) continue;
         region[g] = r;
         stack.push_back(g);
       }
     }
   }
-  if (region_seed.size() == nf) return solid;  // nothing coplanar to merge
+  if (region_seed.size() == nf) return;  // nothing coplanar to merge
 
   // Removable vertices: inside one region, or on a straight crease between exactly two. Both
   // regions need two faces or more (a corner of a lone triangle stays), which leaves few
@@ -211,7 +236,7 @@ Mesh merge_coplanar_faces(const Mesh& solid, const std::vector<FaceOrigin>* orig
   std::vector<std::uint32_t> first_region(nv, kNone), second_region(nv, kNone);
   std::vector<std::uint8_t> many_regions(nv, 0);
   for (std::uint32_t f = 0; f < nf; ++f)
-    for (VertexIndex v : solid.triangles[f]) {
+    for (VertexIndex v : tri[f]) {
       const std::uint32_t r = region[f];
       if (first_region[v] == kNone || first_region[v] == r)
         first_region[v] = r;
@@ -228,31 +253,46 @@ Mesh merge_coplanar_faces(const Mesh& solid, const std::vector<FaceOrigin>* orig
     candidates.push_back(v);
     is_candidate[v] = 1;
   }
-  if (candidates.empty()) return solid;
+  if (candidates.empty()) return;
 
   // A region holding a candidate whose position another vertex shares (a separated non-manifold
   // feature or a contact) keeps all its triangles and vertices: its edges may be needed to keep
   // the touching parts meeting only at common vertices and edges.
   std::vector<std::uint8_t> frozen_region(region_seed.size(), 0);
   {
-    const std::vector<std::uint8_t> shared = coincident(solid, is_candidate);
+    const std::vector<std::uint8_t> shared = coincident(table, surface, is_candidate);
     for (std::uint32_t f = 0; f < nf; ++f)
-      for (VertexIndex v : solid.triangles[f])
+      for (VertexIndex v : tri[f])
         if (shared[v]) frozen_region[region[f]] = 1;
   }
 
   // The crease neighbours of the candidates: the other ends of their edges between two regions.
   std::vector<std::uint32_t> crease_count(nv, 0);
   std::vector<std::array<VertexIndex, 2>> crease(nv);
+  std::vector<std::uint32_t> face_at(nv, kNone);  // a face of each candidate, for its plane
   for (std::uint32_t f = 0; f < nf; ++f)
     for (int i = 0; i < 3; ++i) {
-      const VertexIndex u = solid.triangles[f][i], v = solid.triangles[f][(i + 1) % 3];
+      const VertexIndex u = tri[f][i], v = tri[f][(i + 1) % 3];
       if (!is_candidate[u]) continue;
+      face_at[u] = f;
       const std::uint32_t g = twin_face(u, v);
       if (g != kNone && region[g] == region[f]) continue;
       if (crease_count[u] < 2) crease[u][crease_count[u]] = v;
       ++crease_count[u];
     }
+  // a, v, b collinear (all three in the plane of v's face) with v strictly between a and b.
+  auto strictly_between = [&](VertexIndex a, VertexIndex v, VertexIndex b) {
+    const auto& plane = planes[plane_of[face_at[v]]];
+    const int dropped = table.dominant_axis(plane[0], plane[1], plane[2]);
+    if (table.orientation_2(dropped, point[a], point[v], point[b]) != CGAL::ZERO) return false;
+    for (int axis = 0; axis < 3; ++axis) {
+      const CGAL::Comparison_result ab = table.compare(axis, point[a], point[b]);
+      if (ab == CGAL::EQUAL) continue;
+      return table.compare(axis, point[a], point[v]) == ab &&
+             table.compare(axis, point[v], point[b]) == ab;
+    }
+    return false;
+  };
   std::vector<std::uint8_t> removable(nv, 0);
   std::vector<std::uint8_t> region_changes(region_seed.size(), 0);
   for (const VertexIndex v : candidates) {
@@ -262,12 +302,8 @@ Mesh merge_coplanar_faces(const Mesh& solid, const std::vector<FaceOrigin>* orig
     bool remove = false;
     if (second_region[v] == kNone)
       remove = crease_count[v] == 0;
-    else if (crease_count[v] == 2) {
-      const Point& a = p[crease[v][0]];
-      const Point& b = p[crease[v][1]];
-      remove = detail::collinear3d(a, p[v], b) &&
-               CGAL::collinear_are_strictly_ordered_along_line(a, p[v], b);
-    }
+    else if (crease_count[v] == 2)
+      remove = strictly_between(crease[v][0], v, crease[v][1]);
     if (!remove) continue;
     removable[v] = 1;
     region_changes[first_region[v]] = 1;
@@ -280,7 +316,7 @@ Mesh merge_coplanar_faces(const Mesh& solid, const std::vector<FaceOrigin>* orig
   std::vector<std::vector<std::uint32_t>> faces_of(region_seed.size());
   std::vector<std::uint8_t> changes(nf, 0);
   for (std::uint32_t f = 0; f < nf; ++f) {
-    const Triangle& t = solid.triangles[f];
+    const Triangle& t = tri[f];
     if (!removable[t[0]] && !removable[t[1]] && !removable[t[2]]) continue;
     changes[f] = 1;
     faces_of[region[f]].push_back(f);
@@ -294,7 +330,7 @@ Mesh merge_coplanar_faces(const Mesh& solid, const std::vector<FaceOrigin>* orig
     next.clear();
     for (std::uint32_t f : faces_of[r])
       for (int i = 0; i < 3; ++i) {
-        const VertexIndex u = solid.triangles[f][i], v = solid.triangles[f][(i + 1) % 3];
+        const VertexIndex u = tri[f][i], v = tri[f][(i + 1) % 3];
         const std::uint32_t g = twin_face(u, v);
         if (g != kNone && region[g] == r && changes[g]) continue;
         directed.emplace_back(u, v);
@@ -312,41 +348,67 @@ Mesh merge_coplanar_faces(const Mesh& solid, const std::vector<FaceOrigin>* orig
       }
       boundary.emplace_back(u, w);
     }
-    const Triangle& seed = solid.triangles[faces_of[r].front()];
+    const Triangle& seed = tri[faces_of[r].front()];
+    const auto& plane = planes[plane_of[faces_of[r].front()]];
     std::optional<std::vector<Triangle>> merged;
-    if (ok) switch (detail::dominant_axis(p[seed[0]], p[seed[1]], p[seed[2]])) {
+    if (ok) switch (table.dominant_axis(plane[0], plane[1], plane[2])) {
         case 0:
-          merged = triangulate_region<detail::FilteredProjectionTraits<0>>(solid, boundary, seed);
+          merged = triangulate_region<0>(table, surface, boundary, seed);
           break;
         case 1:
-          merged = triangulate_region<detail::FilteredProjectionTraits<1>>(solid, boundary, seed);
+          merged = triangulate_region<1>(table, surface, boundary, seed);
           break;
         default:
-          merged = triangulate_region<detail::FilteredProjectionTraits<2>>(solid, boundary, seed);
+          merged = triangulate_region<2>(table, surface, boundary, seed);
       }
     // Rare (coincident vertices in the region): a neighbour may already have dropped a shared
-    // crease vertex, so the only safe answer is the unmerged solid, which is always valid.
-    if (!merged) return solid;
+    // crease vertex, so the only safe answer is the unmerged surface, which is always valid.
+    if (!merged) return;
     out.insert(out.end(), merged->begin(), merged->end());
   }
   for (std::uint32_t f = 0; f < nf; ++f)
-    if (!changes[f]) out.push_back(solid.triangles[f]);
+    if (!changes[f]) out.push_back(tri[f]);
 
   // Compact: keep referenced vertices in their original order.
   std::vector<VertexIndex> new_index(nv, kNone);
   for (const Triangle& t : out)
     for (VertexIndex v : t) new_index[v] = 0;
-  Mesh result;
+  IdMesh result;
   for (VertexIndex v = 0; v < nv; ++v)
     if (new_index[v] != kNone) {
-      new_index[v] = VertexIndex(result.points.size());
-      result.points.push_back(p[v]);
+      new_index[v] = VertexIndex(result.vertex_point.size());
+      result.vertex_point.push_back(point[v]);
     }
   result.triangles.reserve(out.size());
   for (const Triangle& t : out)
     result.triangles.push_back({new_index[t[0]], new_index[t[1]], new_index[t[2]]});
-  return result;
+  surface = std::move(result);
+}
+
+Mesh materialize(const PointTable& table, const IdMesh& surface) {
+  Mesh out;
+  out.points.reserve(surface.vertex_point.size());
+  for (PointId p : surface.vertex_point) out.points.push_back(table.point(p));
+  out.triangles = surface.triangles;
+  return out;
 }
 
 }  // namespace detail
+
+Mesh merge_coplanar_faces(const Mesh& solid) {
+  if (solid.empty()) return solid;
+  // The mesh as its own point table: vertex v is point v, and each face is its own plane.
+  const detail::PointTable table(solid, solid, true);
+  detail::IdMesh surface;
+  surface.vertex_point.resize(solid.num_vertices());
+  for (VertexIndex v = 0; v < solid.num_vertices(); ++v) surface.vertex_point[v] = v;
+  surface.triangles = solid.triangles;
+  std::vector<std::array<detail::PointId, 3>> planes(solid.triangles.begin(),
+                                                     solid.triangles.end());
+  std::vector<std::uint32_t> plane_of(solid.num_triangles());
+  for (std::uint32_t f = 0; f < plane_of.size(); ++f) plane_of[f] = f;
+  detail::merge_coplanar(table, surface, planes, plane_of);
+  return detail::materialize(table, surface);
+}
+
 }  // namespace morphex

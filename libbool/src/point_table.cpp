@@ -362,6 +362,21 @@ CGAL::Sign PointTable::along_line(const std::array<PointId, 3>& a, const std::ar
   return CGAL::Sign(sgn(line[0] * d[0] + line[1] * d[1] + line[2] * d[2]));
 }
 
+CGAL::Sign PointTable::normal_dot(const std::array<PointId, 3>& a,
+                                  const std::array<PointId, 3>& b) const {
+  {
+    CGAL::Protect_FPU_rounding<true> rounding;
+    const ApproxPoint &a0 = approx(a[0]), &b0 = approx(b[0]);
+    const auto na = CGAL::cross_product(approx(a[1]) - a0, approx(a[2]) - a0);
+    const auto nb = CGAL::cross_product(approx(b[1]) - b0, approx(b[2]) - b0);
+    const CGAL::Uncertain<CGAL::Sign> s = CGAL::sign(na * nb);
+    if (CGAL::is_certain(s)) return CGAL::get_certain(s);
+  }
+  const auto na = cross(difference(exact(a[0]), exact(a[1])), difference(exact(a[0]), exact(a[2])));
+  const auto nb = cross(difference(exact(b[0]), exact(b[1])), difference(exact(b[0]), exact(b[2])));
+  return CGAL::Sign(sgn(na[0] * nb[0] + na[1] * nb[1] + na[2] * nb[2]));
+}
+
 int PointTable::dominant_axis(PointId p, PointId q, PointId r) const {
   // Any axis along which the normal is certainly not zero gives an exact projection; the largest
   // certain component keeps the projected predicates well conditioned.

@@ -111,6 +111,9 @@ class PointTable {
   // the common line of the planes of triangles a and b.
   CGAL::Sign along_line(const std::array<PointId, 3>& a, const std::array<PointId, 3>& b, PointId p,
                         PointId q) const;
+  // The sign of the dot product of the normals of triangles a and b (two triangles of one plane:
+  // positive when alike oriented).
+  CGAL::Sign normal_dot(const std::array<PointId, 3>& a, const std::array<PointId, 3>& b) const;
   // 0, 1 or 2: the axis of the largest normal coordinate of triangle pqr (ties to the lower axis).
   int dominant_axis(PointId p, PointId q, PointId r) const;
 
