@@ -3,8 +3,11 @@
 #include <signal.h>
 #include <sys/resource.h>
 #include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <chrono>
 #include <iostream>
 #include <memory>
 #include <thread>
@@ -64,6 +67,15 @@ int main(int argc, char** argv) {
   limits.max_file_bytes = max_input_mb << 20;
   morphex::set_input_limits(limits);
   if (max_memory_mb > 0) {
+    // Start the worker threads first: the cap is on the operation's memory, and a thread whose
+    // stack could not be mapped would fail with a thread error instead of "out of memory".
+    std::atomic<unsigned> started{0};
+    tbb::parallel_for(0u, threads, [&](unsigned) {
+      ++started;
+      const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(100);
+      while (started < threads && std::chrono::steady_clock::now() < until)
+        std::this_thread::yield();
+    });
     const rlimit cap{rlim_t(max_memory_mb) << 20, rlim_t(max_memory_mb) << 20};
     setrlimit(RLIMIT_AS, &cap);
   }
