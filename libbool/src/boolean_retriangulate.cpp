@@ -159,8 +159,8 @@ Refined retriangulate(const Mesh& mesh, int side, const Intersection& x) {
   for (const auto& entry : x.cuts[side]) out.facets.push_back(entry.first);
   std::sort(out.facets.begin(), out.facets.end());
   std::vector<FacetPieces> pieces(out.facets.size());
-  tbb::parallel_for(std::size_t(0), out.facets.size(),
-                    [&](std::size_t i) { cut_facet(mesh, side, x, out.facets[i], pieces[i]); });
+  for_each_upward(out.facets.size(),
+                  [&](std::size_t i) { cut_facet(mesh, side, x, out.facets[i], pieces[i]); });
   std::size_t total = 0;
   for (const FacetPieces& p : pieces) total += p.triangles.size();
   out.triangles.reserve(total);

@@ -402,7 +402,7 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
     return (std::uint64_t((side << 31) | facet) << 32) | point;
   };
   std::vector<PairSigns> signs(np);
-  tbb::parallel_for(std::size_t(0), np, [&](std::size_t k) {
+  for_each_upward(np, [&](std::size_t k) {
     const auto [ia, ib] = pairs[k];
     const Corners ta = corner_ids(0, ia), tb = corner_ids(1, ib);
     PairSigns& s = signs[k];
@@ -438,7 +438,7 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
     return answers[std::lower_bound(questions.begin(), questions.end(), q) - questions.begin()];
   };
   const TriangleOverlap overlap(table);
-  tbb::parallel_for(std::size_t(0), np, [&](std::size_t k) {
+  for_each_upward(np, [&](std::size_t k) {
     PairSigns& s = signs[k];
     if (s.separated) return;
     const auto [ia, ib] = pairs[k];
@@ -487,7 +487,7 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
   // The edges of its facet each crossing lies on: the crossing of line uv with the facet's plane
   // is on the line of the facet's edge (f_i, f_i+1) exactly when uv and that edge are coplanar.
   std::vector<std::uint8_t> crossing_edges(keys.size(), 0);
-  tbb::parallel_for(std::size_t(0), keys.size(), [&](std::size_t c) {
+  for_each_upward(keys.size(), [&](std::size_t c) {
     const Corners f = facet_corners(keys[c]);
     for (int i = 0; i < 3; ++i)
       if (table.orientation(keys[c].u, keys[c].v, f[i], f[(i + 1) % 3]) == CGAL::ZERO)
@@ -499,7 +499,7 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
 
   // 4. Outcomes.
   std::vector<PairOutcome> outcomes(np);
-  tbb::parallel_for(std::size_t(0), np, [&](std::size_t k) {
+  for_each_upward(np, [&](std::size_t k) {
     if (signs[k].separated) return;
     const auto [ia, ib] = pairs[k];
     const Corners ta = corner_ids(0, ia), tb = corner_ids(1, ib);

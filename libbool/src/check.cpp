@@ -1,22 +1,28 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+// Validity of a mesh as the boundary of a solid. Linear passes over sorted edge records and per
+// vertex corner lists; self-intersections by one traversal of the mesh's tree against itself and
+// exact tests on a point table (intervals first), where neighbouring triangles are told apart by
+// the positions they share.
 #include "morphex/check.h"
 
 #include <tbb/parallel_for.h>
-
-#include <CGAL/box_intersection_d.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
-#include <map>
 #include <numeric>
 #include <sstream>
-#include <unordered_map>
 
 #include "morphex/spatial.h"
+#include "point_index.h"
+#include "point_table.h"
+#include "triangle_overlap.h"
 #include "union_find.h"
 
 namespace morphex {
 
 namespace {
+using detail::PointId;
+using detail::PointTable;
 using detail::UnionFind;
 
 using EdgeKey = std::uint64_t;
@@ -24,155 +30,346 @@ EdgeKey key(VertexIndex a, VertexIndex b) {
   return (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
 }
 
+// Exact tests between two triangles of one mesh, on ids of positions (coincident vertices share
+// one id, so that triangles touching at separated features meet "at a common vertex").
+class TrianglePairs {
+ public:
+  TrianglePairs(const PointTable& table, const std::vector<PointId>& position)
+      : table_(table), position_(position), overlap_(table) {}
+
+  // True when the closed triangles meet in anything other than nothing, one common vertex or one
+  // common edge, "common" by position.
+  bool improper(const Triangle& f, const Triangle& g) const {
+    const std::array<PointId, 3> a = ids(f), b = ids(g);
+    int shared = 0, sa = -1, sb = -1, sa2 = -1, sb2 = -1;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (a[i] == b[j]) {
+          (shared == 0 ? sa : sa2) = i;
+          (shared == 0 ? sb : sb2) = j;
+          ++shared;
+        }
+    if (shared >= 3) return true;  // the same triangle twice
+    if (shared == 2) {
+      // A common edge: improper only when the triangles fold onto each other.
+      const PointId p = a[sa], q = a[sa2], rf = a[3 - sa - sa2], rg = b[3 - sb - sb2];
+      if (table_.orientation(p, q, rf, rg) != CGAL::ZERO) return false;
+      const int dropped = table_.dominant_axis(p, q, rf);
+      return table_.orientation_2(dropped, p, q, rf) == table_.orientation_2(dropped, p, q, rg);
+    }
+    if (shared == 1) {
+      // Anything beyond the common vertex reaches the edge opposite it in one of the triangles.
+      return segment_meets_triangle(a[(sa + 1) % 3], a[(sa + 2) % 3], b) ||
+             segment_meets_triangle(b[(sb + 1) % 3], b[(sb + 2) % 3], a);
+    }
+    return triangles_meet(a, b);
+  }
+
+ private:
+  std::array<PointId, 3> ids(const Triangle& t) const {
+    return {position_[t[0]], position_[t[1]], position_[t[2]]};
+  }
+
+  // Closed triangles a and b (no common position) meet.
+  bool triangles_meet(const std::array<PointId, 3>& a, const std::array<PointId, 3>& b) const {
+    std::int8_t sa[3], sb[3];
+    for (int i = 0; i < 3; ++i) sa[i] = std::int8_t(table_.orientation(b[0], b[1], b[2], a[i]));
+    if (sa[0] != 0 && sa[0] == sa[1] && sa[1] == sa[2]) return false;
+    for (int i = 0; i < 3; ++i) sb[i] = std::int8_t(table_.orientation(a[0], a[1], a[2], b[i]));
+    if (sb[0] != 0 && sb[0] == sb[1] && sb[1] == sb[2]) return false;
+    if (sa[0] == 0 && sa[1] == 0 && sa[2] == 0) return coplanar_meet(a, b);
+    return overlap_(a, b, sa, sb);
+  }
+
+  // Coplanar closed triangles meet: an edge of one crosses or touches an edge of the other, or
+  // one holds a vertex of the other.
+  bool coplanar_meet(const std::array<PointId, 3>& a, const std::array<PointId, 3>& b) const {
+    const int d = table_.dominant_axis(a[0], a[1], a[2]);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (segments_meet_2(d, a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3])) return true;
+    return inside_2(d, a, b[0]) || inside_2(d, b, a[0]);
+  }
+
+  // The closed segment ab meets the closed triangle t (a, b not corners of t by position).
+  bool segment_meets_triangle(PointId a, PointId b, const std::array<PointId, 3>& t) const {
+    const CGAL::Sign oa = table_.orientation(t[0], t[1], t[2], a),
+                     ob = table_.orientation(t[0], t[1], t[2], b);
+    if (oa != CGAL::ZERO && oa == ob) return false;
+    if (oa == CGAL::ZERO && ob == CGAL::ZERO) {
+      const int d = table_.dominant_axis(t[0], t[1], t[2]);
+      for (int j = 0; j < 3; ++j)
+        if (segments_meet_2(d, a, b, t[j], t[(j + 1) % 3])) return true;
+      return inside_2(d, t, a);
+    }
+    // ab crosses or touches the plane: the point is in t when ab sees t's edges all one way.
+    const CGAL::Sign s0 = table_.orientation(a, b, t[0], t[1]),
+                     s1 = table_.orientation(a, b, t[1], t[2]),
+                     s2 = table_.orientation(a, b, t[2], t[0]);
+    const bool no_positive = s0 != CGAL::POSITIVE && s1 != CGAL::POSITIVE && s2 != CGAL::POSITIVE;
+    const bool no_negative = s0 != CGAL::NEGATIVE && s1 != CGAL::NEGATIVE && s2 != CGAL::NEGATIVE;
+    return no_positive || no_negative;
+  }
+
+  // Closed segments pq and rs of one plane, seen along `d`, meet.
+  bool segments_meet_2(int d, PointId p, PointId q, PointId r, PointId s) const {
+    const CGAL::Sign o1 = table_.orientation_2(d, p, q, r), o2 = table_.orientation_2(d, p, q, s);
+    const CGAL::Sign o3 = table_.orientation_2(d, r, s, p), o4 = table_.orientation_2(d, r, s, q);
+    if (o1 * o2 < 0 && o3 * o4 < 0) return true;              // a proper crossing
+    auto on_segment = [&](PointId a, PointId b, PointId x) {  // x collinear with ab
+      for (int axis = 0; axis < 3; ++axis) {
+        const auto ab = table_.compare(axis, a, b);
+        if (ab == CGAL::EQUAL) continue;
+        const auto ax = table_.compare(axis, a, x), xb = table_.compare(axis, x, b);
+        return (ax == CGAL::EQUAL || ax == ab) && (xb == CGAL::EQUAL || xb == ab);
+      }
+      return table_.equal(a, x);
+    };
+    return (o1 == CGAL::ZERO && on_segment(p, q, r)) || (o2 == CGAL::ZERO && on_segment(p, q, s)) ||
+           (o3 == CGAL::ZERO && on_segment(r, s, p)) || (o4 == CGAL::ZERO && on_segment(r, s, q));
+  }
+
+  // x is in the closed triangle t of its plane, seen along `d`.
+  bool inside_2(int d, const std::array<PointId, 3>& t, PointId x) const {
+    const CGAL::Sign turn = table_.orientation_2(d, t[0], t[1], t[2]);
+    for (int i = 0; i < 3; ++i)
+      if (table_.orientation_2(d, t[i], t[(i + 1) % 3], x) == -turn) return false;
+    return true;
+  }
+
+  const PointTable& table_;
+  const std::vector<PointId>& position_;
+  detail::TriangleOverlap overlap_;
+};
+
 }  // namespace
 
 MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
   MeshReport r;
   r.vertices = mesh.num_vertices();
   r.triangles = mesh.num_triangles();
-  const std::size_t nf = mesh.num_triangles();
+  const std::size_t nf = mesh.num_triangles(), nv = mesh.num_vertices();
   for (const Point& p : mesh.points) r.bbox += p.bbox();
+  const PointTable table(mesh, mesh, true);
 
-  // Edges by vertex index: how many faces use them, in which direction.
-  struct EdgeUse {
-    std::uint32_t forward = 0, backward = 0;  // forward: min -> max
-    std::uint32_t faces[2];
-  };
-  std::unordered_map<EdgeKey, EdgeUse> edges;
-  edges.reserve(nf * 2);
-  UnionFind components(nf);
-  for (std::uint32_t f = 0; f < nf; ++f) {
+  // Degenerate faces.
+  std::vector<std::uint8_t> degenerate(nf, 0);
+  detail::for_each_upward(nf, [&](std::size_t f) {
     const Triangle& t = mesh.triangles[f];
-    const bool repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
-    if (repeated || CGAL::collinear(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]])) {
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
+      degenerate[f] = 1;
+      return;
+    }
+    // collinear corners: every projection of the triangle is flat
+    degenerate[f] = table.orientation_2(0, t[0], t[1], t[2]) == CGAL::ZERO &&
+                    table.orientation_2(1, t[0], t[1], t[2]) == CGAL::ZERO &&
+                    table.orientation_2(2, t[0], t[1], t[2]) == CGAL::ZERO;
+  });
+  for (std::uint32_t f = 0; f < nf; ++f)
+    if (degenerate[f]) {
       if (!r.first_degenerate_face) r.first_degenerate_face = f;
       ++r.degenerate_faces;
     }
-    for (int k = 0; k < 3; ++k) {
-      const VertexIndex a = t[k], b = t[(k + 1) % 3];
-      EdgeUse& use = edges[key(a, b)];
-      const std::uint32_t count = use.forward + use.backward;
-      if (count < 2) use.faces[count] = f;
-      (a < b ? use.forward : use.backward) += 1;
-      if (count > 0) components.join(f, use.faces[0]);
+
+  // Edges by vertex index: sorted records (edge, face, direction), one run per edge.
+  struct EdgeRecord {
+    EdgeKey edge;
+    std::uint32_t face;
+    bool forward;  // min -> max
+    bool operator<(const EdgeRecord& o) const {
+      return edge != o.edge ? edge < o.edge : face < o.face;
     }
-  }
-  std::vector<bool> on_bad_edge;
-  for (const auto& [k, use] : edges) {
-    const std::uint32_t count = use.forward + use.backward;
+  };
+  std::vector<EdgeRecord> records(3 * nf);
+  tbb::parallel_for(std::uint32_t(0), std::uint32_t(nf), [&](std::uint32_t f) {
+    for (int k = 0; k < 3; ++k) {
+      const VertexIndex a = mesh.triangles[f][k], b = mesh.triangles[f][(k + 1) % 3];
+      records[3 * f + k] = {key(a, b), f, a < b};
+    }
+  });
+  tbb::parallel_sort(records.begin(), records.end());
+  UnionFind components(nf);
+  // For each manifold edge (two uses), its two faces, found by binary search on the key.
+  std::vector<std::pair<EdgeKey, std::array<std::uint32_t, 2>>> manifold;
+  manifold.reserve(3 * nf / 2);
+  for (std::size_t i = 0; i < records.size();) {
+    std::size_t j = i + 1;
+    while (j < records.size() && records[j].edge == records[i].edge) ++j;
+    const std::size_t count = j - i;
+    for (std::size_t k = i + 1; k < j; ++k) components.join(records[k].face, records[i].face);
     if (count == 1) {
       ++r.border_edges;
-      const VertexIndex v = VertexIndex(k >> 32);
+      const VertexIndex v = VertexIndex(records[i].edge >> 32);
       if (!r.first_border_vertex || v < *r.first_border_vertex) r.first_border_vertex = v;
     } else if (count > 2) {
       ++r.non_manifold_edges;
-    } else if (use.forward != 1) {
-      r.consistently_oriented = false;
-      if (!r.first_misoriented_face || use.faces[0] < *r.first_misoriented_face)
-        r.first_misoriented_face = use.faces[0];
+    } else {
+      if (records[i].forward == records[i + 1].forward) {
+        r.consistently_oriented = false;
+        if (!r.first_misoriented_face || records[i].face < *r.first_misoriented_face)
+          r.first_misoriented_face = records[i].face;
+      }
+      manifold.push_back({records[i].edge, {records[i].face, records[i + 1].face}});
     }
+    i = j;
   }
+  records = {};
 
   // Non-manifold vertices: the faces around a vertex must form one fan through manifold edges.
   {
-    std::vector<std::vector<std::uint32_t>> corners(mesh.num_vertices());
+    std::vector<std::uint32_t> start(nv + 1, 0);
+    for (const Triangle& t : mesh.triangles)
+      for (VertexIndex v : t) ++start[v + 1];
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    std::vector<std::uint32_t> faces_at(3 * nf), fill(start.begin(), start.end() - 1);
     for (std::uint32_t f = 0; f < nf; ++f)
-      for (int k = 0; k < 3; ++k) corners[mesh.triangles[f][k]].push_back(f);
-    for (VertexIndex v = 0; v < mesh.num_vertices(); ++v) {
-      const auto& faces = corners[v];
-      if (faces.size() < 2) continue;
-      std::map<std::uint32_t, std::uint32_t> local;
-      for (std::uint32_t i = 0; i < faces.size(); ++i) local[faces[i]] = i;
-      UnionFind fan(faces.size());
-      for (std::uint32_t f : faces)
+      for (VertexIndex v : mesh.triangles[f]) faces_at[fill[v]++] = f;
+    auto mate = [&](VertexIndex a, VertexIndex b, std::uint32_t f) -> std::uint32_t {
+      const auto it =
+          std::lower_bound(manifold.begin(), manifold.end(), key(a, b),
+                           [](const auto& entry, EdgeKey k) { return entry.first < k; });
+      if (it == manifold.end() || it->first != key(a, b)) return UINT32_MAX;
+      return it->second[0] == f ? it->second[1] : it->second[0];
+    };
+    std::vector<std::uint8_t> bad(nv, 0);
+    tbb::parallel_for(VertexIndex(0), VertexIndex(nv), [&](VertexIndex v) {
+      const std::uint32_t begin = start[v], end = start[v + 1], n = end - begin;
+      if (n < 2) return;
+      // Walk the fan from the first face across manifold edges at v; all faces must be reached.
+      std::vector<std::uint8_t> seen(n, 0);
+      std::vector<std::uint32_t> stack{0};
+      seen[0] = 1;
+      std::uint32_t reached = 1;
+      auto local = [&](std::uint32_t face) -> std::uint32_t {
+        for (std::uint32_t i = 0; i < n; ++i)
+          if (faces_at[begin + i] == face) return i;
+        return UINT32_MAX;
+      };
+      while (!stack.empty()) {
+        const std::uint32_t f = faces_at[begin + stack.back()];
+        stack.pop_back();
+        const Triangle& t = mesh.triangles[f];
         for (int k = 0; k < 3; ++k) {
-          const Triangle& t = mesh.triangles[f];
-          if (t[k] != v && t[(k + 1) % 3] != v) continue;
-          const auto it = edges.find(key(t[k], t[(k + 1) % 3]));
-          if (it == edges.end() || it->second.forward + it->second.backward != 2) continue;
-          const auto& use = it->second;
-          if (local.count(use.faces[0]) && local.count(use.faces[1]))
-            fan.join(local[use.faces[0]], local[use.faces[1]]);
+          if (t[k] != v) continue;
+          for (const VertexIndex w : {t[(k + 1) % 3], t[(k + 2) % 3]}) {
+            const std::uint32_t g = mate(v, w, f);
+            if (g == UINT32_MAX) continue;
+            const std::uint32_t i = local(g);
+            if (i != UINT32_MAX && !seen[i]) {
+              seen[i] = 1;
+              ++reached;
+              stack.push_back(i);
+            }
+          }
         }
-      std::size_t fans = 0;
-      for (std::uint32_t i = 0; i < faces.size(); ++i) fans += fan.find(i) == i;
-      if (fans > 1) {
+      }
+      bad[v] = reached < n;
+    });
+    for (VertexIndex v = 0; v < nv; ++v)
+      if (bad[v]) {
         ++r.non_manifold_vertices;
         if (!r.first_non_manifold_vertex) r.first_non_manifold_vertex = v;
       }
-    }
   }
 
-  // Components, and per component the Euler characteristic and exact volume.
+  // Components and, per component, the Euler characteristic.
   std::vector<std::uint32_t> component_of(nf);
-  std::map<std::uint32_t, std::uint32_t> component_index;
-  for (std::uint32_t f = 0; f < nf; ++f) {
-    const std::uint32_t root = components.find(f);
-    auto [it, inserted] = component_index.emplace(root, std::uint32_t(component_index.size()));
-    component_of[f] = it->second;
-  }
-  r.components = component_index.size();
-  std::vector<Mesh> shells(r.components);
   {
-    std::vector<std::unordered_map<VertexIndex, VertexIndex>> remap(r.components);
+    std::vector<std::uint32_t> index(nf, UINT32_MAX);
+    std::uint32_t count = 0;
     for (std::uint32_t f = 0; f < nf; ++f) {
-      Mesh& shell = shells[component_of[f]];
-      auto& map = remap[component_of[f]];
-      Triangle t;
-      for (int k = 0; k < 3; ++k) {
-        auto [it, inserted] = map.emplace(mesh.triangles[f][k], VertexIndex(shell.points.size()));
-        if (inserted) shell.points.push_back(mesh.points[mesh.triangles[f][k]]);
-        t[k] = it->second;
-      }
-      shell.triangles.push_back(t);
+      std::uint32_t& c = index[components.find(f)];
+      if (c == UINT32_MAX) c = count++;
+      component_of[f] = c;
     }
+    r.components = count;
   }
   if (options.volume) r.volume = signed_volume(mesh);
-  const auto volume_sign = [&](const Mesh& m) {
-    return options.volume && &m == &mesh ? CGAL::sign(r.volume) : signed_volume_sign(m);
-  };
-  const bool manifold = r.closed() && r.non_manifold_edges == 0 && r.non_manifold_vertices == 0;
-  if (manifold) {
-    long genus = 0;
-    for (const Mesh& s : shells) {
-      const long chi =
-          long(s.points.size()) - long(s.triangles.size() * 3 / 2) + long(s.triangles.size());
-      genus += (2 - chi) / 2;
+  const bool manifold_surface =
+      r.closed() && r.non_manifold_edges == 0 && r.non_manifold_vertices == 0;
+  if (manifold_surface) {
+    // chi = V - E + F per shell; a vertex of a manifold surface is in one shell.
+    std::vector<long> vertices(r.components, 0), faces(r.components, 0);
+    std::vector<std::uint8_t> counted(nv, 0);
+    for (std::uint32_t f = 0; f < nf; ++f) {
+      ++faces[component_of[f]];
+      for (VertexIndex v : mesh.triangles[f])
+        if (!counted[v]) {
+          counted[v] = 1;
+          ++vertices[component_of[f]];
+        }
     }
+    long genus = 0;
+    for (std::size_t c = 0; c < r.components; ++c)
+      genus += (2 - (vertices[c] - faces[c] * 3 / 2 + faces[c])) / 2;
     r.genus = genus;
   } else {
     r.genus = -1;
   }
 
-  // Self-intersections, with the tree for candidate pairs.
+  // Self-intersections: the tree against itself; each pair once (i < j), tested exactly.
   if (options.self_intersections && nf > 1) {
-    // Triangles are tested in parallel, each against its later neighbours; the counts and the
-    // first pair (smallest i, then the tree's order) do not depend on the thread count.
+    // Vertices by position: coincident ones (separated features) are one position.
+    std::vector<PointId> position(nv);
+    {
+      detail::PositionIndex index;
+      for (VertexIndex v = 0; v < nv; ++v) position[v] = index.find_or_insert(mesh.points[v], v);
+    }
     const TriangleTree tree(mesh);
-    std::vector<std::uint32_t> hits(nf, 0), first_j(nf, 0);
-    tbb::parallel_for(std::uint32_t(0), std::uint32_t(nf), [&](std::uint32_t i) {
-      tree.for_each_overlap(tree.box(i), [&](std::uint32_t j) {
-        if (j <= i || !triangles_intersect_improperly(mesh, i, j)) return;
-        if (hits[i]++ == 0) first_j[i] = j;
-      });
-    });
-    for (std::uint32_t i = 0; i < nf; ++i) {
-      if (hits[i] == 0) continue;
-      if (!r.first_self_intersection) r.first_self_intersection = std::make_pair(i, first_j[i]);
-      r.self_intersections += hits[i];
+    const TrianglePairs test(table, position);
+    // Per task: how many pairs meet improperly, and the first of them (smallest (i, j)).
+    struct Found {
+      std::size_t count = 0;
+      std::pair<std::uint32_t, std::uint32_t> first{UINT32_MAX, UINT32_MAX};
+    };
+    std::vector<Found> found(tree.self_pair_tasks());
+    tree.for_each_self_pair<detail::UpwardRounding>(
+        [&](std::size_t task, std::uint32_t i, std::uint32_t j) {
+          if (degenerate[i] || degenerate[j]) return;
+          if (!test.improper(mesh.triangles[i], mesh.triangles[j])) return;
+          Found& f = found[task];
+          ++f.count;
+          f.first = std::min(f.first, std::make_pair(std::min(i, j), std::max(i, j)));
+        });
+    for (const Found& f : found) {
+      r.self_intersections += f.count;
+      if (f.count > 0 && (!r.first_self_intersection || f.first < *r.first_self_intersection))
+        r.first_self_intersection = f.first;
     }
   }
 
   // Outward: a shell nested in an even number of others bounds material (positive volume), in an
   // odd number a cavity (negative). Only meaningful for closed, consistently oriented meshes.
+  const auto volume_sign = [&](const Mesh& m) {
+    return options.volume && &m == &mesh ? CGAL::sign(r.volume) : signed_volume_sign(m);
+  };
   if (r.closed() && r.consistently_oriented && r.self_intersections == 0 &&
-      r.degenerate_faces == 0) {
+      r.degenerate_faces == 0 && r.components > 1) {
+    std::vector<Mesh> shells(r.components);
+    {
+      std::vector<VertexIndex> local(nv, UINT32_MAX);
+      std::vector<std::uint32_t> owner(nv, UINT32_MAX);
+      for (std::uint32_t f = 0; f < nf; ++f) {
+        Mesh& shell = shells[component_of[f]];
+        Triangle t;
+        for (int k = 0; k < 3; ++k) {
+          const VertexIndex v = mesh.triangles[f][k];
+          if (owner[v] != component_of[f]) {
+            owner[v] = component_of[f];
+            local[v] = VertexIndex(shell.points.size());
+            shell.points.push_back(mesh.points[v]);
+          }
+          t[k] = local[v];
+        }
+        shell.triangles.push_back(t);
+      }
+    }
     std::vector<TriangleTree> trees;
     trees.reserve(shells.size());
     for (const Mesh& s : shells) trees.emplace_back(s);
     for (std::size_t c = 0; c < shells.size(); ++c) {
       int depth = 0;
-      for (std::size_t o = 0; o < shells.size() && shells.size() > 1; ++o) {
+      for (std::size_t o = 0; o < shells.size(); ++o) {
         if (o == c) continue;
         // a vertex of shell c that is not on shell o (touching shells share positions)
         for (const Point& p : shells[c].points) {
@@ -184,9 +381,8 @@ MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
           }
         }
       }
-      // One shell is the whole mesh, whose volume may already be known.
-      const auto sign = volume_sign(shells.size() == 1 ? mesh : shells[c]);
-      if (sign != (depth % 2 == 0 ? CGAL::POSITIVE : CGAL::NEGATIVE)) r.outward = false;
+      if (volume_sign(shells[c]) != (depth % 2 == 0 ? CGAL::POSITIVE : CGAL::NEGATIVE))
+        r.outward = false;
     }
   } else {
     r.outward = r.closed() && r.consistently_oriented && volume_sign(mesh) == CGAL::POSITIVE;

@@ -181,13 +181,31 @@ void merge_coplanar(const PointTable& table, IdMesh& surface,
   if (nf == 0) return;
   const auto& tri = surface.triangles;
   const auto& point = surface.vertex_point;
-  FlatMap<std::uint64_t, std::uint32_t, Hash64> face_of_edge(3 * nf);
-  for (std::uint32_t f = 0; f < nf; ++f)
-    for (int i = 0; i < 3; ++i) face_of_edge.emplace(edge_key(tri[f][i], tri[f][(i + 1) % 3]), f);
-  auto twin_face = [&](VertexIndex u, VertexIndex v) {
-    const std::uint32_t* face = face_of_edge.find(edge_key(v, u));
-    return face ? *face : kNone;
-  };
+  // The face across each edge: edge k of face f runs tri[f][k] -> tri[f][k + 1], and its twin is
+  // the face around tri[f][k + 1] that runs back. Faces around each vertex are listed
+  // contiguously, so the search stays in cache (a hash table of all edges did not).
+  std::vector<std::uint32_t> twin(3 * nf, kNone);
+  {
+    std::vector<std::uint32_t> start(nv + 1, 0);
+    for (const Triangle& t : tri)
+      for (VertexIndex v : t) ++start[v + 1];
+    for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+    std::vector<std::uint32_t> faces_at(3 * nf), fill(start.begin(), start.end() - 1);
+    for (std::uint32_t f = 0; f < nf; ++f)
+      for (VertexIndex v : tri[f]) faces_at[fill[v]++] = f;
+    for (std::uint32_t f = 0; f < nf; ++f)
+      for (int k = 0; k < 3; ++k) {
+        const VertexIndex u = tri[f][k], v = tri[f][(k + 1) % 3];
+        for (std::uint32_t i = start[v]; i < start[v + 1]; ++i) {
+          const Triangle& g = tri[faces_at[i]];
+          if ((g[0] == v && g[1] == u) || (g[1] == v && g[2] == u) || (g[2] == v && g[0] == u)) {
+            twin[3 * f + k] = faces_at[i];
+            break;
+          }
+        }
+      }
+  }
+  auto twin_face = [&](std::uint32_t f, int k) { return twin[3 * f + k]; };
   // Two planes are one when each corner of the second is on the first and the normals agree;
   // decided once per pair of planes.
   FlatMap<std::uint64_t, std::uint8_t, Hash64> same_plane_cache;
@@ -219,7 +237,7 @@ void merge_coplanar(const PointTable& table, IdMesh& surface,
       const std::uint32_t f = stack.back();
       stack.pop_back();
       for (int i = 0; i < 3; ++i) {
-        const std::uint32_t g = twin_face(tri[f][i], tri[f][(i + 1) % 3]);
+        const std::uint32_t g = twin_face(f, i);
         if (g == kNone || region[g] != kNone || !same_plane(plane_of[f], plane_of[g])) continue;
         region[g] = r;
         stack.push_back(g);
@@ -275,7 +293,7 @@ void merge_coplanar(const PointTable& table, IdMesh& surface,
       const VertexIndex u = tri[f][i], v = tri[f][(i + 1) % 3];
       if (!is_candidate[u]) continue;
       face_at[u] = f;
-      const std::uint32_t g = twin_face(u, v);
+      const std::uint32_t g = twin_face(f, i);
       if (g != kNone && region[g] == region[f]) continue;
       if (crease_count[u] < 2) crease[u][crease_count[u]] = v;
       ++crease_count[u];
@@ -331,7 +349,7 @@ void merge_coplanar(const PointTable& table, IdMesh& surface,
     for (std::uint32_t f : faces_of[r])
       for (int i = 0; i < 3; ++i) {
         const VertexIndex u = tri[f][i], v = tri[f][(i + 1) % 3];
-        const std::uint32_t g = twin_face(u, v);
+        const std::uint32_t g = twin_face(f, i);
         if (g != kNone && region[g] == r && changes[g]) continue;
         directed.emplace_back(u, v);
         if (removable[u]) next[u] = v;  // a removable crease vertex has one way on

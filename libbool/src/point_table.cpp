@@ -187,6 +187,7 @@ PointTable::~PointTable() {
 const Homogeneous& PointTable::exact(PointId id) const {
   std::atomic<Homogeneous*>& slot = exact_slot(id);
   if (Homogeneous* known = slot.load(std::memory_order_acquire)) return *known;
+  const ExactStage nearest;
   auto fresh = std::make_unique<Homogeneous>(compute_exact(id));
   Homogeneous* expected = nullptr;
   if (slot.compare_exchange_strong(expected, fresh.get(), std::memory_order_acq_rel))
@@ -213,7 +214,7 @@ Point PointTable::point(PointId id) const {
 }
 
 ApproxPoint PointTable::approximate(const Recipe& r) const {
-  CGAL::Protect_FPU_rounding<true> rounding;
+  IntervalStage rounding;
   const ApproxPoint &p = approx(r.p), &q = approx(r.q), &a = approx(r.a), &b = approx(r.b);
   Interval dp, dq;
   if (r.kind == Recipe::Kind::EdgePlane) {
@@ -275,7 +276,7 @@ PointId PointTable::add_explicit(const Point& p) {
 CGAL::Uncertain<CGAL::Sign> PointTable::orientation_filter(PointId p, PointId q, PointId r,
                                                            PointId s) const {
   if (p == q || p == r || p == s || q == r || q == s || r == s) return CGAL::ZERO;
-  CGAL::Protect_FPU_rounding<true> rounding;
+  IntervalStage rounding;
   const ApproxPoint &ap = approx(p), &aq = approx(q), &ar = approx(r), &as = approx(s);
   return CGAL::orientationC3(ap.x(), ap.y(), ap.z(), aq.x(), aq.y(), aq.z(), ar.x(), ar.y(), ar.z(),
                              as.x(), as.y(), as.z());
@@ -292,7 +293,7 @@ CGAL::Sign PointTable::orientation_2(int dropped, PointId p, PointId q, PointId 
   if (p == q || q == r || p == r) return CGAL::ZERO;
   const int u = dropped == 0 ? 1 : 0, v = dropped == 2 ? 1 : 2;
   {
-    CGAL::Protect_FPU_rounding<true> rounding;
+    IntervalStage rounding;
     const ApproxPoint &ap = approx(p), &aq = approx(q), &ar = approx(r);
     const auto o = CGAL::orientationC2(ap.cartesian(u), ap.cartesian(v), aq.cartesian(u),
                                        aq.cartesian(v), ar.cartesian(u), ar.cartesian(v));
@@ -308,7 +309,7 @@ CGAL::Sign PointTable::side_of_oriented_circle(int dropped, PointId p, PointId q
                                                PointId t) const {
   const int u = dropped == 0 ? 1 : 0, v = dropped == 2 ? 1 : 2;
   {
-    CGAL::Protect_FPU_rounding<true> rounding;
+    IntervalStage rounding;
     const ApproxPoint &ap = approx(p), &aq = approx(q), &ar = approx(r), &at = approx(t);
     const auto s = CGAL::side_of_oriented_circleC2(
         ap.cartesian(u), ap.cartesian(v), aq.cartesian(u), aq.cartesian(v), ar.cartesian(u),
@@ -328,7 +329,7 @@ CGAL::Sign PointTable::side_of_oriented_circle(int dropped, PointId p, PointId q
 CGAL::Comparison_result PointTable::compare(int axis, PointId p, PointId q) const {
   if (p == q) return CGAL::EQUAL;
   {
-    CGAL::Protect_FPU_rounding<true> rounding;
+    IntervalStage rounding;
     const CGAL::Uncertain<CGAL::Comparison_result> c =
         CGAL::compare(approx(p).cartesian(axis), approx(q).cartesian(axis));
     if (CGAL::is_certain(c)) return CGAL::get_certain(c);
@@ -346,7 +347,7 @@ bool PointTable::equal(PointId p, PointId q) const {
 CGAL::Sign PointTable::along_line(const std::array<PointId, 3>& a, const std::array<PointId, 3>& b,
                                   PointId p, PointId q) const {
   {
-    CGAL::Protect_FPU_rounding<true> rounding;
+    IntervalStage rounding;
     const ApproxPoint &a0 = approx(a[0]), &b0 = approx(b[0]);
     const auto na = CGAL::cross_product(approx(a[1]) - a0, approx(a[2]) - a0);
     const auto nb = CGAL::cross_product(approx(b[1]) - b0, approx(b[2]) - b0);
@@ -365,7 +366,7 @@ CGAL::Sign PointTable::along_line(const std::array<PointId, 3>& a, const std::ar
 CGAL::Sign PointTable::normal_dot(const std::array<PointId, 3>& a,
                                   const std::array<PointId, 3>& b) const {
   {
-    CGAL::Protect_FPU_rounding<true> rounding;
+    IntervalStage rounding;
     const ApproxPoint &a0 = approx(a[0]), &b0 = approx(b[0]);
     const auto na = CGAL::cross_product(approx(a[1]) - a0, approx(a[2]) - a0);
     const auto nb = CGAL::cross_product(approx(b[1]) - b0, approx(b[2]) - b0);
@@ -381,7 +382,7 @@ int PointTable::dominant_axis(PointId p, PointId q, PointId r) const {
   // Any axis along which the normal is certainly not zero gives an exact projection; the largest
   // certain component keeps the projected predicates well conditioned.
   {
-    CGAL::Protect_FPU_rounding<true> rounding;
+    IntervalStage rounding;
     const ApproxPoint& ap = approx(p);
     const auto n = CGAL::cross_product(approx(q) - ap, approx(r) - ap);
     int best = -1;

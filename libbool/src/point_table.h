@@ -12,8 +12,11 @@
 // Predicates take ids: intervals first, then the exact homogeneous stage.
 #pragma once
 
+#include <CGAL/FPU.h>
 #include <CGAL/Interval_nt.h>
 #include <gmpxx.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <array>
 #include <atomic>
@@ -25,6 +28,69 @@
 #include "morphex/mesh.h"
 
 namespace morphex::detail {
+
+// Interval arithmetic needs the FPU rounding toward +infinity, and switching the mode costs about
+// as much as a small predicate. A loop that evaluates many predicates holds an UpwardRounding for
+// its whole block; the predicates then leave the mode alone (IntervalStage), and their exact
+// stages, which may evaluate CGAL lazy values and must not run rounded upward, switch to
+// round-to-nearest for their duration (ExactStage).
+inline thread_local int upward_rounding_depth = 0;
+
+class UpwardRounding {
+ public:
+  UpwardRounding() {
+    if (upward_rounding_depth++ == 0) saved_ = CGAL::FPU_get_and_set_cw(CGAL_FE_UPWARD);
+  }
+  ~UpwardRounding() {
+    if (--upward_rounding_depth == 0) CGAL::FPU_set_cw(saved_);
+  }
+  UpwardRounding(const UpwardRounding&) = delete;
+  UpwardRounding& operator=(const UpwardRounding&) = delete;
+
+ private:
+  CGAL::FPU_CW_t saved_{};
+};
+
+// Rounding upward for an interval stage, unless the caller holds it already.
+class IntervalStage {
+ public:
+  IntervalStage() : own_(upward_rounding_depth == 0) {
+    if (own_) saved_ = CGAL::FPU_get_and_set_cw(CGAL_FE_UPWARD);
+  }
+  ~IntervalStage() {
+    if (own_) CGAL::FPU_set_cw(saved_);
+  }
+
+ private:
+  bool own_;
+  CGAL::FPU_CW_t saved_{};
+};
+
+// Rounding to nearest for an exact stage inside a block held upward.
+class ExactStage {
+ public:
+  ExactStage() : active_(upward_rounding_depth > 0) {
+    if (active_) saved_ = CGAL::FPU_get_and_set_cw(CGAL_FE_TONEAREST);
+  }
+  ~ExactStage() {
+    if (active_) CGAL::FPU_set_cw(saved_);
+  }
+
+ private:
+  bool active_;
+  CGAL::FPU_CW_t saved_{};
+};
+
+// body(k) for k in [0, n), in parallel blocks that each hold the rounding upward: for loops whose
+// bodies are mostly predicates.
+template <class Body>
+void for_each_upward(std::size_t n, Body&& body) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      const UpwardRounding upward;
+                      for (std::size_t k = range.begin(); k < range.end(); ++k) body(k);
+                    });
+}
 
 using PointId = std::uint32_t;
 using Interval = CGAL::Interval_nt<false>;

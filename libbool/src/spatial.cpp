@@ -225,8 +225,21 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> TriangleTree::overlapping_p
   for (const auto& f : found) total += f.size();
   pairs.reserve(total);
   for (const auto& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
-  tbb::parallel_sort(pairs.begin(), pairs.end());
   return pairs;
+}
+
+std::uint32_t TriangleTree::self_task_level() const {
+  std::uint32_t level = std::uint32_t(levels_.size() - 1);
+  while (level > 0 && levels_[level].size() < 256) --level;
+  return level;
+}
+
+std::size_t TriangleTree::self_pair_tasks() const {
+  return levels_.empty() ? 0 : levels_[self_task_level()].size();
+}
+
+void TriangleTree::parallel_tasks(std::size_t count, const std::function<void(std::size_t)>& task) {
+  tbb::parallel_for(std::size_t(0), count, [&](std::size_t i) { task(i); });
 }
 
 // Slab test for every origin in the box `origin`, padded so that rounding can only add boxes.

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -64,10 +65,18 @@ class TriangleTree {
   void for_each_on_ray(const CGAL::Bbox_3& origin, const std::array<double, 3>& direction,
                        F&& f) const;
 
-  // Every pair (i, j), i a triangle of a and j of b, whose boxes overlap, sorted by (i, j); the
-  // two trees are traversed together, in parallel.
+  // Every pair (i, j), i a triangle of a and j of b, whose boxes overlap; the two trees are
+  // traversed together, in parallel, and the order depends only on the trees.
   static std::vector<std::pair<std::uint32_t, std::uint32_t>> overlapping_pairs(
       const TriangleTree& a, const TriangleTree& b);
+
+  // Calls visit(task, i, j) once for every unordered pair of distinct triangles whose boxes
+  // overlap, from parallel tasks numbered 0 .. self_pair_tasks() - 1 (one task's calls come from
+  // one thread, in an order that depends only on the tree). Each task holds a TaskScope object
+  // while it runs (a default-constructible guard, for per-task state such as the FPU mode).
+  template <class TaskScope = int, class Visit>
+  void for_each_self_pair(Visit&& visit) const;
+  std::size_t self_pair_tasks() const;
 
   CGAL::Bbox_3 box(std::uint32_t t) const { return boxes_[t].bbox(); }
   const FloatBox& float_box(std::uint32_t t) const { return boxes_[t]; }
@@ -118,12 +127,58 @@ class TriangleTree {
   }
   bool ray_may_hit(const FloatBox& box, const CGAL::Bbox_3& origin,
                    const std::array<double, 3>& direction) const;
+  // The level whose nodes are the parallel tasks of a traversal of the whole tree.
+  std::uint32_t self_task_level() const;
+  // Runs task(i) for i in [0, count), in parallel (TBB, kept out of this header).
+  static void parallel_tasks(std::size_t count, const std::function<void(std::size_t)>& task);
 
   std::vector<FloatBox> boxes_;                // by triangle
   std::vector<std::uint32_t> order_;           // triangles in Morton order
   std::vector<FloatBox> sorted_boxes_;         // boxes_ in that order
   std::vector<std::vector<FloatBox>> levels_;  // levels_.back() has the root alone
 };
+
+template <class TaskScope, class Visit>
+void TriangleTree::for_each_self_pair(Visit&& visit) const {
+  if (levels_.empty()) return;
+  const std::uint32_t task_level = self_task_level();
+  const Node root{std::uint32_t(levels_.size() - 1), 0};
+  // Positions in the Morton order covered by a node: a pair of nodes whose ranges are ordered the
+  // other way round is met again with the roles swapped, so it is skipped.
+  auto range = [&](const Node& n) {
+    const std::uint32_t span = kLeafSize << n.level;
+    return std::make_pair(n.index * span, (n.index + 1) * span);
+  };
+  parallel_tasks(std::size_t(levels_[task_level].size()), [&](std::size_t task) {
+    [[maybe_unused]] const TaskScope scope{};
+    std::pair<Node, Node> stack[256];
+    int top = 0;
+    stack[top++] = {Node{task_level, std::uint32_t(task)}, root};
+    while (top > 0) {
+      const auto [na, nb] = stack[--top];
+      if (range(nb).second <= range(na).first) continue;  // every position of nb is before na's
+      if (!node_box(na).overlaps(node_box(nb))) continue;
+      if (na.level == 0 && nb.level == 0) {
+        const std::uint32_t a_end = std::min<std::uint32_t>(std::uint32_t(order_.size()),
+                                                            (na.index + 1) * kLeafSize),
+                            b_end = std::min<std::uint32_t>(std::uint32_t(order_.size()),
+                                                            (nb.index + 1) * kLeafSize);
+        for (std::uint32_t i = na.index * kLeafSize; i < a_end; ++i)
+          for (std::uint32_t j = std::max(i + 1, nb.index * kLeafSize); j < b_end; ++j)
+            if (sorted_boxes_[i].overlaps(sorted_boxes_[j])) visit(task, order_[i], order_[j]);
+        continue;
+      }
+      Node kids[2];
+      if (na.level >= nb.level) {
+        const std::uint32_t count = children(na, kids);
+        for (std::uint32_t k = 0; k < count; ++k) stack[top++] = {kids[k], nb};
+      } else {
+        const std::uint32_t count = children(nb, kids);
+        for (std::uint32_t k = 0; k < count; ++k) stack[top++] = {na, kids[k]};
+      }
+    }
+  });
+}
 
 template <class F>
 void TriangleTree::for_each_on_ray(const CGAL::Bbox_3& origin,
