@@ -62,12 +62,12 @@ bool centroid_in_triangle(const Point& a, const Point& b, const Point& c, const 
 Label label_of(const Point& p, const Point& q, const Point& r, std::uint32_t facet,
                const Mesh& mesh, const Mesh& other, int side, const Intersection& x,
                const TriangleTree& other_tree) {
-  const auto cut = x.cuts[side].find(facet);
-  if (cut != x.cuts[side].end() && !cut->second.coplanar_facets.empty()) {
+  const FacetCut* cut = x.cut(side, facet);
+  if (cut && !cut->coplanar_facets.empty()) {
     const Triangle& f = mesh.triangles[facet];
     const Point &a = mesh.points[f[0]], &b = mesh.points[f[1]], &c = mesh.points[f[2]];
     const int dropped = dominant_axis(a, b, c);
-    for (std::uint32_t t : cut->second.coplanar_facets) {
+    for (std::uint32_t t : cut->coplanar_facets) {
       const Triangle& g = other.triangles[t];
       const Point &d = other.points[g[0]], &e = other.points[g[1]], &h = other.points[g[2]];
       const bool inside = dropped == 0   ? centroid_in_triangle<0>(d, e, h, p, q, r)

@@ -6,6 +6,7 @@
 // re-triangulated, and the rest of each mesh is labelled and copied through its vertices.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <unordered_map>
 #include <utility>
@@ -71,13 +72,21 @@ struct Intersection {
   // Input id -> the id its position has: coincident input vertices near the other mesh (on facets
   // of candidate pairs) share the first one's id; every other vertex keeps its own.
   std::vector<PointId> vertex_rep;
-  std::vector<std::uint8_t> flags;                      // PointFlag bits, by id
-  std::unordered_map<std::uint32_t, FacetCut> cuts[2];  // facet -> cut
+  std::vector<std::uint8_t> flags;                          // PointFlag bits, by id
+  std::vector<std::pair<std::uint32_t, FacetCut>> cuts[2];  // (facet, cut), sorted by facet
   std::size_t intersecting_pairs = 0;
   std::size_t constructed_points = 0;
   bool coplanar_overlaps = false;  // some coplanar facets overlap with positive area
 
   PointId vertex_id(int side, std::uint32_t v) const { return vertex_rep[points.vertex(side, v)]; }
+  // The cut of a facet, or nullptr when the other mesh does not touch it.
+  const FacetCut* cut(int side, std::uint32_t facet) const {
+    const auto& c = cuts[side];
+    const auto it =
+        std::lower_bound(c.begin(), c.end(), facet,
+                         [](const auto& entry, std::uint32_t f) { return entry.first < f; });
+    return it != c.end() && it->first == facet ? &it->second : nullptr;
+  }
   // A point where the output may be non-manifold: on both surfaces, or where input vertices met.
   bool special(PointId id) const { return flags[id] != 0; }
 };

@@ -106,7 +106,7 @@ void cut_facet(const Mesh& mesh, int side, const Intersection& x, std::uint32_t 
   const std::array<CutPoint, 3> corners = {CutPoint{x.vertex_id(side, f[0]), corner_edges(0)},
                                            CutPoint{x.vertex_id(side, f[1]), corner_edges(1)},
                                            CutPoint{x.vertex_id(side, f[2]), corner_edges(2)}};
-  const FacetCut& cut = x.cuts[side].at(t);
+  const FacetCut& cut = *x.cut(side, t);
   // Distinct points by id, the known edges of each merged.
   std::vector<CutPoint> points(corners.begin(), corners.end());
   points.insert(points.end(), cut.points.begin(), cut.points.end());

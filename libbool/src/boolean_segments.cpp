@@ -26,6 +26,7 @@
 #include <array>
 #include <limits>
 #include <memory>
+#include <numeric>
 #include <tuple>
 
 #include "boolean_internal.h"
@@ -364,7 +365,10 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
 
   // 1. Coincident vertices near the other mesh get the first one's id, so that a position has
   // one name wherever the two meshes meet (and where separated features of one mesh touch).
+  // Coincident points have overlapping interval boxes: near vertices sorted by their boxes' lower
+  // x bound are swept for overlaps, and only those are compared exactly.
   x.vertex_rep.resize(num_inputs);
+  std::iota(x.vertex_rep.begin(), x.vertex_rep.end(), PointId(0));
   std::vector<PointId> merged;
   {
     std::vector<std::uint8_t> near(num_inputs, 0);
@@ -372,15 +376,30 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
       for (VertexIndex v : a.triangles[ia]) near[table.vertex(0, v)] = 1;
       for (VertexIndex v : b.triangles[ib]) near[table.vertex(1, v)] = 1;
     }
-    PositionIndex index;
-    for (PointId id = 0; id < num_inputs; ++id) {
-      x.vertex_rep[id] = id;
-      if (!near[id]) continue;
-      const PointId first = index.find_or_insert(table.input(id), id);
-      if (first != id) {
-        x.vertex_rep[id] = first;
-        merged.push_back(first);
+    std::vector<std::pair<double, PointId>> by_x;
+    for (PointId id = 0; id < num_inputs; ++id)
+      if (near[id]) by_x.emplace_back(table.approx(id).x().inf(), id);
+    tbb::parallel_sort(by_x.begin(), by_x.end());
+    UnionFind same(num_inputs);
+    for (std::size_t i = 0; i < by_x.size(); ++i) {
+      const ApproxPoint& p = table.approx(by_x[i].second);
+      for (std::size_t j = i + 1; j < by_x.size() && by_x[j].first <= p.x().sup(); ++j) {
+        const ApproxPoint& q = table.approx(by_x[j].second);
+        if (p.y().inf() <= q.y().sup() && q.y().inf() <= p.y().sup() &&
+            p.z().inf() <= q.z().sup() && q.z().inf() <= p.z().sup() &&
+            table.equal(by_x[i].second, by_x[j].second))
+          same.join(by_x[i].second, by_x[j].second);
       }
+    }
+    // The smallest id of each class names it.
+    for (const auto& [lo, id] : by_x) {
+      PointId& first = x.vertex_rep[same.find(id)];
+      first = std::min(first, id);
+    }
+    for (const auto& [lo, id] : by_x) {
+      const PointId first = x.vertex_rep[same.find(id)];
+      if (first != id) merged.push_back(first);
+      x.vertex_rep[id] = first;
     }
   }
   auto rep = [&](PointId id) { return x.vertex_rep[id]; };
@@ -461,17 +480,28 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
     const PointId u = rep(t[i]), v = rep(t[j]);
     return CrossingKey{side == 0 ? 0 : b_side, other_facet, std::min(u, v), std::max(u, v)};
   };
-  std::vector<CrossingKey> keys;
-  for (std::size_t k = 0; k < np; ++k) {
-    if (signs[k].separated || signs[k].coplanar) continue;
+  // Per pair, the crossing edges of both triangles (at most two each), gathered in parallel.
+  std::vector<std::uint32_t> first_key(np + 1, 0);
+  tbb::parallel_for(std::size_t(0), np, [&](std::size_t k) {
+    if (signs[k].separated || signs[k].coplanar) return;
+    std::uint32_t count = 0;
+    for_each_crossing_edge(signs[k].a, [&](int, int) { ++count; });
+    for_each_crossing_edge(signs[k].b, [&](int, int) { ++count; });
+    first_key[k + 1] = count;
+  });
+  for (std::size_t k = 0; k < np; ++k) first_key[k + 1] += first_key[k];
+  std::vector<CrossingKey> keys(first_key[np]);
+  tbb::parallel_for(std::size_t(0), np, [&](std::size_t k) {
+    if (signs[k].separated || signs[k].coplanar) return;
     const auto [ia, ib] = pairs[k];
     const Corners ta = corner_ids(0, ia), tb = corner_ids(1, ib);
+    std::uint32_t slot = first_key[k];
     for_each_crossing_edge(signs[k].a,
-                           [&](int i, int j) { keys.push_back(crossing_key(0, ta, i, j, ib)); });
+                           [&](int i, int j) { keys[slot++] = crossing_key(0, ta, i, j, ib); });
     for_each_crossing_edge(signs[k].b,
-                           [&](int i, int j) { keys.push_back(crossing_key(1, tb, i, j, ia)); });
-  }
-  std::sort(keys.begin(), keys.end());
+                           [&](int i, int j) { keys[slot++] = crossing_key(1, tb, i, j, ia); });
+  });
+  tbb::parallel_sort(keys.begin(), keys.end());
   keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
   auto facet_corners = [&](const CrossingKey& key) {
     // The facet belongs to the mesh the edge is not from (in a soup, to the soup).
@@ -479,10 +509,10 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
     return corner_ids(facet_side, key.facet);
   };
   std::vector<Recipe> recipes(keys.size());
-  for (std::size_t c = 0; c < keys.size(); ++c) {
+  tbb::parallel_for(std::size_t(0), keys.size(), [&](std::size_t c) {
     const Corners f = facet_corners(keys[c]);
     recipes[c] = {Recipe::Kind::EdgePlane, -1, keys[c].u, keys[c].v, f[0], f[1], f[2]};
-  }
+  });
   const PointId first_crossing = table.add_all(recipes);
   // The edges of its facet each crossing lies on: the crossing of line uv with the facet's plane
   // is on the line of the facet's edge (f_i, f_i+1) exactly when uv and that edge are coplanar.
@@ -628,46 +658,66 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
     }
     return id;
   };
-  std::vector<PointId> ids;
-  for (std::size_t k = 0; k < np; ++k) {
-    PairOutcome& out = outcomes[k];
-    if (out.kind == PairOutcome::Kind::None) continue;
-    const auto [ia, ib] = pairs[k];
-    ++x.intersecting_pairs;
-    FacetCut& ca = x.cuts[0][ia];
-    FacetCut& cb = x.cuts[1][ib];
-    ids.clear();
-    for (const PairPoint& p : out.points) {
-      ids.push_back(final_id(p));
-      ca.points.push_back({ids.back(), p.edges_a});
-      cb.points.push_back({ids.back(), p.edges_b});
-    }
-    auto add_segment = [&](PointId p, PointId q) {
-      if (p == q) return;
-      ca.segments.push_back(undirected(p, q));
-      cb.segments.push_back(undirected(p, q));
-    };
-    switch (out.kind) {
-      case PairOutcome::Kind::Segment:
-        add_segment(ids[0], ids[1]);
-        if (out.transversal && ids[0] != ids[1]) {
-          // The seed's rule with s > 0: B's interior is on the left of lo -> hi in ta, A's on
-          // the left of hi -> lo in tb.
-          ca.transversal.push_back({ids[0], ids[1]});
-          cb.transversal.push_back({ids[1], ids[0]});
+  for (std::size_t k = 0; k < np; ++k)
+    for (PairPoint& p : outcomes[k].points)
+      if (p.naming != Naming::Known) {
+        p.id = final_id(p);
+        p.naming = Naming::Known;
+      }
+
+  // The cuts, built per facet in parallel from its pairs in pair order.
+  for (int side = 0; side < 2; ++side) {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> facet_pair;  // (facet, pair)
+    for (std::size_t k = 0; k < np; ++k)
+      if (outcomes[k].kind != PairOutcome::Kind::None)
+        facet_pair.emplace_back(side == 0 ? pairs[k].first : pairs[k].second, std::uint32_t(k));
+    tbb::parallel_sort(facet_pair.begin(), facet_pair.end());
+    std::vector<std::size_t> group;
+    for (std::size_t i = 0; i < facet_pair.size(); ++i)
+      if (i == 0 || facet_pair[i].first != facet_pair[i - 1].first) group.push_back(i);
+    group.push_back(facet_pair.size());
+    auto& cuts = x.cuts[side];
+    cuts.resize(group.size() - 1);
+    tbb::parallel_for(std::size_t(0), cuts.size(), [&](std::size_t g) {
+      cuts[g].first = facet_pair[group[g]].first;
+      FacetCut& cut = cuts[g].second;
+      for (std::size_t i = group[g]; i < group[g + 1]; ++i) {
+        const std::uint32_t k = facet_pair[i].second;
+        const PairOutcome& out = outcomes[k];
+        for (const PairPoint& p : out.points)
+          cut.points.push_back({p.id, side == 0 ? p.edges_a : p.edges_b});
+        auto add_segment = [&](PointId p, PointId q) {
+          if (p != q) cut.segments.push_back(undirected(p, q));
+        };
+        const auto& pts = out.points;
+        switch (out.kind) {
+          case PairOutcome::Kind::Segment:
+            add_segment(pts[0].id, pts[1].id);
+            if (out.transversal && pts[0].id != pts[1].id) {
+              // The seed's rule with s > 0: B's interior is on the left of lo -> hi in ta, A's
+              // on the left of hi -> lo in tb.
+              if (side == 0)
+                cut.transversal.push_back({pts[0].id, pts[1].id});
+              else
+                cut.transversal.push_back({pts[1].id, pts[0].id});
+            }
+            break;
+          case PairOutcome::Kind::Polygon:
+            // Coplanar overlap: its boundary separates, in each facet, the part that lies on the
+            // other surface from the rest.
+            for (std::size_t j = 0; j < pts.size(); ++j)
+              add_segment(pts[j].id, pts[(j + 1) % pts.size()].id);
+            cut.coplanar_facets.push_back(side == 0 ? pairs[k].second : pairs[k].first);
+            break;
+          default:
+            break;
         }
-        break;
-      case PairOutcome::Kind::Polygon:
-        // Coplanar overlap: its boundary separates, in each facet, the part that lies on the
-        // other surface from the rest.
-        for (std::size_t i = 0; i < ids.size(); ++i) add_segment(ids[i], ids[(i + 1) % ids.size()]);
-        ca.coplanar_facets.push_back(ib);
-        cb.coplanar_facets.push_back(ia);
-        x.coplanar_overlaps = true;
-        break;
-      default:
-        break;
-    }
+      }
+    });
+  }
+  for (std::size_t k = 0; k < np; ++k) {
+    x.intersecting_pairs += outcomes[k].kind != PairOutcome::Kind::None;
+    x.coplanar_overlaps = x.coplanar_overlaps || outcomes[k].kind == PairOutcome::Kind::Polygon;
   }
 
   x.flags.assign(table.size(), 0);

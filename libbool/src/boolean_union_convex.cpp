@@ -156,12 +156,27 @@ Mesh compute_union_of_convex(std::vector<Mesh> convex_solids, UnionStats* stats)
   detail::IntersectOptions soup_options;
   soup_options.soup = true;
   detail::Intersection x = detail::intersect(soup, soup, pairs, soup_options);
-  for (auto& [facet, cut] : x.cuts[1]) {
-    detail::FacetCut& into = x.cuts[0][facet];
-    into.points.insert(into.points.end(), cut.points.begin(), cut.points.end());
-    into.segments.insert(into.segments.end(), cut.segments.begin(), cut.segments.end());
+  {
+    std::vector<std::pair<std::uint32_t, detail::FacetCut>> merged;
+    std::size_t i = 0, j = 0;
+    auto& first = x.cuts[0];
+    auto& second = x.cuts[1];
+    while (i < first.size() || j < second.size()) {
+      if (j == second.size() || (i < first.size() && first[i].first < second[j].first)) {
+        merged.push_back(std::move(first[i++]));
+      } else if (i == first.size() || second[j].first < first[i].first) {
+        merged.push_back(std::move(second[j++]));
+      } else {
+        detail::FacetCut& into = first[i].second;
+        const detail::FacetCut& cut = second[j++].second;
+        into.points.insert(into.points.end(), cut.points.begin(), cut.points.end());
+        into.segments.insert(into.segments.end(), cut.segments.begin(), cut.segments.end());
+        merged.push_back(std::move(first[i++]));
+      }
+    }
+    x.cuts[0] = std::move(merged);
+    x.cuts[1].clear();
   }
-  x.cuts[1].clear();
   split_crossing_segments(x);
   const detail::Refined refined = detail::retriangulate(soup, 0, x);
 
