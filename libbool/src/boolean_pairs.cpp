@@ -14,6 +14,21 @@ namespace morphex::detail {
 Pairs candidate_pairs(const Mesh& a, const Mesh& b) {
   if (a.empty() || b.empty()) return {};
   const std::size_t na = a.num_triangles(), nb = b.num_triangles();
+  if (na * nb <= 4096) {
+    // Small operands (the pieces of a morphology step): every pair of boxes, no trees.
+    auto boxes = [](const Mesh& m) {
+      std::vector<FloatBox> out(m.num_triangles());
+      for (std::size_t t = 0; t < out.size(); ++t)
+        for (VertexIndex v : m.triangles[t]) out[t] += FloatBox::of(m.points[v]);
+      return out;
+    };
+    const std::vector<FloatBox> box_a = boxes(a), box_b = boxes(b);
+    Pairs pairs;
+    for (std::uint32_t i = 0; i < na; ++i)
+      for (std::uint32_t j = 0; j < nb; ++j)
+        if (box_a[i].overlaps(box_b[j])) pairs.emplace_back(i, j);
+    return pairs;
+  }
   if (std::max(na, nb) < 8 * std::min(na, nb))
     return TriangleTree::overlapping_pairs(TriangleTree(a), TriangleTree(b));
   const bool tree_on_a = na < nb;
