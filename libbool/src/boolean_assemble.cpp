@@ -12,7 +12,11 @@
 // Only special points (on both surfaces, or where coincident input vertices met) can be
 // non-manifold: every other vertex keeps the fan it had in its input. So only the corners at
 // special points are examined, and the work is proportional to the intersection, not the meshes.
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
+
+#include <atomic>
+#include <memory>
 
 #include <algorithm>
 #include <numeric>
@@ -78,11 +82,25 @@ IdMesh separate_non_manifold(PointTable& points, const std::vector<Triangle>& fa
                              const std::vector<std::uint8_t>& special,
                              std::vector<FaceOrigin>* origin) {
   const std::size_t nf = faces.size();
-  // Corners at special points, grouped by point.
+  // Corners at special points, grouped by point (gathered in parallel blocks of faces).
   std::vector<std::pair<PointId, std::uint32_t>> corners;
-  for (std::uint32_t f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k)
-      if (special[faces[f][k]]) corners.emplace_back(faces[f][k], f * 3 + k);
+  {
+    constexpr std::uint32_t kBlock = 4096;
+    const std::uint32_t blocks = std::uint32_t((nf + kBlock - 1) / kBlock);
+    std::vector<std::uint32_t> first(blocks + 1, 0);
+    tbb::parallel_for(std::uint32_t(0), blocks, [&](std::uint32_t k) {
+      for (std::uint32_t f = k * kBlock; f < std::min<std::size_t>(nf, (k + 1) * kBlock); ++f)
+        for (PointId p : faces[f]) first[k + 1] += special[p] != 0;
+    });
+    for (std::uint32_t k = 0; k < blocks; ++k) first[k + 1] += first[k];
+    corners.resize(first[blocks]);
+    tbb::parallel_for(std::uint32_t(0), blocks, [&](std::uint32_t k) {
+      std::uint32_t slot = first[k];
+      for (std::uint32_t f = k * kBlock; f < std::min<std::size_t>(nf, (k + 1) * kBlock); ++f)
+        for (int i = 0; i < 3; ++i)
+          if (special[faces[f][i]]) corners[slot++] = {faces[f][i], f * 3 + i};
+    });
+  }
   tbb::parallel_sort(corners.begin(), corners.end());
   auto at = [&](std::uint32_t corner) { return faces[corner / 3][corner % 3]; };
   auto next = [&](std::uint32_t corner) { return faces[corner / 3][(corner % 3 + 1) % 3]; };
@@ -162,19 +180,36 @@ IdMesh separate_non_manifold(PointTable& points, const std::vector<Triangle>& fa
     begin = end;
   }
 
+  // Output vertices: one per non-special point, one per fan of a special point, numbered in the
+  // order of their first corner (in parallel: each corner's vertex key, the first corner of each
+  // key by an atomic minimum, then ranks).
   IdMesh out;
   out.triangles.resize(nf);
-  std::vector<VertexIndex> vertex_of_point(points.size(), kNone);
-  std::vector<VertexIndex> vertex_of_fan(corners.size(), kNone);
-  for (std::uint32_t c = 0; c < nf * 3; ++c) {
-    const PointId p = at(c);
-    VertexIndex& v =
-        special[p] ? vertex_of_fan[fans.find(*slot_of_corner.find(c))] : vertex_of_point[p];
-    if (v == kNone) {
-      v = VertexIndex(out.vertex_point.size());
-      out.vertex_point.push_back(p);
-    }
-    out.triangles[c / 3][c % 3] = v;
+  {
+    const std::size_t corners_total = nf * 3, keys = points.size() + corners.size();
+    std::vector<std::uint32_t> key_of(corners_total);
+    tbb::parallel_for(std::size_t(0), corners_total, [&](std::size_t c) {
+      const PointId p = at(std::uint32_t(c));
+      key_of[c] =
+          special[p] ? std::uint32_t(points.size() + fans.root(*slot_of_corner.find(c))) : p;
+    });
+    std::unique_ptr<std::atomic<std::uint32_t>[]> first(new std::atomic<std::uint32_t>[keys]);
+    tbb::parallel_for(std::size_t(0), keys, [&](std::size_t k) { first[k].store(kNone); });
+    tbb::parallel_for(std::size_t(0), corners_total, [&](std::size_t c) {
+      std::atomic<std::uint32_t>& f = first[key_of[c]];
+      std::uint32_t seen = f.load(std::memory_order_relaxed);
+      while (c < seen && !f.compare_exchange_weak(seen, std::uint32_t(c))) {
+      }
+    });
+    std::vector<std::uint32_t> rank(corners_total + 1, 0);
+    for (std::size_t c = 0; c < corners_total; ++c)
+      rank[c + 1] = rank[c] + (first[key_of[c]].load(std::memory_order_relaxed) == c);
+    out.vertex_point.resize(rank[corners_total]);
+    tbb::parallel_for(std::size_t(0), corners_total, [&](std::size_t c) {
+      const VertexIndex v = rank[first[key_of[c]].load(std::memory_order_relaxed)];
+      out.triangles[c / 3][c % 3] = v;
+      if (first[key_of[c]].load(std::memory_order_relaxed) == c) out.vertex_point[v] = at(c);
+    });
   }
 
   // Pairs of one non-manifold edge that still share both vertex copies: each is split at its own
@@ -215,31 +250,58 @@ IdMesh separate_non_manifold(PointTable& points, const std::vector<Triangle>& fa
 Mesh assemble(const Mesh& a, const Mesh& b, Intersection& x, const Refined refined[2],
               const Labels labels[2], BooleanOp op, bool merge,
               std::vector<FaceOrigin>* provenance) {
+  // The kept faces of both sides, in facet order, gathered in parallel blocks of facets.
   std::vector<Triangle> faces;
   std::vector<FaceOrigin> origin;
   const Mesh* meshes[2] = {&a, &b};
   for (int side = 0; side < 2; ++side) {
     const Mesh& mesh = *meshes[side];
     const bool reverse = op == BooleanOp::Difference && side == 1;
-    auto add = [&](PointId p, PointId q, PointId r, std::uint32_t facet) {
-      faces.push_back(reverse ? Triangle{p, r, q} : Triangle{p, q, r});
-      origin.push_back({std::uint8_t(side), facet});
-    };
-    const Refined& refined_side = refined[side];
-    std::size_t sub = 0;
-    for (std::uint32_t f = 0; f < mesh.num_triangles(); ++f) {
-      if (sub < refined_side.triangles.size() && refined_side.triangles[sub].facet == f) {
-        for (; sub < refined_side.triangles.size() && refined_side.triangles[sub].facet == f; ++sub)
-          if (keep(op, side, labels[side].sub[sub])) {
-            const auto& v = refined_side.triangles[sub].v;
-            add(v[0], v[1], v[2], f);
-          }
-        continue;
-      }
-      if (!keep(op, side, labels[side].facet[f])) continue;
-      const Triangle& t = mesh.triangles[f];
-      add(x.vertex_id(side, t[0]), x.vertex_id(side, t[1]), x.vertex_id(side, t[2]), f);
+    const Refined& r = refined[side];
+    // Sub-triangles of the i-th cut facet: [sub_begin[i], sub_begin[i + 1]).
+    std::vector<std::uint32_t> sub_begin(r.facets.size() + 1, 0);
+    for (std::size_t i = 0, t = 0; i < r.facets.size(); ++i) {
+      sub_begin[i] = std::uint32_t(t);
+      while (t < r.triangles.size() && r.triangles[t].facet == r.facets[i]) ++t;
+      sub_begin[i + 1] = std::uint32_t(t);
     }
+    constexpr std::uint32_t kBlock = 4096;
+    const auto nf = std::uint32_t(mesh.num_triangles());
+    const std::uint32_t blocks = (nf + kBlock - 1) / kBlock;
+    // Visits the faces block k keeps, in facet order.
+    auto for_each_kept = [&](std::uint32_t k, auto&& visit) {
+      const std::uint32_t begin = k * kBlock, end = std::min(nf, begin + kBlock);
+      std::size_t cut =
+          std::lower_bound(r.facets.begin(), r.facets.end(), begin) - r.facets.begin();
+      for (std::uint32_t f = begin; f < end; ++f) {
+        if (cut < r.facets.size() && r.facets[cut] == f) {
+          for (std::uint32_t t = sub_begin[cut]; t < sub_begin[cut + 1]; ++t)
+            if (keep(op, side, labels[side].sub[t])) visit(r.triangles[t].v, f);
+          ++cut;
+          continue;
+        }
+        if (!keep(op, side, labels[side].facet[f])) continue;
+        const Triangle& t = mesh.triangles[f];
+        visit(std::array<PointId, 3>{x.vertex_id(side, t[0]), x.vertex_id(side, t[1]),
+                                     x.vertex_id(side, t[2])},
+              f);
+      }
+    };
+    std::vector<std::size_t> first(blocks + 1, 0);
+    tbb::parallel_for(std::uint32_t(0), blocks, [&](std::uint32_t k) {
+      for_each_kept(k, [&](const std::array<PointId, 3>&, std::uint32_t) { ++first[k + 1]; });
+    });
+    first[0] = faces.size();
+    for (std::uint32_t k = 0; k < blocks; ++k) first[k + 1] += first[k];
+    faces.resize(first[blocks]);
+    origin.resize(first[blocks]);
+    tbb::parallel_for(std::uint32_t(0), blocks, [&](std::uint32_t k) {
+      std::size_t slot = first[k];
+      for_each_kept(k, [&](const std::array<PointId, 3>& v, std::uint32_t f) {
+        faces[slot] = reverse ? Triangle{v[0], v[2], v[1]} : Triangle{v[0], v[1], v[2]};
+        origin[slot++] = {std::uint8_t(side), f};
+      });
+    });
   }
 
   // A vertex can only become removable by merging coplanar faces when the faces around it lie in

@@ -11,6 +11,8 @@
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -405,8 +407,9 @@ void merge_coplanar(const PointTable& table, IdMesh& surface,
 
 Mesh materialize(const PointTable& table, const IdMesh& surface) {
   Mesh out;
-  out.points.reserve(surface.vertex_point.size());
-  for (PointId p : surface.vertex_point) out.points.push_back(table.point(p));
+  out.points.resize(surface.vertex_point.size());
+  tbb::parallel_for(std::size_t(0), out.points.size(),
+                    [&](std::size_t v) { out.points[v] = table.point(surface.vertex_point[v]); });
   out.triangles = surface.triangles;
   return out;
 }

@@ -16,6 +16,11 @@ struct UnionFind {
     return i;
   }
   void join(std::uint32_t a, std::uint32_t b) { parent[find(a)] = find(b); }
+  // find without path compression: safe to call from several threads once joins are done.
+  std::uint32_t root(std::uint32_t i) const {
+    while (parent[i] != i) i = parent[i];
+    return i;
+  }
 };
 
 }  // namespace morphex::detail
