@@ -200,6 +200,29 @@ TEST(Spatial, TreeFindsExactlyTheOverlappingBoxes) {
   EXPECT_FALSE(found.empty());
 }
 
+TEST(Spatial, FloatBoxesRoundOutwardAtEveryMagnitude) {
+  const double tiny = std::numeric_limits<float>::denorm_min();
+  const double huge = 1e300, big = double(std::numeric_limits<float>::max());
+  const std::vector<double> values = {0.0,     0.1,    -0.1,     1.0 / 3,    -1.0 / 3,
+                                      1e-40,   -1e-40, tiny / 3, -tiny / 3,  3.0e38 + 1e30,
+                                      big * 2, huge,   -huge,    16777217.0, -16777217.0};
+  for (const double lo : values)
+    for (const double hi : values) {
+      if (lo > hi) continue;
+      const CGAL::Bbox_3 exact(lo, lo, lo, hi, hi, hi);
+      const FloatBox box = FloatBox::of(exact);
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_LE(double(box.lo[k]), lo) << lo;
+        EXPECT_GE(double(box.hi[k]), hi) << hi;
+        // the float next to the bound is not conservative (the rounding is tight)
+        if (std::isfinite(box.lo[k]) && double(box.lo[k]) != lo)
+          EXPECT_GT(double(std::nextafter(box.lo[k], std::numeric_limits<float>::infinity())), lo);
+        if (std::isfinite(box.hi[k]) && double(box.hi[k]) != hi)
+          EXPECT_LT(double(std::nextafter(box.hi[k], -std::numeric_limits<float>::infinity())), hi);
+      }
+    }
+}
+
 TEST(Spatial, OverlappingPairsOfTwoTreesAreThoseOfAllPairs) {
   const Mesh a = make_icosphere(2, FT(1));
   const Mesh b = translated(make_icosphere(3, FT(1)), Vector(FT(1) / 3, FT(1) / 5, FT(1) / 7));

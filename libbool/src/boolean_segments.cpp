@@ -420,19 +420,38 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
   auto question = [&](std::uint32_t side, std::uint32_t facet, PointId point) {
     return (std::uint64_t((side << 31) | facet) << 32) | point;
   };
+  // A facet meets many pairs: its interval normal is computed once, and a vertex's side of its
+  // plane is then one interval dot product rather than a 3x3 determinant.
+  std::vector<ApproxVector> normals[2];
+  {
+    std::vector<std::uint8_t> used[2];
+    for (int side = 0; side < 2; ++side) used[side].assign(meshes[side]->num_triangles(), 0);
+    for (const auto& [ia, ib] : pairs) used[0][ia] = used[1][ib] = 1;
+    for (int side = 0; side < 2; ++side) {
+      normals[side].resize(used[side].size());
+      for_each_upward(used[side].size(), [&](std::size_t f) {
+        if (!used[side][f]) return;
+        const Corners t = corner_ids(side, std::uint32_t(f));
+        normals[side][f] = table.approx_normal(t[0], t[1], t[2]);
+      });
+    }
+  }
   std::vector<PairSigns> signs(np);
   for_each_upward(np, [&](std::size_t k) {
     const auto [ia, ib] = pairs[k];
     const Corners ta = corner_ids(0, ia), tb = corner_ids(1, ib);
     PairSigns& s = signs[k];
-    auto against = [&](const Corners& t, const Corners& other, std::int8_t(&out)[3]) {
+    auto against = [&](const Corners& t, const Corners& other, const ApproxVector& normal,
+                       std::int8_t(&out)[3]) {
       for (int i = 0; i < 3; ++i) {
-        const auto o = table.orientation_filter(other[0], other[1], other[2], t[i]);
+        const auto o = t[i] == other[0] || t[i] == other[1] || t[i] == other[2]
+                           ? CGAL::make_uncertain(CGAL::ZERO)
+                           : table.side_filter(normal, other[0], t[i]);
         out[i] = o.is_certain() ? std::int8_t(o.make_certain()) : kUndecided;
       }
       return out[0] != 0 && out[0] != kUndecided && out[0] == out[1] && out[1] == out[2];
     };
-    s.separated = against(ta, tb, s.a) || against(tb, ta, s.b);
+    s.separated = against(ta, tb, normals[1][ib], s.a) || against(tb, ta, normals[0][ia], s.b);
   });
   std::vector<std::uint64_t> questions;
   for (std::size_t k = 0; k < np; ++k) {
@@ -568,8 +587,9 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
     };
     const auto [ca, na] = chord(0, ta, ta_ids, signs[k].a, ib);
     const auto [cb, nb] = chord(1, tb, tb_ids, signs[k].b, ia);
+    const ApproxVector line = CGAL::cross_product(normals[0][ia], normals[1][ib]);
     auto order = [&](const ChordEnd& p, const ChordEnd& q) {  // sign of q - p along the line
-      return p.id == q.id ? CGAL::ZERO : table.along_line(ta, tb, p.id, q.id);
+      return p.id == q.id ? CGAL::ZERO : table.along_line(line, ta, tb, p.id, q.id);
     };
     auto sorted = [&](const std::array<ChordEnd, 3>& e, std::size_t count) {
       const ChordEnd& last = e[count - 1];

@@ -355,6 +355,22 @@ CGAL::Sign PointTable::along_line(const std::array<PointId, 3>& a, const std::ar
         CGAL::sign(CGAL::cross_product(na, nb) * (approx(q) - approx(p)));
     if (CGAL::is_certain(s)) return CGAL::get_certain(s);
   }
+  return along_line_exact(a, b, p, q);
+}
+
+CGAL::Sign PointTable::along_line(const ApproxVector& line, const std::array<PointId, 3>& a,
+                                  const std::array<PointId, 3>& b, PointId p, PointId q) const {
+  {
+    IntervalStage rounding;
+    const CGAL::Uncertain<CGAL::Sign> s = CGAL::sign(line * (approx(q) - approx(p)));
+    if (CGAL::is_certain(s)) return CGAL::get_certain(s);
+  }
+  return along_line_exact(a, b, p, q);
+}
+
+CGAL::Sign PointTable::along_line_exact(const std::array<PointId, 3>& a,
+                                        const std::array<PointId, 3>& b, PointId p,
+                                        PointId q) const {
   // Every difference is scaled by a product of positive W factors: the sign is unchanged.
   const auto na = cross(difference(exact(a[0]), exact(a[1])), difference(exact(a[0]), exact(a[2])));
   const auto nb = cross(difference(exact(b[0]), exact(b[1])), difference(exact(b[0]), exact(b[2])));

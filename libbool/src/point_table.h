@@ -95,6 +95,7 @@ void for_each_upward(std::size_t n, Body&& body) {
 using PointId = std::uint32_t;
 using Interval = CGAL::Interval_nt<false>;
 using ApproxPoint = Kernel::Approximate_kernel::Point_3;
+using ApproxVector = Kernel::Approximate_kernel::Vector_3;
 using ExactPoint = Kernel::Exact_kernel::Point_3;
 using Homogeneous = std::array<mpz_class, 4>;  // the point (X/W, Y/W, Z/W), W > 0
 
@@ -167,6 +168,15 @@ class PointTable {
   // Its two stages, for callers that gather the undecided cases to evaluate each once.
   CGAL::Uncertain<CGAL::Sign> orientation_filter(PointId p, PointId q, PointId r, PointId s) const;
   CGAL::Sign orientation_exact(PointId p, PointId q, PointId r, PointId s) const;
+  // The interval normal (q - p) x (r - p) (the caller rounds upward), and the interval sign of
+  // normal . (s - p): orientation(p, q, r, s) when `normal` is the normal of p, q, r.
+  ApproxVector approx_normal(PointId p, PointId q, PointId r) const {
+    const ApproxPoint& ap = approx(p);
+    return CGAL::cross_product(approx(q) - ap, approx(r) - ap);
+  }
+  CGAL::Uncertain<CGAL::Sign> side_filter(const ApproxVector& normal, PointId p, PointId s) const {
+    return CGAL::sign(normal * (approx(s) - approx(p)));
+  }
   // orientation of (p, q, r) seen along the axis `dropped` (coordinates u < v of the other two).
   CGAL::Sign orientation_2(int dropped, PointId p, PointId q, PointId r) const;
   // CGAL's side_of_oriented_circle of the projected points.
@@ -177,6 +187,11 @@ class PointTable {
   // the common line of the planes of triangles a and b.
   CGAL::Sign along_line(const std::array<PointId, 3>& a, const std::array<PointId, 3>& b, PointId p,
                         PointId q) const;
+  // The same with the interval line direction Na x Nb given (computed once for many questions).
+  CGAL::Sign along_line(const ApproxVector& line, const std::array<PointId, 3>& a,
+                        const std::array<PointId, 3>& b, PointId p, PointId q) const;
+  CGAL::Sign along_line_exact(const std::array<PointId, 3>& a, const std::array<PointId, 3>& b,
+                              PointId p, PointId q) const;
   // The sign of the dot product of the normals of triangles a and b (two triangles of one plane:
   // positive when alike oriented).
   CGAL::Sign normal_dot(const std::array<PointId, 3>& a, const std::array<PointId, 3>& b) const;

@@ -8,10 +8,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <type_traits>
+
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
 
 #include "filtered.h"
 
@@ -19,13 +24,25 @@ namespace morphex {
 
 namespace {
 
+// The float next to a finite f toward -infinity (step -1) or +infinity (step +1), by its bits:
+// std::nextafter is a library call, and boxes are rounded for every vertex of every Boolean.
+float next_float(float f, int step) {
+  if (f == 0) return float(step) * std::numeric_limits<float>::denorm_min();
+  std::uint32_t bits;
+  std::memcpy(&bits, &f, sizeof bits);
+  bits += (f > 0) == (step > 0) ? 1u : std::uint32_t(-1);
+  std::memcpy(&f, &bits, sizeof bits);
+  return f;
+}
 float round_down(double d) {
-  float f = static_cast<float>(d);
-  return f > d ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+  const float f = static_cast<float>(d);
+  if (!(f > d)) return f;
+  return std::isinf(f) ? std::numeric_limits<float>::max() : next_float(f, -1);
 }
 float round_up(double d) {
-  float f = static_cast<float>(d);
-  return f < d ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+  const float f = static_cast<float>(d);
+  if (!(f < d)) return f;
+  return std::isinf(f) ? std::numeric_limits<float>::lowest() : next_float(f, +1);
 }
 
 // Morton code of a box centre on a 1024^3 grid over `frame`: 30 bits, enough to order the
@@ -159,6 +176,19 @@ TriangleTree::TriangleTree(const Mesh& mesh) {
                       }
                     });
 
+  leaf_boxes_.resize((n + kLeafSize - 1) / kLeafSize);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaf_boxes_.size(), kGrain / kLeafSize),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t leaf = r.begin(); leaf < r.end(); ++leaf)
+                        for (std::uint32_t i = 0; i < kLeafSize; ++i) {
+                          const std::size_t t = leaf * kLeafSize + i;
+                          const FloatBox box = t < n ? sorted_boxes_[t] : FloatBox{};
+                          for (int k = 0; k < 3; ++k) {
+                            leaf_boxes_[leaf].lo[k][i] = box.lo[k];
+                            leaf_boxes_[leaf].hi[k][i] = box.hi[k];
+                          }
+                        }
+                    });
   levels_.emplace_back((n + kLeafSize - 1) / kLeafSize);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, levels_[0].size(), kGrain / kLeafSize),
                     [&](const tbb::blocked_range<std::size_t>& r) {
@@ -194,30 +224,33 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> TriangleTree::overlapping_p
       a.levels_[task_level].size());
   tbb::parallel_for(std::uint32_t(0), std::uint32_t(found.size()), [&](std::uint32_t task) {
     auto& out = found[task];
+    // Node pairs on the stack have overlapping boxes: children are tested before they are pushed.
     std::pair<Node, Node> stack[256];
     int top = 0;
-    stack[top++] = {Node{task_level, task}, root_b};
+    const Node start{task_level, task};
+    if (a.node_box(start).overlaps(b.node_box(root_b))) stack[top++] = {start, root_b};
     while (top > 0) {
       const auto [na, nb] = stack[--top];
-      const FloatBox& box_b = b.node_box(nb);
-      if (!a.node_box(na).overlaps(box_b)) continue;
       if (na.level == 0 && nb.level == 0) {
         a.for_each_triangle(na, [&](std::uint32_t t, const FloatBox& box_t) {
-          if (!box_t.overlaps(box_b)) return;
-          b.for_each_triangle(nb, [&](std::uint32_t u, const FloatBox& box_u) {
-            if (box_t.overlaps(box_u)) out.emplace_back(t, u);
-          });
+          std::uint32_t hits = b.leaf_overlaps(nb.index, box_t);
+          for (std::uint32_t i = 0; hits != 0; ++i, hits >>= 1)
+            if (hits & 1u) out.emplace_back(t, b.order_[nb.index * kLeafSize + i]);
         });
         continue;
       }
       // Descend the higher node (the one covering more triangles).
       Node kids[2];
       if (na.level >= nb.level) {
+        const FloatBox& box_b = b.node_box(nb);
         const std::uint32_t count = a.children(na, kids);
-        for (std::uint32_t k = 0; k < count; ++k) stack[top++] = {kids[k], nb};
+        for (std::uint32_t k = 0; k < count; ++k)
+          if (a.node_box(kids[k]).overlaps(box_b)) stack[top++] = {kids[k], nb};
       } else {
+        const FloatBox& box_a = a.node_box(na);
         const std::uint32_t count = b.children(nb, kids);
-        for (std::uint32_t k = 0; k < count; ++k) stack[top++] = {na, kids[k]};
+        for (std::uint32_t k = 0; k < count; ++k)
+          if (box_a.overlaps(b.node_box(kids[k]))) stack[top++] = {na, kids[k]};
       }
     }
   });
@@ -226,6 +259,28 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> TriangleTree::overlapping_p
   pairs.reserve(total);
   for (const auto& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
   return pairs;
+}
+
+std::uint32_t TriangleTree::leaf_overlaps(std::uint32_t leaf, const FloatBox& box) const {
+  const LeafBoxes& l = leaf_boxes_[leaf];
+#if defined(__SSE2__)
+  static_assert(kLeafSize == 4, "one SSE register per coordinate of a leaf");
+  __m128 all = _mm_castsi128_ps(_mm_set1_epi32(-1));
+  for (int k = 0; k < 3; ++k) {
+    all = _mm_and_ps(all, _mm_cmple_ps(_mm_load_ps(l.lo[k]), _mm_set1_ps(box.hi[k])));
+    all = _mm_and_ps(all, _mm_cmple_ps(_mm_set1_ps(box.lo[k]), _mm_load_ps(l.hi[k])));
+  }
+  return std::uint32_t(_mm_movemask_ps(all));
+#else
+  std::uint32_t mask = 0;
+  for (std::uint32_t i = 0; i < kLeafSize; ++i) {
+    bool overlap = true;
+    for (int k = 0; k < 3; ++k)
+      overlap = overlap && l.lo[k][i] <= box.hi[k] && box.lo[k] <= l.hi[k][i];
+    mask |= std::uint32_t(overlap) << i;
+  }
+  return mask;
+#endif
 }
 
 std::uint32_t TriangleTree::self_task_level() const {

@@ -34,9 +34,11 @@ struct FloatBox {
     }
     return *this;
   }
+  // Without branches: in tree traversals the outcome of each comparison is a coin toss, and
+  // mispredicted branches cost more than the six comparisons.
   bool overlaps(const FloatBox& o) const {
-    return lo[0] <= o.hi[0] && o.lo[0] <= hi[0] && lo[1] <= o.hi[1] && o.lo[1] <= hi[1] &&
-           lo[2] <= o.hi[2] && o.lo[2] <= hi[2];
+    return bool((lo[0] <= o.hi[0]) & (o.lo[0] <= hi[0]) & (lo[1] <= o.hi[1]) & (o.lo[1] <= hi[1]) &
+                (lo[2] <= o.hi[2]) & (o.lo[2] <= hi[2]));
   }
   CGAL::Bbox_3 bbox() const { return {lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]}; }
 };
@@ -132,9 +134,18 @@ class TriangleTree {
   // Runs task(i) for i in [0, count), in parallel (TBB, kept out of this header).
   static void parallel_tasks(std::size_t count, const std::function<void(std::size_t)>& task);
 
-  std::vector<FloatBox> boxes_;                // by triangle
-  std::vector<std::uint32_t> order_;           // triangles in Morton order
-  std::vector<FloatBox> sorted_boxes_;         // boxes_ in that order
+  std::vector<FloatBox> boxes_;         // by triangle
+  std::vector<std::uint32_t> order_;    // triangles in Morton order
+  std::vector<FloatBox> sorted_boxes_;  // boxes_ in that order
+  // The same boxes by leaf, coordinates side by side (structure of arrays), so that one box is
+  // tested against a whole leaf at once; the slots past the last triangle hold empty boxes.
+  struct LeafBoxes {
+    alignas(16) float lo[3][kLeafSize];
+    alignas(16) float hi[3][kLeafSize];
+  };
+  std::vector<LeafBoxes> leaf_boxes_;
+  // Bit i set: the box of the leaf's i-th triangle overlaps `box`.
+  std::uint32_t leaf_overlaps(std::uint32_t leaf, const FloatBox& box) const;
   std::vector<std::vector<FloatBox>> levels_;  // levels_.back() has the root alone
 };
 
