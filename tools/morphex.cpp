@@ -4,6 +4,7 @@
 #include <sys/resource.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -69,11 +70,15 @@ int main(int argc, char** argv) {
   if (max_memory_mb > 0) {
     // Start the worker threads first: the cap is on the operation's memory, and a thread whose
     // stack could not be mapped would fail with a thread error instead of "out of memory".
+    // Each task waits for the others, so every worker the arena can have must join; on a
+    // loaded machine a thread may take a while to start (the bound only guards against a worker
+    // that never comes).
+    const unsigned workers = std::min(threads, unsigned(tbb::this_task_arena::max_concurrency()));
     std::atomic<unsigned> started{0};
-    tbb::parallel_for(0u, threads, [&](unsigned) {
+    tbb::parallel_for(0u, workers, [&](unsigned) {
       ++started;
-      const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(100);
-      while (started < threads && std::chrono::steady_clock::now() < until)
+      const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+      while (started < workers && std::chrono::steady_clock::now() < until)
         std::this_thread::yield();
     });
     const rlimit cap{rlim_t(max_memory_mb) << 20, rlim_t(max_memory_mb) << 20};
