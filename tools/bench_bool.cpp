@@ -409,8 +409,9 @@ int main(int argc, char** argv) {
       << "ratio = peer time / morphex time (above 1: morphex is faster); tri/s = input "
          "triangles per second of morphex; MiB = peak memory above the inputs, morphex / "
          "corefinement / Nef.\n"
-         "morphex times the operation on trusted inputs, as corefinement does, with exact output "
-         "coordinates; check = morphex's validity check of both inputs, which compute_boolean "
-         "runs by default; corefinement's output coordinates stay lazy when its clock stops.\n";
+         "morphex times the operation on trusted inputs, as corefinement does; check = "
+         "morphex's validity check of both inputs, which compute_boolean runs by default. Both "
+         "return exact output points that are evaluated lazily (as CGAL's Epeck constructions "
+         "are); the volumes compared are exact.\n";
   return all_agree ? 0 : 1;
 }
