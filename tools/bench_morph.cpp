@@ -140,15 +140,16 @@ int main(int argc, char** argv) {
                   << nary_seconds / our_seconds << "x the tree's time)\n";
       }
       all_agree = all_agree && report.valid_solid();
-      std::cout << std::left << std::setw(28) << input << std::setw(8) << op_name << std::right
-                << std::setw(8) << a.num_triangles() << std::setw(10) << std::setprecision(3)
-                << our_seconds << std::setw(10)
+      // Rows are flushed as they come: a large input's opening can take minutes.
+      std::cout << std::left << std::setw(27) << input << ' ' << std::setw(8) << op_name
+                << std::right << std::setw(8) << a.num_triangles() << std::setw(10)
+                << std::setprecision(3) << our_seconds << std::setw(10)
                 << (their_seconds > 0 ? std::to_string(their_seconds).substr(0, 6) : "-")
                 << std::setw(9)
                 << (their_seconds > 0 ? std::to_string(their_seconds / our_seconds).substr(0, 6)
                                       : "-")
                 << std::setw(9) << ours.num_triangles() << std::setw(10) << int(peak_mib()) << "  "
-                << agreement << '\n';
+                << agreement << std::endl;
       rows.push_back(row);
     }
     if (chain > 0) {
