@@ -46,6 +46,11 @@ struct CutPoint {
   std::uint8_t edges;
 };
 
+// The edge mask of corner k: the edges k - 1 and k meet there.
+inline std::uint8_t corner_edges(int k) {
+  return std::uint8_t((1u << k) | (1u << ((k + 2) % 3)));
+}
+
 // A transversal segment (its interior lies inside both open triangles), oriented by the seed's
 // rule so that the other solid's interior is on its left, seen along the facet's normal.
 struct OrientedSegment {

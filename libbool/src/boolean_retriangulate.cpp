@@ -22,10 +22,6 @@ namespace morphex::detail {
 
 namespace {
 
-std::uint8_t corner_edges(int k) {
-  return std::uint8_t((1u << k) | (1u << ((k + 2) % 3)));
-}
-
 // The sub-triangles of one cut facet, with indices local to the facet.
 struct FacetPieces {
   std::vector<SubTriangle> triangles;

@@ -48,11 +48,6 @@ Corners corners_of(const PointTable& table, const Mesh& mesh, int side, std::uin
   return {table.vertex(side, f[0]), table.vertex(side, f[1]), table.vertex(side, f[2])};
 }
 
-// The edges of a triangle through its corner k: k - 1 and k (edge i joins corners i and i + 1).
-std::uint8_t corner_edges(int k) {
-  return std::uint8_t((1u << k) | (1u << ((k + 2) % 3)));
-}
-
 int corner_of_edges(std::uint8_t edges) {
   for (int k = 0; k < 3; ++k)
     if (corner_edges(k) == edges) return k;

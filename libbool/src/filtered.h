@@ -17,6 +17,22 @@
 
 namespace morphex::detail {
 
+// The axis of the largest component of an interval normal that is certainly not zero (the
+// projection along it is exact and well conditioned), or -1 when no component is certain.
+template <class IntervalVector>
+int certain_dominant_axis(const IntervalVector& normal) {
+  int best = -1;
+  double best_bound = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double bound = CGAL::abs(normal.cartesian(k)).inf();
+    if (bound > best_bound) {
+      best = k;
+      best_bound = bound;
+    }
+  }
+  return best;
+}
+
 template <class Expression, class... Points>
 CGAL::Sign filtered_sign(const Expression& expression, const Points&... points) {
   {

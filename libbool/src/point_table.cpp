@@ -344,20 +344,6 @@ bool PointTable::equal(PointId p, PointId q) const {
   return true;
 }
 
-CGAL::Sign PointTable::along_line(const std::array<PointId, 3>& a, const std::array<PointId, 3>& b,
-                                  PointId p, PointId q) const {
-  {
-    IntervalStage rounding;
-    const ApproxPoint &a0 = approx(a[0]), &b0 = approx(b[0]);
-    const auto na = CGAL::cross_product(approx(a[1]) - a0, approx(a[2]) - a0);
-    const auto nb = CGAL::cross_product(approx(b[1]) - b0, approx(b[2]) - b0);
-    const CGAL::Uncertain<CGAL::Sign> s =
-        CGAL::sign(CGAL::cross_product(na, nb) * (approx(q) - approx(p)));
-    if (CGAL::is_certain(s)) return CGAL::get_certain(s);
-  }
-  return along_line_exact(a, b, p, q);
-}
-
 CGAL::Sign PointTable::along_line(const ApproxVector& line, const std::array<PointId, 3>& a,
                                   const std::array<PointId, 3>& b, PointId p, PointId q) const {
   {
@@ -401,16 +387,7 @@ int PointTable::dominant_axis(PointId p, PointId q, PointId r) const {
     IntervalStage rounding;
     const ApproxPoint& ap = approx(p);
     const auto n = CGAL::cross_product(approx(q) - ap, approx(r) - ap);
-    int best = -1;
-    double best_bound = 0;
-    for (int k = 0; k < 3; ++k) {
-      const double bound = CGAL::abs(n.cartesian(k)).inf();
-      if (bound > best_bound) {
-        best = k;
-        best_bound = bound;
-      }
-    }
-    if (best >= 0) return best;
+    if (const int axis = certain_dominant_axis(n); axis >= 0) return axis;
   }
   const auto n = cross(difference(exact(p), exact(q)), difference(exact(p), exact(r)));
   const mpz_class ax = abs(n[0]), ay = abs(n[1]), az = abs(n[2]);

@@ -184,14 +184,10 @@ class PointTable {
   CGAL::Comparison_result compare(int axis, PointId p, PointId q) const;
   bool equal(PointId p, PointId q) const;
   // sign(((a1 - a0) x (a2 - a0)) x ((b1 - b0) x (b2 - b0)) . (q - p)): the order of p and q along
-  // the common line of the planes of triangles a and b.
-  CGAL::Sign along_line(const std::array<PointId, 3>& a, const std::array<PointId, 3>& b, PointId p,
-                        PointId q) const;
-  // The same with the interval line direction Na x Nb given (computed once for many questions).
+  // the common line of the planes of triangles a and b. `line` is that direction on intervals
+  // (the caller computes it once for the several questions of a pair).
   CGAL::Sign along_line(const ApproxVector& line, const std::array<PointId, 3>& a,
                         const std::array<PointId, 3>& b, PointId p, PointId q) const;
-  CGAL::Sign along_line_exact(const std::array<PointId, 3>& a, const std::array<PointId, 3>& b,
-                              PointId p, PointId q) const;
   // The sign of the dot product of the normals of triangles a and b (two triangles of one plane:
   // positive when alike oriented).
   CGAL::Sign normal_dot(const std::array<PointId, 3>& a, const std::array<PointId, 3>& b) const;
@@ -200,6 +196,8 @@ class PointTable {
 
  private:
   Homogeneous compute_exact(PointId id) const;
+  CGAL::Sign along_line_exact(const std::array<PointId, 3>& a, const std::array<PointId, 3>& b,
+                              PointId p, PointId q) const;
   std::atomic<Homogeneous*>& exact_slot(PointId id) const {
     return id < num_inputs_ ? input_exact_[id] : constructed_exact_[id - num_inputs_];
   }

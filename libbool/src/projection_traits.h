@@ -29,16 +29,7 @@ inline int dominant_axis(const Point& a, const Point& b, const Point& c) {
     CGAL::Protect_FPU_rounding<true> rounding;
     const auto &pa = CGAL::approx(a), &pb = CGAL::approx(b), &pc = CGAL::approx(c);
     const auto n = CGAL::cross_product(pb - pa, pc - pa);
-    int best = -1;
-    double best_bound = 0;
-    for (int k = 0; k < 3; ++k) {
-      const double bound = CGAL::abs(n.cartesian(k)).inf();
-      if (bound > best_bound) {
-        best = k;
-        best_bound = bound;
-      }
-    }
-    if (best >= 0) return best;
+    if (const int axis = certain_dominant_axis(n); axis >= 0) return axis;
   }
   const auto &ea = CGAL::exact(a), &eb = CGAL::exact(b), &ec = CGAL::exact(c);
   const auto n = CGAL::cross_product(eb - ea, ec - ea);
