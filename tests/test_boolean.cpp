@@ -295,6 +295,26 @@ TEST(Boolean, VertexOnAFacetAndEdgeInAFacet) {
   check_identities(cube, translated(make_tetrahedron(), Kernel::Vector_3(-1, -1, 1)));
 }
 
+TEST(Boolean, VertexTouchingAFacetAtItsCentroid) {
+  // A point contact builds no segment, so the touched facet stays whole and is labelled by one
+  // point inside it. Its centroid lies on the other solid here: another point must be taken.
+  const Mesh cube = make_cube(FT(1));
+  int touched = 0;
+  for (const Triangle& t : cube.triangles) {
+    const Point &p = cube.points[t[0]], &q = cube.points[t[1]], &r = cube.points[t[2]];
+    if (p.z() != 1 || q.z() != 1 || r.z() != 1) continue;
+    const Point apex = CGAL::centroid(p, q, r);
+    const Mesh above = translated(make_octahedron(FT(1)), apex - Point(0, 0, -1));
+    Mesh unite;
+    EXPECT_EQ(checked_volume(cube, above, BooleanOp::Union, &unite), FT(8) + FT(4) / 3);
+    EXPECT_EQ(check_mesh(unite).components, 2u);
+    EXPECT_EQ(checked_volume(cube, above, BooleanOp::Intersection), 0);
+    EXPECT_EQ(checked_volume(cube, above, BooleanOp::Difference), FT(8));
+    ++touched;
+  }
+  EXPECT_EQ(touched, 2);  // both triangles of the top face
+}
+
 // Inputs whose own non-manifold features are separated (coincident vertices and edges that are
 // distinct in the mesh): the other operand crosses the doubled edge's interior, touches it with
 // vertices, or is the same solid. Point identity must merge the coincident features where the

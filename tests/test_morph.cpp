@@ -139,6 +139,45 @@ TEST(Minkowski, NonConvexSecondOperandMatchesTheSwappedSum) {
   EXPECT_EQ(pairs, 2 * arm - overlap);
 }
 
+TEST(Minkowski, ConvexHullOfFourPointsIsAnOutwardTetrahedron) {
+  const Mesh hull = convex_hull({Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(0, 0, 1)});
+  EXPECT_EQ(hull.num_triangles(), 4u);
+  EXPECT_EQ(valid_volume(hull, "tetrahedron"), FT(1) / 6);
+}
+
+// Dilation and erosion by a convex SE come from the reduced convolution's pieces (prisms on the
+// facets, pieces at convex edges and at vertices where the supporting vertex of B changes). They
+// must give exactly the solid of the facet-hull formula A u (U_f conv(f + B)), computed here
+// independently with boundary_sum, on inputs with reflex edges and saddle vertices, normals in
+// general position and parallel to B's faces, and SEs holding the origin inside or on a face.
+TEST(Minkowski, ReducedConvolutionGivesTheFacetHullSolid) {
+  const Mesh torus = make_torus(8, 6, 1.0, 0.4);
+  const Mesh tilted_torus = transformed(torus, quaternion_rotation(3, 1, 2, 1));
+  const BooleanResult dented =
+      compute_boolean(make_icosphere(1, FT(1)), make_cube(FT(1) / 2), BooleanOp::Difference);
+  ASSERT_TRUE(dented.ok());
+  const std::vector<std::pair<std::string, Mesh>> inputs = {
+      {"torus", torus}, {"tilted torus", tilted_torus}, {"L", l_shape()}, {"dented", dented.mesh}};
+  for (const std::string spec :
+       {"cube:r=1/10", "octahedron:r=1/8", "ball:r=1/10,level=0", "cube:r=1/8,oz=1/8"}) {
+    const StructuringElement se = parse_structuring_element(spec);
+    for (const auto& [name, a] : inputs) {
+      SCOPED_TRACE(name + " by " + spec);
+      const Mesh dilated = dilation(a, se);
+      const Mesh by_hulls = compute_union({boundary_sum(a, se.mesh, true), a});
+      EXPECT_EQ(valid_volume(dilated, "dilation"), valid_volume(by_hulls, "hull dilation"));
+      EXPECT_EQ(volume_outside(dilated, by_hulls), 0);
+      const Mesh eroded = erosion(a, se);
+      const BooleanResult eroded_by_hulls =
+          compute_boolean(a, boundary_sum(a, reflected(se.mesh), true), BooleanOp::Difference);
+      ASSERT_TRUE(eroded_by_hulls.ok());
+      EXPECT_EQ(valid_volume(eroded, "erosion"),
+                valid_volume(eroded_by_hulls.mesh, "hull erosion"));
+      EXPECT_EQ(volume_outside(eroded_by_hulls.mesh, eroded), 0);
+    }
+  }
+}
+
 TEST(Morphology, ErosionToNothingIsAValidEmptyMesh) {
   const Mesh small = make_cube(FT(1) / 10);
   const Mesh eroded = erosion(small, parse_structuring_element("cube:r=1/5"));

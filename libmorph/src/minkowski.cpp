@@ -24,52 +24,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// conv(f + B) for one facet f and a convex B: the hull of three translated copies of B's vertices.
-// The surface's facets in convex planar groups: a triangle with its neighbour across one edge
-// when the two are coplanar, alike oriented and make a strictly convex quadrilateral, else alone.
-// For convex B, (f1 u f2) + B = (f1 + B) u (f2 + B), and the sum of a convex quadrilateral with B
-// is convex, so each group is one convex piece: half as many pieces on meshes whose planar faces
-// are split in triangles (CAD models, boxes). Greedy in facet order, so the grouping depends only
-// on the input.
-std::vector<std::vector<VertexIndex>> convex_facet_groups(const Mesh& surface) {
-  const std::size_t nf = surface.triangles.size();
-  std::unordered_map<std::uint64_t, std::uint32_t> face_of_edge;
-  face_of_edge.reserve(3 * nf);
-  auto key = [](VertexIndex u, VertexIndex v) { return (std::uint64_t(u) << 32) | v; };
-  for (std::uint32_t f = 0; f < nf; ++f)
-    for (int i = 0; i < 3; ++i)
-      face_of_edge.emplace(key(surface.triangles[f][i], surface.triangles[f][(i + 1) % 3]), f);
-  const auto& p = surface.points;
-  std::vector<std::uint8_t> grouped(nf, 0);
-  std::vector<std::vector<VertexIndex>> groups;
-  groups.reserve(nf);
-  for (std::uint32_t f = 0; f < nf; ++f) {
-    if (grouped[f]) continue;
-    grouped[f] = 1;
-    const Triangle& t = surface.triangles[f];
-    std::vector<VertexIndex> group(t.begin(), t.end());
-    for (int i = 0; i < 3; ++i) {
-      const VertexIndex u = t[i], v = t[(i + 1) % 3], w = t[(i + 2) % 3];
-      const auto twin = face_of_edge.find(key(v, u));
-      if (twin == face_of_edge.end() || grouped[twin->second]) continue;
-      const Triangle& g = surface.triangles[twin->second];
-      const VertexIndex x = g[0] != u && g[0] != v ? g[0] : g[1] != u && g[1] != v ? g[1] : g[2];
-      // Coplanar, x across uv from w, and u, v across wx from each other: a convex quadrilateral.
-      if (CGAL::orientation(p[u], p[v], p[w], p[x]) != CGAL::COPLANAR ||
-          CGAL::coplanar_orientation(p[u], p[v], p[w], p[x]) != CGAL::NEGATIVE ||
-          // (u on the line wx: a flat angle, and coplanar_orientation's precondition fails)
-          CGAL::collinear(p[w], p[x], p[u]) ||
-          CGAL::coplanar_orientation(p[w], p[x], p[u], p[v]) != CGAL::NEGATIVE)
-        continue;
-      grouped[twin->second] = 1;
-      group.push_back(x);
-      break;
-    }
-    groups.push_back(std::move(group));
-  }
-  return groups;
-}
-
 // conv(g + B) for a convex planar group g of facets and a convex B.
 Mesh facet_sum_convex(const Mesh& surface, const std::vector<VertexIndex>& group, const Mesh& b) {
   std::vector<Point> points;
@@ -107,6 +61,52 @@ Mesh triangle_pair_sum(const Mesh& surface, const Triangle& f, const Mesh& b, co
 }  // namespace
 
 namespace detail {
+
+// The surface's facets in convex planar groups: a triangle with its neighbour across one edge
+// when the two are coplanar, alike oriented and make a strictly convex quadrilateral, else alone.
+// For convex B, (f1 u f2) + B = (f1 + B) u (f2 + B), and the sum of a convex quadrilateral with B
+// is convex, so each group is one convex piece: half as many pieces on meshes whose planar faces
+// are split in triangles (CAD models, boxes). Greedy in facet order, so the grouping depends only
+// on the input.
+std::vector<FacetGroup> convex_facet_groups(const Mesh& surface) {
+  const std::size_t nf = surface.triangles.size();
+  std::unordered_map<std::uint64_t, std::uint32_t> face_of_edge;
+  face_of_edge.reserve(3 * nf);
+  auto key = [](VertexIndex u, VertexIndex v) { return (std::uint64_t(u) << 32) | v; };
+  for (std::uint32_t f = 0; f < nf; ++f)
+    for (int i = 0; i < 3; ++i)
+      face_of_edge.emplace(key(surface.triangles[f][i], surface.triangles[f][(i + 1) % 3]), f);
+  const auto& p = surface.points;
+  std::vector<std::uint8_t> grouped(nf, 0);
+  std::vector<FacetGroup> groups;
+  groups.reserve(nf);
+  for (std::uint32_t f = 0; f < nf; ++f) {
+    if (grouped[f]) continue;
+    grouped[f] = 1;
+    const Triangle& t = surface.triangles[f];
+    FacetGroup group{{f}, {t.begin(), t.end()}};
+    for (int i = 0; i < 3; ++i) {
+      const VertexIndex u = t[i], v = t[(i + 1) % 3], w = t[(i + 2) % 3];
+      const auto twin = face_of_edge.find(key(v, u));
+      if (twin == face_of_edge.end() || grouped[twin->second]) continue;
+      const Triangle& g = surface.triangles[twin->second];
+      const VertexIndex x = g[0] != u && g[0] != v ? g[0] : g[1] != u && g[1] != v ? g[1] : g[2];
+      // Coplanar, x across uv from w, and u, v across wx from each other: a convex quadrilateral.
+      if (CGAL::orientation(p[u], p[v], p[w], p[x]) != CGAL::COPLANAR ||
+          CGAL::coplanar_orientation(p[u], p[v], p[w], p[x]) != CGAL::NEGATIVE ||
+          // (u on the line wx: a flat angle, and coplanar_orientation's precondition fails)
+          CGAL::collinear(p[w], p[x], p[u]) ||
+          CGAL::coplanar_orientation(p[w], p[x], p[u], p[v]) != CGAL::NEGATIVE)
+        continue;
+      grouped[twin->second] = 1;
+      group.vertices.push_back(x);
+      group.facets.push_back(twin->second);
+      break;
+    }
+    groups.push_back(std::move(group));
+  }
+  return groups;
+}
 
 std::vector<Mesh> connected_components(const Mesh& mesh) {
   UnionFind sets(mesh.points.size());
@@ -147,8 +147,31 @@ bool convex_contains_origin(const Mesh& convex) {
   return true;
 }
 
+std::optional<std::vector<Mesh>> timed_convolution_pieces(const Mesh& surface, const Mesh& b,
+                                                          const Point& c, MinkowskiStats* stats) {
+  const auto start = std::chrono::steady_clock::now();
+  auto pieces = convolution_pieces(surface, b, c);
+  if (pieces && stats) {
+    stats->seconds_pieces += seconds_since(start);
+    stats->pieces += pieces->size();
+    for (const Mesh& piece : *pieces) stats->piece_triangles += piece.triangles.size();
+  }
+  return pieces;
+}
+
+Mesh timed_union(std::vector<Mesh> solids, MinkowskiStats* stats) {
+  const auto start = std::chrono::steady_clock::now();
+  UnionStats union_stats;
+  Mesh united = compute_union(std::move(solids), &union_stats);
+  if (stats) {
+    stats->seconds_union += seconds_since(start);
+    stats->binary_unions += union_stats.binary_unions;
+  }
+  return united;
+}
+
 Mesh sum_with_component(const Mesh& a, const Mesh& b, bool b_convex, MinkowskiStats* stats) {
-  if (b_convex && is_convex(a)) {
+  if (b_convex && convex_by_edges(a)) {
     std::vector<Point> sums;
     sums.reserve(a.points.size() * b.points.size());
     for (const Point& p : a.points)
@@ -156,6 +179,16 @@ Mesh sum_with_component(const Mesh& a, const Mesh& b, bool b_convex, MinkowskiSt
     Mesh hull = convex_hull(sums);
     make_exact(hull);
     return hull;
+  }
+  if (b_convex) {
+    const Point c = interior_point(b);
+    if (auto pieces = timed_convolution_pieces(a, b, c, stats)) {
+      // The pieces first: A + c spans them all and would be carried through every level.
+      Mesh shell = timed_union(std::move(*pieces), stats);
+      return timed_union(
+          {std::move(shell), c == Point(CGAL::ORIGIN) ? a : translated(a, c - CGAL::ORIGIN)},
+          stats);
+    }
   }
   Mesh shell = boundary_sum(a, b, b_convex, stats);
   // A + b0 for a point b0 of B; when B is convex and holds the origin, A itself.
@@ -184,10 +217,11 @@ Mesh boundary_sum(const Mesh& surface, const Mesh& b, bool b_convex, MinkowskiSt
   const auto start = std::chrono::steady_clock::now();
   std::vector<Mesh> pieces, copies;  // convex pieces; translated copies of a non-convex B
   if (b_convex) {
-    const std::vector<std::vector<VertexIndex>> groups = convex_facet_groups(surface);
+    const std::vector<detail::FacetGroup> groups = detail::convex_facet_groups(surface);
     pieces.resize(groups.size());
-    tbb::parallel_for(std::size_t(0), pieces.size(),
-                      [&](std::size_t i) { pieces[i] = facet_sum_convex(surface, groups[i], b); });
+    tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t i) {
+      pieces[i] = facet_sum_convex(surface, groups[i].vertices, b);
+    });
   } else {
     // f + B = (f + dB) u (p_f + B): pairs of triangles, plus B at every vertex of the surface.
     const std::size_t pairs = surface.triangles.size() * b.triangles.size();

@@ -2,17 +2,45 @@
 // Pieces of the Minkowski machinery shared with morphology.cpp.
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "morphex/minkowski.h"
 
 namespace morphex::detail {
 
+// A triangle, or two coplanar alike-oriented triangles forming a strictly convex quadrilateral.
+struct FacetGroup {
+  std::vector<std::uint32_t> facets;
+  std::vector<VertexIndex> vertices;
+};
+// The surface's facets in such groups, greedily in facet order: for convex B, (f1 u f2) + B is
+// then one convex piece, half as many on meshes whose planar faces are split in triangles.
+std::vector<FacetGroup> convex_facet_groups(const Mesh& surface);
+
 // The components of a mesh by shared vertices, each with compact vertex indices.
 std::vector<Mesh> connected_components(const Mesh& mesh);
 
 // Exact: no face of the convex solid has the origin strictly on its outer side.
 bool convex_contains_origin(const Mesh& convex);
+
+// Exact convexity of a valid solid from its edges (connected, no reflex edge).
+bool convex_by_edges(const Mesh& solid);
+
+// The origin if it is strictly inside the convex solid, else its vertex centroid.
+Point interior_point(const Mesh& convex);
+
+// The convex pieces whose union with (A + c) is A + B, for the solid A bounded by `surface`, a
+// convex B and c = interior_point(B) (convolution.cpp). Empty optional when an edge of the
+// surface does not have exactly two facets, one each way.
+std::optional<std::vector<Mesh>> convolution_pieces(const Mesh& surface, const Mesh& b,
+                                                    const Point& c);
+
+// convolution_pieces and compute_union, with their times and counts added to `stats`.
+std::optional<std::vector<Mesh>> timed_convolution_pieces(const Mesh& surface, const Mesh& b,
+                                                          const Point& c, MinkowskiStats* stats);
+Mesh timed_union(std::vector<Mesh> solids, MinkowskiStats* stats);
 
 // A + B for one connected B whose convexity is known.
 Mesh sum_with_component(const Mesh& a, const Mesh& b, bool b_convex, MinkowskiStats* stats);

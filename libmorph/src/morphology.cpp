@@ -78,6 +78,18 @@ Mesh erode_valid(const Mesh& a, const std::vector<SePart>& parts, MinkowskiStats
     if (a.empty()) return {};
     const SePart& b = parts[i];
     const Mesh minus_b = reflected(b.mesh);
+    // The complement of A dilated by -B: its surface is A's, reversed.
+    if (b.convex) {
+      const Point c = detail::interior_point(minus_b);
+      if (auto pieces = detail::timed_convolution_pieces(reversed(a), minus_b, c, &stats)) {
+        const Mesh shell = detail::timed_union(std::move(*pieces), &stats);
+        const Mesh moved = c == Point(CGAL::ORIGIN) ? a : translated(a, c - CGAL::ORIGIN);
+        Mesh eroded = binary(moved, shell, BooleanOp::Difference);
+        ++stats.binary_unions;
+        result = i == 0 ? std::move(eroded) : binary(result, eroded, BooleanOp::Intersection);
+        continue;
+      }
+    }
     const Mesh shell = boundary_sum(a, minus_b, b.convex, &stats);
     const bool origin_inside = b.convex && detail::convex_contains_origin(b.mesh);
     const Mesh moved = origin_inside ? a : translated(a, CGAL::ORIGIN - b.mesh.points.front());

@@ -266,7 +266,17 @@ Mesh convex_hull(const std::vector<Point>& points) {
   std::vector<std::array<VertexIndex, 3>> faces;
   CGAL::convex_hull_3(points.begin(), points.end(), hull.points, faces);
   hull.triangles.assign(faces.begin(), faces.end());
-  if (hull.triangles.size() < 4 || signed_volume_sign(hull) == CGAL::ZERO) return {};  // flat
+  if (hull.triangles.size() < 4) return {};
+  switch (signed_volume_sign(hull)) {
+    case CGAL::ZERO:
+      return {};  // flat
+    case CGAL::NEGATIVE:
+      // convex_hull_3 writes the hull of four points (a tetrahedron) inward.
+      for (Triangle& t : hull.triangles) std::swap(t[1], t[2]);
+      break;
+    default:
+      break;
+  }
   return hull;
 }
 
