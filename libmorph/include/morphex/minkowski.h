@@ -2,12 +2,14 @@
 // Exact Minkowski sums of closed triangle meshes.
 //
 // When A and B are both convex, A + B is the convex hull of the vertex sums, computed directly.
-// Otherwise, for solids A, B (B connected) and any point b0 of B:
-//   A + B = (A + b0)  u  (dA + B),         dA + B = union over facets f of A of (f + B).
-// For convex B each f + B = conv(f + B), a convex polytope from the vertex sums. For non-convex B,
+// For convex B and any A, A + B = (A + c) u (convex pieces of the reduced convolution): a prism
+// f + [c, s] on each facet f (s the vertex of B supporting f's normal), and small hulls at convex
+// edges and at vertices where that vertex of B changes (docs/morphology-design.md). For non-convex
+// B (connected), with any point b0 of B:
+//   A + B = (A + b0)  u  (dA + B),         dA + B = union over facets f of A of (f + B),
 // f + B = (f + dB) u (p_f + B) for any point p_f of f, and f + dB = union over facets g of B of
-// conv(f + g). A B with several components is summed component by component. The pieces overlap
-// heavily; compute_union (libbool) closes them into one valid solid.
+// conv(f + g). A B with several components is summed component by component. compute_union
+// (libbool) closes the pieces into one valid solid.
 #pragma once
 
 #include <cstddef>
@@ -33,7 +35,8 @@ Mesh minkowski_sum(const Mesh& a, const Mesh& b, MinkowskiStats* stats = nullptr
 enum class PieceUnion { BinaryTree, NAry };
 
 // dA + B: the union of the sums of every facet of `surface` with the solid b (the "offset shell"
-// behind dilation and erosion). `b_convex` selects the convex-hull route.
+// of the facet-hull formula; dilation and erosion by a non-convex B use it, and the tests check
+// the reduced convolution against it). `b_convex` selects the convex-hull route.
 Mesh boundary_sum(const Mesh& surface, const Mesh& b, bool b_convex,
                   MinkowskiStats* stats = nullptr, PieceUnion method = PieceUnion::BinaryTree);
 
