@@ -331,6 +331,11 @@ std::optional<std::vector<Mesh>> convolution_pieces(const Mesh& surface, const M
   for (const auto& [k, f] : facet_of_edge)
     if (!facet_of_edge.count((k << 32) | (k >> 32))) return std::nullopt;
 
+  // Lazy coordinates are evaluated here, once: CGAL's lazy evaluation of a shared point is not
+  // safe from several threads, and the parallel loops below read every point exactly.
+  for (const Point& q : surface.points) CGAL::exact(q);
+  for (const Point& q : b.points) CGAL::exact(q);
+  CGAL::exact(c);
   const ConvexBody body(b);
   const auto& p = surface.points;
   std::vector<Vector> normal(nf);
