@@ -30,7 +30,6 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
-#include <unordered_map>
 #include <vector>
 
 #include "minkowski_internal.h"
@@ -273,17 +272,12 @@ bool convex_by_edges(const Mesh& solid) {
   // A connected, closed, embedded surface whose dihedral angles are all at most pi bounds a convex
   // solid: for valid solids this replaces a hull and two volumes by one sign per edge.
   const std::size_t nf = solid.triangles.size();
-  if (nf == 0) return false;
-  std::unordered_map<std::uint64_t, std::uint32_t> facet_of_edge;
-  facet_of_edge.reserve(3 * nf);
-  auto key = [](VertexIndex u, VertexIndex v) { return (std::uint64_t(u) << 32) | v; };
+  const DirectedEdges edges(solid);
+  if (nf == 0 || !edges.paired()) return false;
   UnionFind parts(solid.points.size());
-  for (std::uint32_t f = 0; f < nf; ++f) {
-    const Triangle& t = solid.triangles[f];
+  for (const Triangle& t : solid.triangles) {
     parts.join(t[0], t[1]);
     parts.join(t[0], t[2]);
-    for (int i = 0; i < 3; ++i)
-      if (!facet_of_edge.emplace(key(t[i], t[(i + 1) % 3]), f).second) return false;
   }
   const std::size_t root = parts.find(solid.triangles[0][0]);
   const auto& p = solid.points;
@@ -292,10 +286,7 @@ bool convex_by_edges(const Mesh& solid) {
     if (parts.find(t[0]) != root) return false;
     for (int i = 0; i < 3; ++i) {
       const VertexIndex u = t[i], v = t[(i + 1) % 3], w = t[(i + 2) % 3];
-      const auto twin = facet_of_edge.find(key(v, u));
-      if (twin == facet_of_edge.end()) return false;
-      const Triangle& h = solid.triangles[twin->second];
-      const VertexIndex x = h[0] != u && h[0] != v ? h[0] : h[1] != u && h[1] != v ? h[1] : h[2];
+      const VertexIndex x = third_vertex(solid.triangles[edges.facet(v, u)], u, v);
       if (CGAL::orientation(p[u], p[v], p[w], p[x]) == CGAL::POSITIVE) return false;  // reflex
     }
   }
@@ -320,16 +311,8 @@ std::optional<std::vector<Mesh>> convolution_pieces(const Mesh& surface, const M
                                                     const Point& c) {
   const std::size_t nf = surface.triangles.size();
   // Every edge must have exactly two facets, one each way, for edges and vertices to be read.
-  std::unordered_map<std::uint64_t, std::uint32_t> facet_of_edge;
-  facet_of_edge.reserve(3 * nf);
-  auto key = [](VertexIndex u, VertexIndex v) { return (std::uint64_t(u) << 32) | v; };
-  for (std::uint32_t f = 0; f < nf; ++f)
-    for (int i = 0; i < 3; ++i)
-      if (!facet_of_edge.emplace(key(surface.triangles[f][i], surface.triangles[f][(i + 1) % 3]), f)
-               .second)
-        return std::nullopt;
-  for (const auto& [k, f] : facet_of_edge)
-    if (!facet_of_edge.count((k << 32) | (k >> 32))) return std::nullopt;
+  const DirectedEdges edges(surface);
+  if (!edges.paired()) return std::nullopt;
 
   // Lazy coordinates are evaluated here, once: CGAL's lazy evaluation of a shared point is not
   // safe from several threads, and the parallel loops below read every point exactly.
@@ -369,10 +352,9 @@ std::optional<std::vector<Mesh>> convolution_pieces(const Mesh& surface, const M
       const Triangle& t = surface.triangles[f];
       const VertexIndex u = t[i], v = t[(i + 1) % 3], w = t[(i + 2) % 3];
       if (u > v) continue;  // each edge once
-      const std::uint32_t g = facet_of_edge.at(key(v, u));
+      const std::uint32_t g = edges.facet(v, u);
       if (support[f] == support[g] || whole[f] || whole[g]) continue;
-      const Triangle& h = surface.triangles[g];
-      const VertexIndex x = h[0] != u && h[0] != v ? h[0] : h[1] != u && h[1] != v ? h[1] : h[2];
+      const VertexIndex x = third_vertex(surface.triangles[g], u, v);
       if (CGAL::orientation(p[u], p[v], p[w], p[x]) != CGAL::NEGATIVE) continue;  // not convex
       Feature e{{p[u], p[v]}, make_cone({normal[f], normal[g]}), support[f]};
       e.seeds.insert(e.seeds.end(), support[g].begin(), support[g].end());

@@ -7,7 +7,6 @@
 #include <chrono>
 #include <numeric>
 #include <stdexcept>
-#include <unordered_map>
 #include <vector>
 
 #include "minkowski_internal.h"
@@ -68,14 +67,20 @@ namespace detail {
 // is convex, so each group is one convex piece: half as many pieces on meshes whose planar faces
 // are split in triangles (CAD models, boxes). Greedy in facet order, so the grouping depends only
 // on the input.
+DirectedEdges::DirectedEdges(const Mesh& mesh) {
+  facet_.reserve(3 * mesh.triangles.size());
+  for (std::uint32_t f = 0; f < mesh.triangles.size(); ++f)
+    for (int i = 0; i < 3; ++i) {
+      const Triangle& t = mesh.triangles[f];
+      paired_ = facet_.emplace(key(t[i], t[(i + 1) % 3]), f).second && paired_;
+    }
+  for (const auto& entry : facet_)
+    paired_ = paired_ && facet_.count((entry.first << 32) | (entry.first >> 32));
+}
+
 std::vector<FacetGroup> convex_facet_groups(const Mesh& surface) {
   const std::size_t nf = surface.triangles.size();
-  std::unordered_map<std::uint64_t, std::uint32_t> face_of_edge;
-  face_of_edge.reserve(3 * nf);
-  auto key = [](VertexIndex u, VertexIndex v) { return (std::uint64_t(u) << 32) | v; };
-  for (std::uint32_t f = 0; f < nf; ++f)
-    for (int i = 0; i < 3; ++i)
-      face_of_edge.emplace(key(surface.triangles[f][i], surface.triangles[f][(i + 1) % 3]), f);
+  const DirectedEdges edges(surface);
   const auto& p = surface.points;
   std::vector<std::uint8_t> grouped(nf, 0);
   std::vector<FacetGroup> groups;
@@ -87,10 +92,9 @@ std::vector<FacetGroup> convex_facet_groups(const Mesh& surface) {
     FacetGroup group{{f}, {t.begin(), t.end()}};
     for (int i = 0; i < 3; ++i) {
       const VertexIndex u = t[i], v = t[(i + 1) % 3], w = t[(i + 2) % 3];
-      const auto twin = face_of_edge.find(key(v, u));
-      if (twin == face_of_edge.end() || grouped[twin->second]) continue;
-      const Triangle& g = surface.triangles[twin->second];
-      const VertexIndex x = g[0] != u && g[0] != v ? g[0] : g[1] != u && g[1] != v ? g[1] : g[2];
+      const std::uint32_t twin = edges.facet(v, u);
+      if (twin == DirectedEdges::kNone || grouped[twin]) continue;
+      const VertexIndex x = third_vertex(surface.triangles[twin], u, v);
       // Coplanar, x across uv from w, and u, v across wx from each other: a convex quadrilateral.
       if (CGAL::orientation(p[u], p[v], p[w], p[x]) != CGAL::COPLANAR ||
           CGAL::coplanar_orientation(p[u], p[v], p[w], p[x]) != CGAL::NEGATIVE ||
@@ -98,9 +102,9 @@ std::vector<FacetGroup> convex_facet_groups(const Mesh& surface) {
           CGAL::collinear(p[w], p[x], p[u]) ||
           CGAL::coplanar_orientation(p[w], p[x], p[u], p[v]) != CGAL::NEGATIVE)
         continue;
-      grouped[twin->second] = 1;
+      grouped[twin] = 1;
       group.vertices.push_back(x);
-      group.facets.push_back(twin->second);
+      group.facets.push_back(twin);
       break;
     }
     groups.push_back(std::move(group));

@@ -4,11 +4,36 @@
 
 #include <cstdint>
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include "morphex/minkowski.h"
 
 namespace morphex::detail {
+
+// The facets of a mesh by directed edge u -> v, as its triangles list them.
+class DirectedEdges {
+ public:
+  static constexpr std::uint32_t kNone = UINT32_MAX;
+  explicit DirectedEdges(const Mesh& mesh);
+  // The facet holding u -> v (the first one if several do), or kNone.
+  std::uint32_t facet(VertexIndex u, VertexIndex v) const {
+    const auto it = facet_.find(key(u, v));
+    return it == facet_.end() ? kNone : it->second;
+  }
+  // Every directed edge occurs once and its reverse occurs too: edges have two facets each.
+  bool paired() const { return paired_; }
+
+ private:
+  static std::uint64_t key(VertexIndex u, VertexIndex v) { return (std::uint64_t(u) << 32) | v; }
+  std::unordered_map<std::uint64_t, std::uint32_t> facet_;
+  bool paired_ = true;
+};
+
+// The vertex of t that is neither u nor v.
+inline VertexIndex third_vertex(const Triangle& t, VertexIndex u, VertexIndex v) {
+  return t[0] != u && t[0] != v ? t[0] : t[1] != u && t[1] != v ? t[1] : t[2];
+}
 
 // A triangle, or two coplanar alike-oriented triangles forming a strictly convex quadrilateral.
 struct FacetGroup {

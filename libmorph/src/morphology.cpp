@@ -3,6 +3,7 @@
 #include "morphex/morphology.h"
 
 #include <chrono>
+#include <optional>
 #include <stdexcept>
 
 #include "minkowski_internal.h"
@@ -70,31 +71,33 @@ Mesh dilate_valid(const Mesh& a, const std::vector<SePart>& parts, MinkowskiStat
   return result;
 }
 
-// {x : x + B inside A} for connected B = (A - b0) minus (dA + (-B)); for several components, the
-// intersection of the erosions by each.
+// {x : x + B inside A} for connected B: (A + c) minus the pieces of A's complement dilated by -B
+// (its surface is A's, reversed; c strictly inside -B) when B is convex, else (A - b0) minus
+// the shell dA + (-B) of the facet-hull formula.
+Mesh erode_by_part(const Mesh& a, const SePart& b, MinkowskiStats& stats) {
+  const Mesh minus_b = reflected(b.mesh);
+  Mesh shell, moved;
+  std::optional<std::vector<Mesh>> pieces;
+  const Point c = b.convex ? detail::interior_point(minus_b) : Point(CGAL::ORIGIN);
+  if (b.convex) pieces = detail::timed_convolution_pieces(reversed(a), minus_b, c, &stats);
+  if (pieces) {
+    shell = detail::timed_union(std::move(*pieces), &stats);
+    moved = c == Point(CGAL::ORIGIN) ? a : translated(a, c - CGAL::ORIGIN);
+  } else {
+    shell = boundary_sum(a, minus_b, b.convex, &stats);
+    const bool origin_inside = b.convex && detail::convex_contains_origin(b.mesh);
+    moved = origin_inside ? a : translated(a, CGAL::ORIGIN - b.mesh.points.front());
+  }
+  ++stats.binary_unions;
+  return binary(moved, shell, BooleanOp::Difference);
+}
+
+// For several components, the intersection of the erosions by each.
 Mesh erode_valid(const Mesh& a, const std::vector<SePart>& parts, MinkowskiStats& stats) {
+  if (a.empty()) return {};
   Mesh result;
   for (std::size_t i = 0; i < parts.size() && !(i > 0 && result.empty()); ++i) {
-    if (a.empty()) return {};
-    const SePart& b = parts[i];
-    const Mesh minus_b = reflected(b.mesh);
-    // The complement of A dilated by -B: its surface is A's, reversed.
-    if (b.convex) {
-      const Point c = detail::interior_point(minus_b);
-      if (auto pieces = detail::timed_convolution_pieces(reversed(a), minus_b, c, &stats)) {
-        const Mesh shell = detail::timed_union(std::move(*pieces), &stats);
-        const Mesh moved = c == Point(CGAL::ORIGIN) ? a : translated(a, c - CGAL::ORIGIN);
-        Mesh eroded = binary(moved, shell, BooleanOp::Difference);
-        ++stats.binary_unions;
-        result = i == 0 ? std::move(eroded) : binary(result, eroded, BooleanOp::Intersection);
-        continue;
-      }
-    }
-    const Mesh shell = boundary_sum(a, minus_b, b.convex, &stats);
-    const bool origin_inside = b.convex && detail::convex_contains_origin(b.mesh);
-    const Mesh moved = origin_inside ? a : translated(a, CGAL::ORIGIN - b.mesh.points.front());
-    Mesh eroded = binary(moved, shell, BooleanOp::Difference);
-    ++stats.binary_unions;
+    Mesh eroded = erode_by_part(a, parts[i], stats);
     result = i == 0 ? std::move(eroded) : binary(result, eroded, BooleanOp::Intersection);
   }
   return result;
