@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// A coarser valid solid close to a given one, for descriptors whose cost must not grow with the
+// facet count of the input.
+//
+// The copy is made by edge collapse (CGAL Surface_mesh_simplification, Lindstrom-Turk cost and
+// placement, collapses that would flip a facet normal refused) on double coordinates, then taken
+// exactly and checked: a copy that is not a valid solid (a collapse can make far parts of the
+// surface cross) is made again with twice the budget, up to the input itself. The morphology run
+// on the copy is exact; only the copy is an approximation of the input.
+#pragma once
+
+#include <cstddef>
+
+#include "morphex/mesh.h"
+
+namespace morphex {
+
+struct SimplifyReport {
+  std::size_t input_facets = 0, output_facets = 0;
+  std::size_t attempts = 0;  // budgets tried (the first one, then doubled)
+  bool simplified = false;   // false: the input came back unchanged (small enough, or no coarser
+                             // copy was a valid solid)
+};
+
+// A valid solid with at most about `max_facets` facets (never more than the input's) near the
+// double-precision surface `mesh`. Precondition: `mesh` is a closed oriented 2-manifold whose
+// exact copy is a valid solid; throws std::invalid_argument when even that copy is not one.
+Mesh simplified_solid(const DoubleMesh& mesh, std::size_t max_facets,
+                      SimplifyReport* report = nullptr);
+
+}  // namespace morphex
