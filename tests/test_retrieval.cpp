@@ -3,6 +3,7 @@
 // the documented rotation behaviour of the granulometry, the procedural collection.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "morphex/boolean.h"
@@ -11,6 +12,7 @@
 #include "morphex/descriptors.h"
 #include "morphex/generators.h"
 #include "morphex/retrieval.h"
+#include "morphex/simplify.h"
 
 using namespace morphex;
 
@@ -24,7 +26,7 @@ Mesh l_shape() {
 
 DescriptorSettings quick() {
   DescriptorSettings s;
-  s.radii = {0.1, 0.3};
+  s.scales = 2;
   s.closings = false;
   s.d2_samples = 512;
   return s;
@@ -61,6 +63,16 @@ TEST(Retrieval, ClaFilesAreParsedAndCheckedWithLineNumbers) {
   EXPECT_THROW(parse_cla("OFF\n", "l.cla"), InputError);
 }
 
+// Every component of every descriptor kind agrees within `tolerance`.
+void expect_same_descriptors(const Descriptors& a, const Descriptors& b, double tolerance) {
+  for (const std::string& kind : descriptor_kinds()) {
+    const auto u = descriptor_vector(a, kind), v = descriptor_vector(b, kind);
+    ASSERT_EQ(u.size(), v.size()) << kind;
+    for (std::size_t i = 0; i < u.size(); ++i)
+      EXPECT_NEAR(u[i], v[i], tolerance) << kind << "[" << i << "]";
+  }
+}
+
 TEST(Descriptors, ScaledCopyHasTheSameGranulometry) {
   const Mesh a = l_shape();
   const Mesh b = transformed(a, Transformation(CGAL::SCALING, FT(5) / 2));
@@ -73,6 +85,34 @@ TEST(Descriptors, ScaledCopyHasTheSameGranulometry) {
   EXPECT_LT(l1_distance(da.d2, db.d2), 1e-9);  // same samples, distances divided by their mean
 }
 
+// An asymmetric solid (three distinct principal moments, non-zero skew on the first two axes)
+// under an exact similarity: scale 5/2, a rational rotation, a rational shift.
+TEST(Descriptors, InvariantUnderExactScaleRotationAndTranslation) {
+  const Mesh a = compute_boolean(l_shape(), make_box(Point(FT(3) / 2, 0, 0), Point(2, 1, 1)),
+                                 BooleanOp::Union)
+                     .mesh;
+  const Transformation similarity = Transformation(CGAL::TRANSLATION, Vector(FT(7) / 3, -1, 2)) *
+                                    Transformation(CGAL::SCALING, FT(5) / 2) *
+                                    quaternion_rotation(3, 1, -2, 5);
+  Mesh b = transformed(a, similarity);
+  make_exact(b);
+  DescriptorSettings s;
+  s.scales = 3;
+  s.d2_samples = 2000;
+  const Descriptors da = describe(a, s), db = describe(b, s);
+  EXPECT_NEAR(db.scale_length / da.scale_length, 2.5, 1e-12);
+  ASSERT_EQ(da.granulometry.size(), 3u);
+  ASSERT_EQ(da.anti_granulometry.size(), 3u);
+  ASSERT_EQ(da.opening_residue.size(), 18u);
+  // The rotated copy is turned back to the principal axes in double precision, so its cubes meet
+  // the surface within rounding of the original's: the same descriptor up to rounding.
+  expect_same_descriptors(da, db, 1e-6);
+  // ... and not a trivial one: the scales were chosen so that the openings see the arms.
+  EXPECT_GT(da.granulometry.front(), 0.5);
+  EXPECT_LT(da.granulometry.back(), da.granulometry.front());
+  EXPECT_GT(da.anti_granulometry.back(), 0.0);
+}
+
 TEST(Descriptors, PoseNormalisationMakesRotatedCopiesAgree) {
   const Mesh a = l_shape();
   const Mesh turned = transformed(a, quaternion_rotation(3, 1, -2, 5));
@@ -83,6 +123,54 @@ TEST(Descriptors, PoseNormalisationMakesRotatedCopiesAgree) {
   raw.normalise_pose = false;
   const Descriptors ra = describe(a, raw), rt = describe(turned, raw);
   EXPECT_GT(l1_distance(ra.granulometry, rt.granulometry), 1e-3);
+}
+
+TEST(Descriptors, ScalesFollowTheThicknessSoFewAreEmptyOrFull) {
+  // A ball and a flat ellipsoid (a fifth as thick): the same default scales, relative to each
+  // one's thickness, leave both with informative openings (neither all full nor all empty).
+  const Mesh ball = make_icosphere(2, 1);
+  Mesh flat = transformed(ball, Transformation(2, 0, 0, 0, FT(3) / 2, 0, 0, 0, FT(1) / 5));
+  make_exact(flat);
+  for (const Mesh& m : {ball, flat}) {
+    DescriptorSettings s;
+    s.closings = false;
+    s.d2_samples = 64;
+    const Descriptors d = describe(m, s);
+    ASSERT_EQ(d.granulometry.size(), std::size_t(s.scales));
+    const auto full = std::count_if(d.granulometry.begin(), d.granulometry.end(),
+                                    [](double g) { return g > 0.999; });
+    const auto empty = std::count_if(d.granulometry.begin(), d.granulometry.end(),
+                                     [](double g) { return g < 0.001; });
+    EXPECT_LE(full + empty, 3) << "thickness " << d.thickness;
+    EXPECT_GT(d.granulometry.front(), 0.8);
+  }
+}
+
+TEST(Descriptors, MetricsOnAHandCheckedPair) {
+  const std::vector<double> a = {1, 0, 2}, b = {0, 0, 4};
+  EXPECT_DOUBLE_EQ(distance(a, b, Metric::L1), 3);
+  EXPECT_DOUBLE_EQ(distance(a, b, Metric::L2), std::sqrt(5.0));
+  EXPECT_DOUBLE_EQ(distance(a, b, Metric::ChiSquare), 1.0 / 1 + 4.0 / 6);  // the 0/0 term omitted
+  EXPECT_EQ(parse_metric("chi2"), Metric::ChiSquare);
+  EXPECT_THROW(parse_metric("cosine"), std::invalid_argument);
+  EXPECT_THROW(distance(a, {1, 2}, Metric::L1), std::invalid_argument);
+}
+
+TEST(Simplify, CopyIsAValidSolidWithinTheBudgetAndCloseInVolume) {
+  const Mesh sphere = make_icosphere(4, 1);  // 5,120 facets
+  SimplifyReport report;
+  const Mesh copy = simplified_solid(to_double(sphere), 500, &report);
+  EXPECT_TRUE(report.simplified);
+  EXPECT_EQ(report.input_facets, 5120u);
+  EXPECT_LE(copy.triangles.size(), 510u);
+  EXPECT_EQ(report.output_facets, copy.triangles.size());
+  EXPECT_TRUE(check_mesh(copy).valid_solid());
+  const double v = CGAL::to_double(signed_volume(copy)), v0 = CGAL::to_double(signed_volume(sphere));
+  EXPECT_NEAR(v / v0, 1.0, 0.02);
+  // Small enough already: the input comes back unchanged.
+  const Mesh same = simplified_solid(to_double(sphere), 10000, &report);
+  EXPECT_FALSE(report.simplified);
+  EXPECT_EQ(same.triangles.size(), 5120u);
 }
 
 TEST(Descriptors, InvalidInputIsRefused) {

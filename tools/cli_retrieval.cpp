@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 
 #include "cli_common.h"
 #include "index_db.h"
@@ -38,6 +39,26 @@ std::map<std::string, std::vector<double>> descriptors_of(const mp::InputReport&
   return out;
 }
 
+nlohmann::json descriptors_json(const Descriptors& d) {
+  nlohmann::json j = {{"scale_length", d.scale_length},
+                      {"thickness", d.thickness},
+                      {"filtered_facets", d.facets},
+                      {"simplified", d.simplified},
+                      {"open_radii", d.open_radii},
+                      {"close_radii", d.close_radii},
+                      {"granulometry", d.granulometry},
+                      {"pattern_spectrum", d.pattern_spectrum},
+                      {"anti_granulometry", d.anti_granulometry},
+                      {"opening_residue", d.opening_residue},
+                      {"closing_residue", d.closing_residue},
+                      {"components", d.components},
+                      {"d2", d.d2},
+                      {"seconds_morphology", d.seconds_morphology}};
+  for (const std::string& kind : descriptor_kinds())
+    j["vectors"][kind] = descriptor_vector(d, kind);
+  return j;
+}
+
 Command add_describe_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("describe", "Morphological descriptors and D2 of a closed mesh");
   struct Args {
@@ -46,35 +67,61 @@ Command add_describe_command(CLI::App& app) {
     DescriptorSettings settings;
   };
   auto args = std::make_shared<Args>();
+  auto& s = args->settings;
   cmd->add_option("MESH", args->mesh, "Closed mesh")->required();
   cmd->add_flag("--json", args->json, "One JSON object on stdout");
-  cmd->add_option("--radii", args->settings.radii,
-                  "Cube half sides of the openings, in units of cbrt(volume)")
-      ->delimiter(',');
-  cmd->add_option("--d2-samples", args->settings.d2_samples, "D2 point pairs")
+  cmd->add_option("--scales", s.scales, "Number of opening and closing radii")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 64));
+  const auto positive = CLI::PositiveNumber;
+  cmd->add_option("--open-from", s.open_from,
+                  "Smallest opening cube half side, in units of the thickness 3 volume / area")
+      ->capture_default_str()
+      ->check(positive);
+  cmd->add_option("--open-to", s.open_to, "Largest opening cube half side, in units of it")
+      ->capture_default_str()
+      ->check(positive);
+  cmd->add_option("--close-from", s.close_from,
+                  "Smallest closing cube half side, in units of cbrt(volume)")
+      ->capture_default_str()
+      ->check(positive);
+  cmd->add_option("--close-to", s.close_to, "Largest closing cube half side, in units of it")
+      ->capture_default_str()
+      ->check(positive);
+  cmd->add_flag("!--no-closings", s.closings, "Skip the anti-granulometry");
+  cmd->add_option("--facet-budget", s.facet_budget,
+                  "Filter a simplified valid copy of about this many facets (0: the mesh itself)")
+      ->capture_default_str();
+  cmd->add_option("--d2-samples", s.d2_samples, "D2 point pairs")
+      ->capture_default_str()
       ->check(CLI::Range(16, 10000000));
-  cmd->add_option("--seed", args->settings.seed, "D2 random seed");
+  cmd->add_option("--d2-bins", s.d2_bins, "D2 histogram bins")->capture_default_str()->check(CLI::Range(4, 4096));
+  cmd->add_option("--seed", s.seed, "D2 random seed");
   return {
       cmd, [args]() -> int {
+        const auto& s = args->settings;
+        if (s.open_from > s.open_to || s.close_from > s.close_to) {
+          print_error("--open-from/--close-from must not exceed --open-to/--close-to");
+          return kBadInput;
+        }
         const auto mesh = read_solid(args->mesh);
         if (!mesh) return kBadInput;
         const auto start = std::chrono::steady_clock::now();
-        const Descriptors d = describe(*mesh, args->settings);
-        nlohmann::json j = {{"name", fs::path(args->mesh).stem().string()},
-                            {"path", args->mesh},
-                            {"scale_length", d.scale_length},
-                            {"granulometry", d.granulometry},
-                            {"pattern_spectrum", d.pattern_spectrum},
-                            {"anti_granulometry", d.anti_granulometry},
-                            {"d2", d.d2},
-                            {"settings", args->settings.to_string()},
-                            {"seconds", seconds_since(start)}};
+        const Descriptors d = describe(*mesh, s);
+        nlohmann::json j = descriptors_json(d);
+        j["name"] = fs::path(args->mesh).stem().string();
+        j["path"] = args->mesh;
+        j["settings"] = s.to_string();
+        j["seconds"] = seconds_since(start);
         if (args->json) {
           std::cout << j.dump() << std::endl;
           return kSuccess;
         }
-        std::cout << args->mesh << "  (L = cbrt(volume) = " << d.scale_length << ")\n";
-        for (const char* key : {"granulometry", "pattern_spectrum", "anti_granulometry", "d2"}) {
+        std::cout << args->mesh << "  (L = cbrt(volume) = " << d.scale_length
+                  << ", thickness T/L = " << d.thickness << ", " << d.facets << " facets filtered"
+                  << (d.simplified ? ", simplified" : "") << ")\n";
+        for (const char* key : {"open_radii", "granulometry", "pattern_spectrum", "close_radii",
+                                "anti_granulometry", "components", "d2"}) {
           std::cout << std::left << std::setw(19) << key;
           for (double v : j[key].get<std::vector<double>>())
             std::cout << ' ' << std::setprecision(4) << v;
@@ -111,23 +158,34 @@ Command add_generate_command(CLI::App& app) {
           }};
 }
 
+// Progress of an index run on stderr: a bar redrawn in place on a terminal; in a log (stderr not
+// a terminal), a plain line at most every five seconds and one at the end.
 class ProgressBar {
  public:
-  explicit ProgressBar(std::size_t total) : total_(total), enabled_(isatty(STDERR_FILENO) != 0) {}
+  explicit ProgressBar(std::size_t total) : total_(total), tty_(isatty(STDERR_FILENO) != 0) {}
   void update(std::size_t done, std::size_t failed) {
-    if (!enabled_ || total_ == 0) return;
+    if (total_ == 0) return;
     const double elapsed = seconds_since(start_);
+    if (!tty_ && done != total_ && elapsed - last_line_ < 5) return;
+    last_line_ = elapsed;
     const double eta = done > 0 ? elapsed / double(done) * double(total_ - done) : 0;
+    std::ostringstream eta_text;
+    eta_text << int(eta) / 60 << "m" << std::setw(2) << std::setfill('0') << int(eta) % 60 << "s";
+    if (!tty_) {
+      std::cerr << "indexed " << done << "/" << total_ << ", " << failed << " failed, ETA "
+                << eta_text.str() << std::endl;
+      return;
+    }
     const int width = 30, filled = int(width * done / total_);
-    std::cerr << "\r\033[K[" << std::string(filled, '=') << std::string(width - filled, ' ') << "] "
-              << done << "/" << total_ << " meshes, " << failed << " failed, ETA " << int(eta) / 60
-              << "m" << std::setw(2) << std::setfill('0') << int(eta) % 60 << std::setfill(' ')
-              << "s" << (done == total_ ? "\n" : "") << std::flush;
+    std::cerr << "\r\033[K[" << std::string(filled, '=') << std::string(width - filled, ' ')
+              << "] " << done << "/" << total_ << " meshes, " << failed << " failed, ETA "
+              << eta_text.str() << (done == total_ ? "\n" : "") << std::flush;
   }
 
  private:
   std::size_t total_;
-  bool enabled_;
+  bool tty_;
+  double last_line_ = 0;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
@@ -246,7 +304,7 @@ Command add_index_command(CLI::App& app) {
 Command add_query_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("query", "Nearest neighbours of a mesh in a retrieval index");
   struct Args {
-    std::string db, mesh, descriptor = "granulometry";
+    std::string db, mesh, descriptor = default_descriptor_kind(), metric = "l1";
     std::size_t k = 10;
     bool json = false;
   };
@@ -255,9 +313,12 @@ Command add_query_command(CLI::App& app) {
   cmd->add_option("MESH", args->mesh, "A mesh file, or the name (stem) or path of an indexed mesh")
       ->required();
   cmd->add_option("-k", args->k, "Number of neighbours")->check(CLI::PositiveNumber);
-  cmd->add_option("--descriptor", args->descriptor,
-                  "granulometry, pattern_spectrum or d2 (L1 distance)")
+  cmd->add_option("--descriptor", args->descriptor, "Descriptor kind")
+      ->capture_default_str()
       ->check(CLI::IsMember(descriptor_kinds()));
+  cmd->add_option("--metric", args->metric, "Distance: l1, l2 or chi2")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"l1", "l2", "chi2"}));
   cmd->add_flag("--json", args->json, "One JSON object on stdout");
   return {cmd, [args]() -> int {
             IndexDb db(args->db);
@@ -286,14 +347,16 @@ Command add_query_command(CLI::App& app) {
             std::vector<std::pair<double, const IndexedMesh*>> ranked;
             for (const IndexedMesh& m : meshes)
               if (m.id != exclude && m.descriptors.count(args->descriptor))
-                ranked.emplace_back(l1_distance(query, m.descriptors.at(args->descriptor)), &m);
+                ranked.emplace_back(
+                    distance(query, m.descriptors.at(args->descriptor), parse_metric(args->metric)),
+                    &m);
             std::sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) {
               return a.first != b.first ? a.first < b.first : a.second->name < b.second->name;
             });
             ranked.resize(std::min(ranked.size(), args->k));
             nlohmann::json j = {{"query", args->mesh},
                                 {"descriptor", args->descriptor},
-                                {"distance", "L1"},
+                                {"distance", args->metric},
                                 {"neighbours", nlohmann::json::array()}};
             for (const auto& [d, m] : ranked)
               j["neighbours"].push_back({{"name", m->name}, {"path", m->path}, {"distance", d}});
@@ -313,13 +376,16 @@ Command add_query_command(CLI::App& app) {
 Command add_evaluate_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("evaluate", "Retrieval scores of every stored descriptor");
   struct Args {
-    std::string db, labels;
+    std::string db, labels, metric = "l1";
     bool json = false;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("--db", args->db, "Index file")->required()->check(CLI::ExistingFile);
   cmd->add_option("--labels", args->labels, "Princeton .cla labels (model names = file stems)")
       ->required();
+  cmd->add_option("--metric", args->metric, "Distance: l1, l2 or chi2")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"l1", "l2", "chi2"}));
   cmd->add_flag("--json", args->json, "One JSON object on stdout");
   return {cmd, [args]() -> int {
             std::map<std::string, std::string> labels;
@@ -342,7 +408,9 @@ Command add_evaluate_command(CLI::App& app) {
               names.push_back(m.name);
               classes.push_back(labels[m.name]);
             }
+            const Metric metric = parse_metric(args->metric);
             nlohmann::json j = {{"models", meshes.size()},
+                                {"metric", args->metric},
                                 {"unlabelled", unlabelled},
                                 {"descriptors", nlohmann::json::object()}};
             if (!args->json)
@@ -358,8 +426,8 @@ Command add_evaluate_command(CLI::App& app) {
                                                         std::vector<double>(meshes.size()));
               for (std::size_t a = 0; a < meshes.size(); ++a)
                 for (std::size_t b = 0; b < meshes.size(); ++b)
-                  distance[a][b] =
-                      l1_distance(meshes[a].descriptors.at(kind), meshes[b].descriptors.at(kind));
+                  distance[a][b] = morphex::distance(meshes[a].descriptors.at(kind),
+                                                     meshes[b].descriptors.at(kind), metric);
               const RetrievalScores s = evaluate_retrieval(names, classes, distance);
               j["descriptors"][kind] = {{"nearest_neighbor", s.nearest_neighbor},
                                         {"first_tier", s.first_tier},

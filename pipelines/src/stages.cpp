@@ -70,12 +70,19 @@ StructuringElement structuring_element(const nlohmann::json& value) {
 
 DescriptorSettings descriptor_settings(const nlohmann::json& options) {
   DescriptorSettings s;
-  s.radii.clear();
-  for (const auto& r : options.at("radii")) s.radii.push_back(CGAL::to_double(exact_number(r)));
+  s.scales = options.at("scales").get<int>();
+  s.open_from = options.at("open_from").get<double>();
+  s.open_to = options.at("open_to").get<double>();
+  s.close_from = options.at("close_from").get<double>();
+  s.close_to = options.at("close_to").get<double>();
   s.closings = options.at("closings").get<bool>();
   s.normalise_pose = options.at("pose").get<bool>();
+  s.facet_budget = options.at("facet_budget").get<std::size_t>();
   s.d2_samples = options.at("d2_samples").get<int>();
+  s.d2_bins = options.at("d2_bins").get<int>();
   s.seed = options.at("seed").get<std::uint64_t>();
+  if (s.open_from > s.open_to || s.close_from > s.close_to)
+    throw std::invalid_argument("describe: open_from/close_from must not exceed open_to/close_to");
   return s;
 }
 
@@ -131,6 +138,38 @@ Mesh morphology_stage(StageContext& c, MorphologyOp op) {
   c.extra["se"] = se.spec;
   c.extra["pieces"] = stats.pieces;
   return result;
+}
+
+// The describe stage's options, with DescriptorSettings' defaults (descriptors.h explains them).
+std::vector<OptionInfo> describe_options() {
+  const DescriptorSettings d;
+  const auto number = [](std::string name, double value, std::string description) {
+    OptionInfo o = optional(std::move(name), OptionType::Number, value, std::move(description));
+    o.positive = true;
+    return o;
+  };
+  const auto integer = [](std::string name, double value, double lo, double hi,
+                          std::string description) {
+    OptionInfo o = optional(std::move(name), OptionType::Integer, value, std::move(description));
+    o.min = lo;
+    o.max = hi;
+    return o;
+  };
+  return {integer("scales", d.scales, 1, 64, "number of opening (and closing) radii"),
+          number("open_from", d.open_from, "smallest opening cube half side, in units of the "
+                                           "thickness T = 3 volume / area"),
+          number("open_to", d.open_to, "largest opening cube half side, in units of T"),
+          number("close_from", d.close_from,
+                 "smallest closing cube half side, in units of L = cbrt(volume)"),
+          number("close_to", d.close_to, "largest closing cube half side, in units of L"),
+          optional("closings", OptionType::Bool, d.closings, "also the anti-granulometry"),
+          optional("pose", OptionType::Bool, d.normalise_pose,
+                   "normalise the pose (principal axes) first"),
+          integer("facet_budget", double(d.facet_budget), 0, 1e9,
+                  "filter a simplified valid copy of about this many facets (0: the mesh itself)"),
+          integer("d2_samples", d.d2_samples, 16, 1e7, "D2 point pairs"),
+          integer("d2_bins", d.d2_bins, 4, 4096, "D2 histogram bins"),
+          integer("seed", double(d.seed), 0, 4294967295.0, "D2 random seed")};
 }
 
 void add_builtin_stages(StageRegistry& r) {
@@ -220,21 +259,11 @@ void add_builtin_stages(StageRegistry& r) {
            make_exact(m);
            return m;
          }});
-  OptionInfo radii = optional("radii", OptionType::NumberList, {0.1, 0.2, 0.35},
-                              "cube half sides of the openings, in units of cbrt(volume), growing");
-  OptionInfo samples = optional("d2_samples", OptionType::Integer, 4096, "D2 point pairs");
-  samples.min = 16;
-  samples.max = 10000000;
-  OptionInfo seed = optional("seed", OptionType::Integer, 1, "D2 random seed");
-  seed.min = 0;
-  seed.max = 4294967295.0;
   r.add({"describe",
-         "morphological descriptors (granulometry, pattern spectrum, anti-granulometry) and the "
-         "D2 baseline; passes the mesh on",
+         "multi-scale granulometry and anti-granulometry by exact openings and closings with "
+         "cubes, where their residues lie, and the D2 baseline; passes the mesh on",
          1,
-         {radii, optional("closings", OptionType::Bool, true, "also the anti-granulometry"),
-          optional("pose", OptionType::Bool, true, "normalise the pose (principal axes) first"),
-          samples, seed},
+         describe_options(),
          [](StageContext& c) {
            const DescriptorSettings settings = detail::descriptor_settings(c.stage.options);
            const Descriptors d = describe(*c.inputs[0], settings);
@@ -244,6 +273,8 @@ void add_builtin_stages(StageRegistry& r) {
            c.extra["descriptors"] = vectors;
            c.extra["descriptor_settings"] = settings.to_string();
            c.extra["scale_length"] = d.scale_length;
+           c.extra["filtered_facets"] = d.facets;
+           c.extra["simplified"] = d.simplified;
            return *c.inputs[0];
          }});
   r.add({"check",

@@ -2,7 +2,7 @@
 # procedural collection, resumability, failure isolation, a copy found first, the metrics table.
 set(rdir ${PROJECT_BINARY_DIR}/cli-retrieval)
 set(quick ${data}/pipelines/quick-descriptors.json)
-morphex_cli_test(describe_cube 0 "\"granulometry\":\\[1.0,1.0,1.0\\].*\"name\":\"unit_cube\""
+morphex_cli_test(describe_cube 0 "\"granulometry\":\\[1.0,1.0,1.0,1.0,1.0,1.0,1.0,1.0\\].*\"name\":\"unit_cube\""
   describe --json ${data}/unit_cube.off)
 morphex_cli_test(describe_open_mesh 2 "open_cube.off: mesh is not closed" describe ${data}/open_cube.off)
 # A fresh, existing directory: the index tests create their databases in it, whether or not a

@@ -29,6 +29,13 @@ struct MorphologyStats {
 // Throw std::invalid_argument if `a` is not a valid solid.
 Mesh dilation(const Mesh& a, const StructuringElement& se, MorphologyStats* stats = nullptr);
 Mesh erosion(const Mesh& a, const StructuringElement& se, MorphologyStats* stats = nullptr);
+// The same for an `a` already known to be a valid solid (the result of an exact morphex operation
+// or of a check): the input check, which costs as much as a small operation, is skipped. Chains
+// such as the descriptor's granulometry validate once at the start.
+Mesh dilation_of_valid(const Mesh& a, const StructuringElement& se,
+                       MorphologyStats* stats = nullptr);
+Mesh erosion_of_valid(const Mesh& a, const StructuringElement& se,
+                      MorphologyStats* stats = nullptr);
 Mesh opening(const Mesh& a, const StructuringElement& se, MorphologyStats* stats = nullptr);
 Mesh closing(const Mesh& a, const StructuringElement& se, MorphologyStats* stats = nullptr);
 Mesh apply_morphology(MorphologyOp op, const Mesh& a, const StructuringElement& se,

@@ -1,0 +1,115 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Descriptor vectors by kind, and the distances between them.
+#include <cmath>
+#include <stdexcept>
+
+#include "morphex/descriptors.h"
+
+namespace morphex {
+namespace {
+
+// Block weights of the morphology and combined vectors. Each block is scaled so that its typical
+// L1 spread between two meshes of different classes is about its weight (measured on the tuning
+// split of SHREC 2007 watertight, README "Retrieval"), so no block drowns the others.
+struct Block {
+  const std::vector<double> Descriptors::*values;
+  double weight;
+};
+constexpr Block kMorphology[] = {
+    {&Descriptors::granulometry, 1.0},    {&Descriptors::anti_granulometry, 1.0},
+    {&Descriptors::opening_residue, 4.0}, {&Descriptors::closing_residue, 4.0},
+    {&Descriptors::components, 0.1},
+};
+constexpr double kThicknessWeight = 2.0;  // T / L
+constexpr double kD2Weight = 1.0;         // D2 in the combined vector
+
+void append(std::vector<double>& out, const std::vector<double>& v, double weight) {
+  for (double x : v) out.push_back(weight * x);
+}
+
+std::vector<double> morphology_vector(const Descriptors& d) {
+  std::vector<double> out;
+  for (const Block& b : kMorphology) append(out, d.*b.values, b.weight);
+  out.push_back(kThicknessWeight * d.thickness);
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> descriptor_kinds() {
+  return {"combined", "morphology", "granulometry", "pattern_spectrum", "spatial", "d2"};
+}
+
+const char* default_descriptor_kind() { return "combined"; }
+
+std::vector<double> descriptor_vector(const Descriptors& d, const std::string& kind) {
+  if (kind == "morphology") return morphology_vector(d);
+  if (kind == "combined") {
+    std::vector<double> v = morphology_vector(d);
+    append(v, d.d2, kD2Weight);
+    return v;
+  }
+  if (kind == "granulometry") {
+    std::vector<double> v = d.granulometry;
+    v.insert(v.end(), d.anti_granulometry.begin(), d.anti_granulometry.end());
+    return v;
+  }
+  if (kind == "pattern_spectrum") return d.pattern_spectrum;
+  if (kind == "spatial") {
+    std::vector<double> v = d.opening_residue;
+    v.insert(v.end(), d.closing_residue.begin(), d.closing_residue.end());
+    return v;
+  }
+  if (kind == "d2") return d.d2;
+  throw std::invalid_argument("unknown descriptor '" + kind +
+                              "' (expected combined, morphology, granulometry, pattern_spectrum, "
+                              "spatial or d2)");
+}
+
+Metric parse_metric(const std::string& name) {
+  if (name == "l1") return Metric::L1;
+  if (name == "l2") return Metric::L2;
+  if (name == "chi2") return Metric::ChiSquare;
+  throw std::invalid_argument("unknown metric '" + name + "' (expected l1, l2 or chi2)");
+}
+
+const char* to_string(Metric metric) {
+  switch (metric) {
+    case Metric::L1:
+      return "l1";
+    case Metric::L2:
+      return "l2";
+    case Metric::ChiSquare:
+      return "chi2";
+  }
+  return "?";
+}
+
+double distance(const std::vector<double>& a, const std::vector<double>& b, Metric metric) {
+  if (a.size() != b.size())
+    throw std::invalid_argument("descriptors of different lengths: computed with other settings");
+  double sum = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const double diff = a[i] - b[i];
+    switch (metric) {
+      case Metric::L1:
+        sum += std::abs(diff);
+        break;
+      case Metric::L2:
+        sum += diff * diff;
+        break;
+      case Metric::ChiSquare: {
+        const double mass = std::abs(a[i]) + std::abs(b[i]);
+        if (mass > 0) sum += diff * diff / mass;
+        break;
+      }
+    }
+  }
+  return metric == Metric::L2 ? std::sqrt(sum) : sum;
+}
+
+double l1_distance(const std::vector<double>& a, const std::vector<double>& b) {
+  return distance(a, b, Metric::L1);
+}
+
+}  // namespace morphex
