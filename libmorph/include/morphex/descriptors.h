@@ -45,7 +45,7 @@ struct DescriptorSettings {
   double close_from = 0.02, close_to = 0.35;       // closing radii, in units of L
   bool closings = true;                            // also the anti-granulometry
   bool normalise_pose = true;
-  std::size_t facet_budget = 1200;  // simplify larger meshes to about this many facets; 0: never
+  std::size_t facet_budget = 300;  // simplify larger meshes to about this many facets; 0: never
   int d2_samples = 200000;          // point pairs
   int d2_bins = 64;
   std::uint64_t seed = 1;
