@@ -22,6 +22,9 @@ PrincipalFrame principal_frame(const DoubleMesh& m);
 // R (p - centre) / scale for every point, in double precision (the faces are kept).
 DoubleMesh posed_copy(const DoubleMesh& m, const PrincipalFrame& frame, double scale);
 
+// Total area of the triangles.
+double surface_area(const DoubleMesh& m);
+
 // The D2 histogram of the surface (normalised by the mean distance, over [0, 3)).
 std::vector<double> d2_histogram(const DoubleMesh& m, int samples, int bins, std::uint64_t seed);
 

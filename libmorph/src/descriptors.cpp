@@ -66,17 +66,6 @@ Moments moments_of(const Mesh& solid) {
   return out;
 }
 
-double surface_area(const DoubleMesh& m) {
-  double area = 0;
-  for (const Triangle& t : m.triangles) {
-    const auto &p = m.points[t[0]], &q = m.points[t[1]], &r = m.points[t[2]];
-    const Eigen::Vector3d u(q[0] - p[0], q[1] - p[1], q[2] - p[2]);
-    const Eigen::Vector3d v(r[0] - p[0], r[1] - p[1], r[2] - p[2]);
-    area += 0.5 * u.cross(v).norm();
-  }
-  return area;
-}
-
 std::size_t component_count(const Mesh& m) {
   detail::UnionFind sets(m.points.size());
   for (const Triangle& t : m.triangles) {
@@ -205,7 +194,7 @@ Descriptors describe(const Mesh& solid, const DescriptorSettings& settings) {
   const Mesh a = filtered_copy(solid, d.scale_length, settings, d);
   d.facets = a.triangles.size();
   // Unit volume: L = 1, and T = 3 / area.
-  d.thickness = 3.0 * CGAL::to_double(signed_volume(a)) / surface_area(to_double(a));
+  d.thickness = 3.0 * CGAL::to_double(signed_volume(a)) / detail::surface_area(to_double(a));
   for (double f : geometric(settings.open_from, settings.open_to, settings.scales))
     d.open_radii.push_back(f * d.thickness);
   if (settings.closings) d.close_radii = geometric(settings.close_from, settings.close_to,

@@ -14,14 +14,19 @@ struct SurfaceSample {
   std::vector<double> cumulative_area;
 };
 
+double triangle_area(const std::array<double, 3>& p, const std::array<double, 3>& q,
+                     const std::array<double, 3>& r) {
+  const Eigen::Vector3d u(q[0] - p[0], q[1] - p[1], q[2] - p[2]);
+  const Eigen::Vector3d v(r[0] - p[0], r[1] - p[1], r[2] - p[2]);
+  return 0.5 * u.cross(v).norm();
+}
+
 SurfaceSample surface_of(const DoubleMesh& m) {
   SurfaceSample s;
   double total = 0;
   for (const Triangle& t : m.triangles) {
     const auto &p = m.points[t[0]], &q = m.points[t[1]], &r = m.points[t[2]];
-    const Eigen::Vector3d u(q[0] - p[0], q[1] - p[1], q[2] - p[2]);
-    const Eigen::Vector3d v(r[0] - p[0], r[1] - p[1], r[2] - p[2]);
-    total += 0.5 * u.cross(v).norm();
+    total += triangle_area(p, q, r);
     s.a.push_back(p);
     s.b.push_back(q);
     s.c.push_back(r);
@@ -49,6 +54,13 @@ Eigen::Vector3d random_point(const SurfaceSample& s, std::mt19937_64& rng) {
 }
 
 }  // namespace
+
+double surface_area(const DoubleMesh& m) {
+  double area = 0;
+  for (const Triangle& t : m.triangles)
+    area += triangle_area(m.points[t[0]], m.points[t[1]], m.points[t[2]]);
+  return area;
+}
 
 std::vector<double> d2_histogram(const DoubleMesh& m, int samples, int bins, std::uint64_t seed) {
   const SurfaceSample surface = surface_of(m);
