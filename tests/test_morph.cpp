@@ -178,6 +178,42 @@ TEST(Minkowski, ReducedConvolutionGivesTheFacetHullSolid) {
   }
 }
 
+// A bumpy sphere: an icosphere whose vertices are pushed along their rays by a fixed pseudo-random
+// factor in [0.8, 1.2] (exact rationals; a radial perturbation of a star-shaped surface stays
+// embedded). Its facets' normals turn in every direction, so the reduced convolution glues
+// irregular patches, some of which overlap themselves seen along their sweep direction and are
+// split (convolution_internal.h), and chains of edges of every length.
+Mesh bumpy_sphere(int level) {
+  Mesh m = make_icosphere(level, 1);
+  std::uint32_t x = 12345;
+  for (Point& p : m.points) {
+    x = x * 1103515245u + 12345u;
+    const FT f = FT(1) + FT(int((x >> 16) % 41) - 20) / 100;
+    p = Point(p.x() * f, p.y() * f, p.z() * f);
+  }
+  make_exact(m);
+  return m;
+}
+
+TEST(Minkowski, GluedPiecesGiveTheFacetHullSolidOnABumpySurface) {
+  const Mesh a = bumpy_sphere(2);
+  ASSERT_TRUE(check_mesh(a).valid_solid());
+  for (const std::string spec : {"cube:r=1/10", "octahedron:r=1/6"}) {
+    SCOPED_TRACE(spec);
+    const StructuringElement se = parse_structuring_element(spec);
+    const Mesh dilated = dilation(a, se);
+    const Mesh by_hulls = compute_union({boundary_sum(a, se.mesh, true), a});
+    EXPECT_EQ(valid_volume(dilated, "dilation"), valid_volume(by_hulls, "hull dilation"));
+    EXPECT_EQ(volume_outside(dilated, by_hulls), 0);
+    const Mesh eroded = erosion(a, se);
+    const BooleanResult eroded_by_hulls =
+        compute_boolean(a, boundary_sum(a, reflected(se.mesh), true), BooleanOp::Difference);
+    ASSERT_TRUE(eroded_by_hulls.ok());
+    EXPECT_EQ(valid_volume(eroded, "erosion"), valid_volume(eroded_by_hulls.mesh, "hull erosion"));
+    EXPECT_EQ(volume_outside(eroded_by_hulls.mesh, eroded), 0);
+  }
+}
+
 TEST(Morphology, ErosionToNothingIsAValidEmptyMesh) {
   const Mesh small = make_cube(FT(1) / 10);
   const Mesh eroded = erosion(small, parse_structuring_element("cube:r=1/5"));

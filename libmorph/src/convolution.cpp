@@ -32,7 +32,7 @@
 #include <optional>
 #include <vector>
 
-#include "minkowski_internal.h"
+#include "convolution_internal.h"
 #include "morphex/structuring_element.h"
 #include "union_find.h"
 
@@ -40,7 +40,6 @@ namespace morphex::detail {
 namespace {
 
 using Vector = Kernel::Vector_3;
-using ExactPoint = Kernel::Exact_kernel::Point_3;
 
 bool same_direction(const Vector& a, const Vector& b) {
   return CGAL::cross_product(a, b) == CGAL::NULL_VECTOR && CGAL::is_positive(a * b);
@@ -223,10 +222,6 @@ class ConvexBody {
   std::vector<std::array<double, 3>> approx_;
 };
 
-ExactPoint plus(const ExactPoint& p, const ExactPoint& q) {
-  return {p.x() + q.x(), p.y() + q.y(), p.z() + q.z()};
-}
-
 // conv(X + ({c} u S)) for the vertices X of a facet, an edge or a vertex of A (c left out when
 // null: S is then all of B, which holds it).
 Mesh hull_of_sums(const std::vector<Point>& x, const ConvexBody& b,
@@ -234,36 +229,22 @@ Mesh hull_of_sums(const std::vector<Point>& x, const ConvexBody& b,
   std::vector<Point> points;
   points.reserve(x.size() * (s.size() + 1));
   for (const Point& p : x) {
-    const ExactPoint& e = CGAL::exact(p);
-    if (c) points.push_back(point_from_exact(plus(e, CGAL::exact(*c))));
-    for (VertexIndex i : s) points.push_back(point_from_exact(plus(e, CGAL::exact(b.point(i)))));
+    if (c) points.push_back(sum_point(p, *c));
+    for (VertexIndex i : s) points.push_back(sum_point(p, b.point(i)));
   }
   Mesh hull = convex_hull(points);
   make_exact(hull);
   return hull;
 }
 
-// f + [c, s] for a facet f = (p0, p1, p2) with ids (u0, u1, u2) and n_f . (s - c) > 0: f + c
-// reversed, f + s, and one parallelogram per edge split along the diagonal from the smaller id's
-// copy at c, so that two prisms sharing a side split it alike.
-Mesh prism(const std::array<Point, 3>& p, const Triangle& ids, const Point& s, const Point& c) {
-  Mesh m;
-  for (const Point& q : p)
-    m.points.push_back(point_from_exact(plus(CGAL::exact(q), CGAL::exact(c))));
-  for (const Point& q : p)
-    m.points.push_back(point_from_exact(plus(CGAL::exact(q), CGAL::exact(s))));
-  m.triangles = {{0, 2, 1}, {3, 4, 5}};
-  for (VertexIndex i = 0; i < 3; ++i) {
-    const VertexIndex j = (i + 1) % 3;
-    if (ids[i] < ids[j]) {
-      m.triangles.push_back({i, j, j + 3});
-      m.triangles.push_back({i, j + 3, i + 3});
-    } else {
-      m.triangles.push_back({i, j, i + 3});
-      m.triangles.push_back({j, j + 3, i + 3});
-    }
-  }
-  return m;
+// v + conv({c} u S) for a vertex v of A: a tetrahedron built directly when S has three vertices
+// (the common case: the hull itself without the cost of a hull of exact points), else the hull.
+Mesh vertex_piece(const Point& v, const ConvexBody& b, const std::vector<VertexIndex>& s,
+                  const Point& c) {
+  if (s.size() == 3)
+    return tetrahedron({sum_point(v, c), sum_point(v, b.point(s[0])), sum_point(v, b.point(s[1])),
+                        sum_point(v, b.point(s[2]))});
+  return hull_of_sums({v}, b, s, &c);
 }
 
 }  // namespace
@@ -307,9 +288,117 @@ Point interior_point(const Mesh& convex) {
   return point_from_exact(CGAL::exact(Point(x / n, y / n, z / n)));
 }
 
+namespace {
+
+// What the pieces are chosen from: A's facet normals and the supporting vertices of B.
+struct Supports {
+  std::vector<Vector> normal;
+  std::vector<std::vector<VertexIndex>> of_facet;  // S(n_f), sorted
+  // Where S(n_f) is an edge or a facet of B (a facet of A parallel to one of B's), f + B itself is
+  // the piece: no larger in practice (conv(c u S(n_f)) is most of B) and it contains every edge and
+  // vertex piece at f, which are then skipped.
+  std::vector<std::uint8_t> whole;
+};
+
+Supports supports_of(const Mesh& surface, const ConvexBody& body) {
+  const std::size_t nf = surface.triangles.size();
+  const auto& p = surface.points;
+  Supports s;
+  s.normal.resize(nf);
+  s.of_facet.resize(nf);
+  s.whole.resize(nf);
+  tbb::parallel_for(std::size_t(0), nf, [&](std::size_t f) {
+    const Triangle& t = surface.triangles[f];
+    s.normal[f] = CGAL::cross_product(p[t[1]] - p[t[0]], p[t[2]] - p[t[0]]);
+    s.of_facet[f] = body.support(s.normal[f]);
+    s.whole[f] = s.of_facet[f].size() > 1;
+  });
+  return s;
+}
+
+// The edge pieces: convex edges whose facets' supports differ. Edges whose cone meets two
+// vertices of B go to `triangles` (chained into swept triangles), the others are built here.
+void edge_pieces(const Mesh& surface, const DirectedEdges& edges, const Supports& s,
+                 const ConvexBody& body, const Point& c, std::vector<TriangleEdge>& triangles,
+                 std::vector<Mesh>& out) {
+  struct Edge {
+    VertexIndex u, v;
+    DirectionCone cone;
+    std::vector<VertexIndex> seeds, support;
+  };
+  std::vector<Edge> found;
+  const auto& p = surface.points;
+  for (std::uint32_t f = 0; f < surface.triangles.size(); ++f)
+    for (int i = 0; i < 3; ++i) {
+      const Triangle& t = surface.triangles[f];
+      const VertexIndex u = t[i], v = t[(i + 1) % 3], w = t[(i + 2) % 3];
+      if (u > v) continue;  // each edge once
+      const std::uint32_t g = edges.facet(v, u);
+      if (s.of_facet[f] == s.of_facet[g] || s.whole[f] || s.whole[g]) continue;
+      const VertexIndex x = third_vertex(surface.triangles[g], u, v);
+      if (CGAL::orientation(p[u], p[v], p[w], p[x]) != CGAL::NEGATIVE) continue;  // not convex
+      Edge e{u, v, make_cone({s.normal[f], s.normal[g]}), s.of_facet[f], {}};
+      e.seeds.insert(e.seeds.end(), s.of_facet[g].begin(), s.of_facet[g].end());
+      found.push_back(std::move(e));
+    }
+  tbb::parallel_for(std::size_t(0), found.size(), [&](std::size_t i) {
+    found[i].support = body.support(found[i].cone, found[i].seeds);
+  });
+  std::vector<std::size_t> hulls;
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    const auto& support = found[i].support;
+    if (support.size() == 2)
+      triangles.push_back({found[i].u, found[i].v, support[0], support[1]});
+    else
+      hulls.push_back(i);
+  }
+  std::vector<Mesh> built(hulls.size());
+  tbb::parallel_for(std::size_t(0), hulls.size(), [&](std::size_t k) {
+    const Edge& e = found[hulls[k]];
+    built[k] = hull_of_sums({p[e.u], p[e.v]}, body, e.support, &c);
+  });
+  for (Mesh& m : built) out.push_back(std::move(m));
+}
+
+// The vertex pieces: vertices around which the facets' supports differ.
+void vertex_pieces(const Mesh& surface, const Supports& s, const ConvexBody& body, const Point& c,
+                   std::vector<Mesh>& out) {
+  const auto& p = surface.points;
+  std::vector<std::vector<std::uint32_t>> facets_at(p.size());
+  for (std::uint32_t f = 0; f < surface.triangles.size(); ++f)
+    for (VertexIndex v : surface.triangles[f]) facets_at[v].push_back(f);
+  std::vector<VertexIndex> corners;
+  for (VertexIndex v = 0; v < p.size(); ++v) {
+    const auto& around = facets_at[v];
+    if (!around.empty() &&
+        std::none_of(around.begin(), around.end(), [&](std::uint32_t f) { return s.whole[f]; }) &&
+        std::any_of(around.begin(), around.end(), [&](std::uint32_t f) {
+          return s.of_facet[f] != s.of_facet[around.front()];
+        }))
+      corners.push_back(v);
+  }
+  std::vector<Mesh> built(corners.size());
+  tbb::parallel_for(std::size_t(0), corners.size(), [&](std::size_t k) {
+    std::vector<Vector> normals;
+    std::vector<VertexIndex> seeds;
+    for (std::uint32_t f : facets_at[corners[k]]) {
+      normals.push_back(s.normal[f]);
+      seeds.insert(seeds.end(), s.of_facet[f].begin(), s.of_facet[f].end());
+    }
+    std::sort(seeds.begin(), seeds.end());
+    seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
+    const auto support = body.support(make_cone(normals), seeds);
+    // A cone meeting two vertices of B gives the flat hull of three points: no piece.
+    if (support.size() > 2) built[k] = vertex_piece(p[corners[k]], body, support, c);
+  });
+  for (Mesh& m : built)
+    if (!m.empty()) out.push_back(std::move(m));
+}
+
+}  // namespace
+
 std::optional<std::vector<Mesh>> convolution_pieces(const Mesh& surface, const Mesh& b,
                                                     const Point& c) {
-  const std::size_t nf = surface.triangles.size();
   // Every edge must have exactly two facets, one each way, for edges and vertices to be read.
   const DirectedEdges edges(surface);
   if (!edges.paired()) return std::nullopt;
@@ -320,86 +409,37 @@ std::optional<std::vector<Mesh>> convolution_pieces(const Mesh& surface, const M
   for (const Point& q : b.points) CGAL::exact(q);
   CGAL::exact(c);
   const ConvexBody body(b);
+  const Supports s = supports_of(surface, body);
   const auto& p = surface.points;
-  std::vector<Vector> normal(nf);
-  std::vector<std::vector<VertexIndex>> support(nf);
-  tbb::parallel_for(std::size_t(0), nf, [&](std::size_t f) {
-    const Triangle& t = surface.triangles[f];
-    normal[f] = CGAL::cross_product(p[t[1]] - p[t[0]], p[t[2]] - p[t[0]]);
-    support[f] = body.support(normal[f]);
-  });
 
-  // Where S(n_f) is an edge or a facet of B (a facet of A parallel to one of B's), f + B itself is
-  // the piece: no larger in practice (conv(c u S(n_f)) is most of B) and it contains every edge and
-  // vertex piece at f, which are then skipped. Coplanar pairs share one piece.
-  std::vector<std::uint8_t> whole(nf, 0);
-  for (std::uint32_t f = 0; f < nf; ++f) whole[f] = support[f].size() > 1;
+  std::vector<Mesh> pieces;
+  // Facet pieces: the prisms of each patch with one supporting vertex, glued into sweeps.
+  const auto patches = same_support_patches(surface, edges, s.of_facet, s.whole);
+  std::vector<std::vector<Mesh>> swept(patches.size());
+  tbb::parallel_for(std::size_t(0), patches.size(), [&](std::size_t i) {
+    patch_pieces(surface, edges, patches[i], body.point(s.of_facet[patches[i][0]][0]), c,
+                 swept[i]);
+  });
+  for (auto& list : swept)
+    for (Mesh& m : list) pieces.push_back(std::move(m));
+  // f + B where B's support is an edge or a facet; coplanar pairs share one piece.
   std::vector<std::vector<VertexIndex>> whole_groups;
   for (const FacetGroup& group : convex_facet_groups(surface))
-    if (whole[group.facets.front()]) whole_groups.push_back(group.vertices);
+    if (s.whole[group.facets.front()]) whole_groups.push_back(group.vertices);
   std::vector<VertexIndex> all_of_b(b.points.size());
   for (VertexIndex i = 0; i < all_of_b.size(); ++i) all_of_b[i] = i;
-
-  // Edge and vertex pieces: which features need one, then their supports.
-  struct Feature {
-    std::vector<Point> points;
-    DirectionCone cone;
-    std::vector<VertexIndex> seeds;
-  };
-  std::vector<Feature> features;
-  for (std::uint32_t f = 0; f < nf; ++f)
-    for (int i = 0; i < 3; ++i) {
-      const Triangle& t = surface.triangles[f];
-      const VertexIndex u = t[i], v = t[(i + 1) % 3], w = t[(i + 2) % 3];
-      if (u > v) continue;  // each edge once
-      const std::uint32_t g = edges.facet(v, u);
-      if (support[f] == support[g] || whole[f] || whole[g]) continue;
-      const VertexIndex x = third_vertex(surface.triangles[g], u, v);
-      if (CGAL::orientation(p[u], p[v], p[w], p[x]) != CGAL::NEGATIVE) continue;  // not convex
-      Feature e{{p[u], p[v]}, make_cone({normal[f], normal[g]}), support[f]};
-      e.seeds.insert(e.seeds.end(), support[g].begin(), support[g].end());
-      features.push_back(std::move(e));
-    }
-  std::vector<std::vector<std::uint32_t>> facets_at(p.size());
-  for (std::uint32_t f = 0; f < nf; ++f)
-    for (VertexIndex v : surface.triangles[f]) facets_at[v].push_back(f);
-  for (VertexIndex v = 0; v < p.size(); ++v) {
-    const auto& around = facets_at[v];
-    if (around.empty() ||
-        std::any_of(around.begin(), around.end(), [&](std::uint32_t f) { return whole[f]; }) ||
-        std::all_of(around.begin(), around.end(),
-                    [&](std::uint32_t f) { return support[f] == support[around.front()]; }))
-      continue;
-    Feature corner{{p[v]}, {}, {}};
-    std::vector<Vector> normals;
-    for (std::uint32_t f : around) {
-      normals.push_back(normal[f]);
-      corner.seeds.insert(corner.seeds.end(), support[f].begin(), support[f].end());
-    }
-    std::sort(corner.seeds.begin(), corner.seeds.end());
-    corner.seeds.erase(std::unique(corner.seeds.begin(), corner.seeds.end()), corner.seeds.end());
-    corner.cone = make_cone(normals);
-    features.push_back(std::move(corner));
-  }
-
-  std::vector<std::uint32_t> prisms;
-  for (std::uint32_t f = 0; f < nf; ++f)
-    if (!whole[f]) prisms.push_back(f);
-  const std::size_t np = prisms.size(), nw = whole_groups.size();
-  std::vector<Mesh> pieces(np + nw + features.size());
-  tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t i) {
-    if (i < np) {
-      const Triangle& t = surface.triangles[prisms[i]];
-      pieces[i] = prism({p[t[0]], p[t[1]], p[t[2]]}, t, body.point(support[prisms[i]][0]), c);
-    } else if (i < np + nw) {
-      std::vector<Point> corners;
-      for (VertexIndex v : whole_groups[i - np]) corners.push_back(p[v]);
-      pieces[i] = hull_of_sums(corners, body, all_of_b, nullptr);
-    } else {
-      const Feature& feature = features[i - np - nw];
-      pieces[i] = hull_of_sums(feature.points, body, body.support(feature.cone, feature.seeds), &c);
-    }
+  std::vector<Mesh> whole(whole_groups.size());
+  tbb::parallel_for(std::size_t(0), whole_groups.size(), [&](std::size_t i) {
+    std::vector<Point> corners;
+    for (VertexIndex v : whole_groups[i]) corners.push_back(p[v]);
+    whole[i] = hull_of_sums(corners, body, all_of_b, nullptr);
   });
+  for (Mesh& m : whole) pieces.push_back(std::move(m));
+  // Edge and vertex pieces.
+  std::vector<TriangleEdge> triangle_edges;
+  edge_pieces(surface, edges, s, body, c, triangle_edges, pieces);
+  triangle_edge_pieces(surface, triangle_edges, b.points, c, pieces);
+  vertex_pieces(surface, s, body, c, pieces);
   return pieces;
 }
 
