@@ -5,6 +5,7 @@
 
 #include <filesystem>
 
+#include "morphex/generators.h"
 #include "morphex/io.h"
 #include "morphex/pipeline.h"
 
@@ -73,6 +74,23 @@ TEST(Pipeline, ChainedMorphologyAndBooleansGiveExactVolumes) {
   EXPECT_EQ(stage(r, "turned").faces, 12u);
   // the exact file holds exactly the shell
   EXPECT_EQ(to_rational_string(signed_volume(read_mesh(out + "/shell.off"))), "19/8");
+}
+
+TEST(Pipeline, SimplifyStageGivesAValidCoarserSolid) {
+  const std::string dir = fresh_dir("simplify");
+  write_mesh(make_icosphere(3, 1), dir + "/sphere.off");  // 1,280 facets
+  const mp::RunReport report = run_text(R"({"pipeline": [
+      {"type": "read", "path": ")" + dir + R"(/sphere.off"},
+      {"type": "simplify", "facets": 200, "tag": "coarse"},
+      {"type": "check", "tag": "checked"}]})");
+  ASSERT_TRUE(report.ok()) << report.inputs[0].error;
+  const mp::StageReport& coarse = stage(report.inputs[0], "coarse");
+  EXPECT_LE(coarse.faces, 200u);
+  EXPECT_GE(coarse.faces, 150u);
+  EXPECT_TRUE(coarse.extra["simplified"].get<bool>());
+  EXPECT_TRUE(stage(report.inputs[0], "checked").extra["valid"].get<bool>());
+  EXPECT_FALSE(problems_of(R"({"pipeline": [{"type": "read", "path": "x.off"},
+      {"type": "simplify", "facets": 2}]})").empty());
 }
 
 TEST(Pipeline, VariablesComeFromSetThenFromTheDocument) {

@@ -11,6 +11,7 @@
 #include "morphex/minkowski.h"
 #include "morphex/morphology.h"
 #include "morphex/pipeline.h"
+#include "morphex/simplify.h"
 #include "pipeline_internal.h"
 
 namespace morphex::pipeline {
@@ -226,6 +227,24 @@ void add_builtin_stages(StageRegistry& r) {
            Mesh sum = minkowski_sum(*c.inputs[0], *c.inputs[1], &stats);
            c.extra["pieces"] = stats.pieces;
            return sum;
+         }});
+  OptionInfo facets = required("facets", OptionType::Integer,
+                               "facet budget: the copy has about this many facets, never more "
+                               "than the input");
+  facets.min = 8;
+  facets.max = 1e9;
+  r.add({"simplify",
+         "a coarser valid solid near the mesh by edge collapse (double precision; the budget is "
+         "doubled until the copy is a valid solid)",
+         1,
+         {facets},
+         [](StageContext& c) {
+           SimplifyReport report;
+           Mesh copy = simplified_solid(to_double(*c.inputs[0]),
+                                        c.option("facets").get<std::size_t>(), &report);
+           c.extra["simplified"] = report.simplified;
+           c.extra["attempts"] = report.attempts;
+           return copy;
          }});
   r.add({"translate",
          "move the mesh by an exact offset",
