@@ -91,44 +91,46 @@ Command add_describe_command(CLI::App& app) {
   cmd->add_flag("!--no-closings", s.closings, "Skip the anti-granulometry");
   cmd->add_option("--facet-budget", s.facet_budget,
                   "Filter a simplified valid copy of about this many facets (0: the mesh itself)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--d2-samples", s.d2_samples, "D2 point pairs")
       ->capture_default_str()
       ->check(CLI::Range(16, 10000000));
-  cmd->add_option("--d2-bins", s.d2_bins, "D2 histogram bins")->capture_default_str()->check(CLI::Range(4, 4096));
+  cmd->add_option("--d2-bins", s.d2_bins, "D2 histogram bins")
+      ->capture_default_str()
+      ->check(CLI::Range(4, 4096));
   cmd->add_option("--seed", s.seed, "D2 random seed");
-  return {
-      cmd, [args]() -> int {
-        const auto& s = args->settings;
-        if (s.open_from > s.open_to || s.close_from > s.close_to) {
-          print_error("--open-from/--close-from must not exceed --open-to/--close-to");
-          return kBadInput;
-        }
-        const auto mesh = read_solid(args->mesh);
-        if (!mesh) return kBadInput;
-        const auto start = std::chrono::steady_clock::now();
-        const Descriptors d = describe(*mesh, s);
-        nlohmann::json j = descriptors_json(d);
-        j["name"] = fs::path(args->mesh).stem().string();
-        j["path"] = args->mesh;
-        j["settings"] = s.to_string();
-        j["seconds"] = seconds_since(start);
-        if (args->json) {
-          std::cout << j.dump() << std::endl;
-          return kSuccess;
-        }
-        std::cout << args->mesh << "  (L = cbrt(volume) = " << d.scale_length
-                  << ", thickness T/L = " << d.thickness << ", " << d.facets << " facets filtered"
-                  << (d.simplified ? ", simplified" : "") << ")\n";
-        for (const char* key : {"open_radii", "granulometry", "pattern_spectrum", "close_radii",
-                                "anti_granulometry", "components", "d2"}) {
-          std::cout << std::left << std::setw(19) << key;
-          for (double v : j[key].get<std::vector<double>>())
-            std::cout << ' ' << std::setprecision(4) << v;
-          std::cout << '\n';
-        }
-        return kSuccess;
-      }};
+  return {cmd, [args]() -> int {
+            const auto& s = args->settings;
+            if (s.open_from > s.open_to || s.close_from > s.close_to) {
+              print_error("--open-from/--close-from must not exceed --open-to/--close-to");
+              return kBadInput;
+            }
+            const auto mesh = read_solid(args->mesh);
+            if (!mesh) return kBadInput;
+            const auto start = std::chrono::steady_clock::now();
+            const Descriptors d = describe(*mesh, s);
+            nlohmann::json j = descriptors_json(d);
+            j["name"] = fs::path(args->mesh).stem().string();
+            j["path"] = args->mesh;
+            j["settings"] = s.to_string();
+            j["seconds"] = seconds_since(start);
+            if (args->json) {
+              std::cout << j.dump() << std::endl;
+              return kSuccess;
+            }
+            std::cout << args->mesh << "  (L = cbrt(volume) = " << d.scale_length
+                      << ", thickness T/L = " << d.thickness << ", " << d.facets
+                      << " facets filtered" << (d.simplified ? ", simplified" : "") << ")\n";
+            for (const char* key : {"open_radii", "granulometry", "pattern_spectrum", "close_radii",
+                                    "anti_granulometry", "components", "d2"}) {
+              std::cout << std::left << std::setw(19) << key;
+              for (double v : j[key].get<std::vector<double>>())
+                std::cout << ' ' << std::setprecision(4) << v;
+              std::cout << '\n';
+            }
+            return kSuccess;
+          }};
 }
 
 Command add_generate_command(CLI::App& app) {
@@ -177,9 +179,9 @@ class ProgressBar {
       return;
     }
     const int width = 30, filled = int(width * done / total_);
-    std::cerr << "\r\033[K[" << std::string(filled, '=') << std::string(width - filled, ' ')
-              << "] " << done << "/" << total_ << " meshes, " << failed << " failed, ETA "
-              << eta_text.str() << (done == total_ ? "\n" : "") << std::flush;
+    std::cerr << "\r\033[K[" << std::string(filled, '=') << std::string(width - filled, ' ') << "] "
+              << done << "/" << total_ << " meshes, " << failed << " failed, ETA " << eta_text.str()
+              << (done == total_ ? "\n" : "") << std::flush;
   }
 
  private:
@@ -227,7 +229,8 @@ Command add_index_command(CLI::App& app) {
               options.variables[s.substr(0, eq)] = s.substr(eq + 1);
               sets += s + ";";
             }
-            const std::string settings = document.dump() + "|" + sets;
+            const std::string settings =
+                document.dump() + "|" + sets + "|descriptors " + descriptor_version();
             IndexDb db(args->db);
             db.set_meta("pipeline", document.dump());
             db.set_meta("sets", nlohmann::json(options.variables).dump());
@@ -329,6 +332,12 @@ Command add_query_command(CLI::App& app) {
                 meshes.begin(), meshes.end(),
                 [&](const IndexedMesh& m) { return m.name == args->mesh || m.path == args->mesh; });
             if (!fs::exists(args->mesh) && by_id != meshes.end()) {
+              if (!by_id->descriptors.count(args->descriptor)) {
+                print_error(args->db + ": " + by_id->name + " has no '" + args->descriptor +
+                            "' descriptor (indexed by another version of morphex: run morphex "
+                            "index again)");
+                return kBadInput;
+              }
               query = by_id->descriptors.at(args->descriptor);
               exclude = by_id->id;
             } else {

@@ -43,7 +43,14 @@ std::vector<std::string> descriptor_kinds() {
   return {"combined", "morphology", "granulometry", "pattern_spectrum", "spatial", "d2"};
 }
 
-const char* default_descriptor_kind() { return "combined"; }
+const char* default_descriptor_kind() {
+  return "combined";
+}
+
+// 1: three cube radii relative to cbrt(volume); 2: per-mesh scales, residue placements, D2 64.
+const char* descriptor_version() {
+  return "2";
+}
 
 std::vector<double> descriptor_vector(const Descriptors& d, const std::string& kind) {
   if (kind == "morphology") return morphology_vector(d);

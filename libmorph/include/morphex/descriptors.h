@@ -26,9 +26,10 @@
 //                      2002) of the full-resolution surface, divided by their mean, over [0, 3)
 //                      in `d2_bins` bins, fixed seed.
 //
-// Exactness: the openings and closings of the copy are exact; the pose, the optional simplification and the statistics of the results are in double precision.
-// Invariance: translation, uniform scale and rotation (up to the ambiguity of nearly equal
-// principal moments) leave the descriptor unchanged up to rounding; tests check it on exact copies.
+// Exactness: the openings and closings of the copy are exact; the pose, the optional simplification
+// and the statistics of the results are in double precision. Invariance: translation, uniform scale
+// and rotation (up to the ambiguity of nearly equal principal moments) leave the descriptor
+// unchanged up to rounding; tests check it on exact copies.
 #pragma once
 
 #include <cstdint>
@@ -40,13 +41,13 @@
 namespace morphex {
 
 struct DescriptorSettings {
-  int scales = 8;                                  // n, at least 1
-  double open_from = 0.05, open_to = 0.6;          // opening radii, in units of T
-  double close_from = 0.02, close_to = 0.35;       // closing radii, in units of L
-  bool closings = true;                            // also the anti-granulometry
+  int scales = 8;                             // n, at least 1
+  double open_from = 0.05, open_to = 0.6;     // opening radii, in units of T
+  double close_from = 0.02, close_to = 0.35;  // closing radii, in units of L
+  bool closings = true;                       // also the anti-granulometry
   bool normalise_pose = true;
   std::size_t facet_budget = 300;  // simplify larger meshes to about this many facets; 0: never
-  int d2_samples = 200000;          // point pairs
+  int d2_samples = 200000;         // point pairs
   int d2_bins = 64;
   std::uint64_t seed = 1;
   std::string to_string() const;  // canonical text, stored with indexed descriptors
@@ -60,7 +61,7 @@ struct Descriptors {
   std::vector<double> open_radii, close_radii;  // in units of L
   std::vector<double> granulometry, pattern_spectrum, anti_granulometry;
   std::vector<double> opening_residue, closing_residue;  // 6 per scale: 3 moments, 3 offsets
-  std::vector<double> components;                          // log2(1 + components) per opening
+  std::vector<double> components;                        // log2(1 + components) per opening
   std::vector<double> d2;
   double seconds_morphology = 0;
 };
@@ -78,6 +79,9 @@ Descriptors describe(const Mesh& solid, const DescriptorSettings& settings = {})
 std::vector<std::string> descriptor_kinds();
 std::vector<double> descriptor_vector(const Descriptors& d, const std::string& kind);
 const char* default_descriptor_kind();  // "combined"
+// The version of what describe computes, stored with indexed descriptors: an index built by
+// another version is described again, never compared with vectors of another definition.
+const char* descriptor_version();
 
 enum class Metric { L1, L2, ChiSquare };
 // "l1", "l2", "chi2"; throws std::invalid_argument otherwise.
