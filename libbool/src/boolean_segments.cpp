@@ -32,7 +32,6 @@
 #include "boolean_internal.h"
 #include "filtered.h"
 #include "flat_map.h"
-#include "point_index.h"
 #include "triangle_overlap.h"
 
 namespace morphex::detail {
@@ -371,30 +370,13 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
       for (VertexIndex v : a.triangles[ia]) near[table.vertex(0, v)] = 1;
       for (VertexIndex v : b.triangles[ib]) near[table.vertex(1, v)] = 1;
     }
-    std::vector<std::pair<double, PointId>> by_x;
+    std::vector<PointId> ids;
     for (PointId id = 0; id < num_inputs; ++id)
-      if (near[id]) by_x.emplace_back(table.approx(id).x().inf(), id);
-    tbb::parallel_sort(by_x.begin(), by_x.end());
-    UnionFind same(num_inputs);
-    for (std::size_t i = 0; i < by_x.size(); ++i) {
-      const ApproxPoint& p = table.approx(by_x[i].second);
-      for (std::size_t j = i + 1; j < by_x.size() && by_x[j].first <= p.x().sup(); ++j) {
-        const ApproxPoint& q = table.approx(by_x[j].second);
-        if (p.y().inf() <= q.y().sup() && q.y().inf() <= p.y().sup() &&
-            p.z().inf() <= q.z().sup() && q.z().inf() <= p.z().sup() &&
-            table.equal(by_x[i].second, by_x[j].second))
-          same.join(by_x[i].second, by_x[j].second);
-      }
-    }
-    // The smallest id of each class names it.
-    for (const auto& [lo, id] : by_x) {
-      PointId& first = x.vertex_rep[same.find(id)];
-      first = std::min(first, id);
-    }
-    for (const auto& [lo, id] : by_x) {
-      const PointId first = x.vertex_rep[same.find(id)];
-      if (first != id) merged.push_back(first);
-      x.vertex_rep[id] = first;
+      if (near[id]) ids.push_back(id);
+    const std::vector<PointId> first = coincident_representatives(table, ids);
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      if (first[i] != ids[i]) merged.push_back(first[i]);
+      x.vertex_rep[ids[i]] = first[i];
     }
   }
   auto rep = [&](PointId id) { return x.vertex_rep[id]; };
@@ -470,6 +452,39 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
   auto answer = [&](std::uint64_t q) {
     return answers[std::lower_bound(questions.begin(), questions.end(), q) - questions.begin()];
   };
+  // In a soup, neighbouring triangles share corners. They meet only there when the other corners
+  // of one lie strictly on one side of the other's plane; the corners need no cut.
+  auto meet_at_corners = [&](const Corners& ta, const Corners& tb, const PairSigns& s) {
+    auto beyond = [](const Corners& t, const Corners& other, const std::int8_t(&x)[3]) {
+      int side = 0;
+      bool shared = false;
+      for (int i = 0; i < 3; ++i) {
+        if (t[i] == other[0] || t[i] == other[1] || t[i] == other[2]) {
+          shared = true;
+          continue;
+        }
+        if (x[i] == 0 || (side != 0 && x[i] != side)) return false;
+        side = x[i];
+      }
+      return shared && side != 0;
+    };
+    if (beyond(ta, tb, s.a) || beyond(tb, ta, s.b)) return true;
+    // Coplanar neighbours across a common edge, on both sides of it: they meet along the edge.
+    int i = 0, j = 0;
+    for (; i < 3; ++i)
+      if (ta[i] != tb[0] && ta[i] != tb[1] && ta[i] != tb[2]) break;
+    for (; j < 3; ++j)
+      if (tb[j] != ta[0] && tb[j] != ta[1] && tb[j] != ta[2]) break;
+    const bool one_edge = i < 3 && j < 3 && s.a[i] == 0 && s.b[j] == 0 &&
+                          (ta[(i + 1) % 3] == tb[0] || ta[(i + 1) % 3] == tb[1] ||
+                           ta[(i + 1) % 3] == tb[2]) &&
+                          (ta[(i + 2) % 3] == tb[0] || ta[(i + 2) % 3] == tb[1] ||
+                           ta[(i + 2) % 3] == tb[2]);
+    if (!one_edge) return false;
+    const PointId p = ta[(i + 1) % 3], q = ta[(i + 2) % 3];
+    const int dropped = table.dominant_axis(ta[0], ta[1], ta[2]);
+    return table.orientation_2(dropped, p, q, ta[i]) == -table.orientation_2(dropped, p, q, tb[j]);
+  };
   const TriangleOverlap overlap(table);
   for_each_upward(np, [&](std::size_t k) {
     PairSigns& s = signs[k];
@@ -483,7 +498,7 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
     auto one_side = [](const std::int8_t(&x)[3]) {
       return x[0] != 0 && x[0] == x[1] && x[1] == x[2];
     };
-    s.separated = one_side(s.a) || one_side(s.b);
+    s.separated = one_side(s.a) || one_side(s.b) || (options.soup && meet_at_corners(ta, tb, s));
     if (s.separated) return;
     s.coplanar = s.a[0] == 0 && s.a[1] == 0 && s.a[2] == 0;
     s.separated = !s.coplanar && !overlap(ta, tb, s.a, s.b);
@@ -651,10 +666,7 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
 
   // 5. Sequential, in pair order: final ids do not depend on the thread count.
   FlatMap<EdgeEdgeKey, PointId, EdgeEdgeHash> edge_edge;
-  PositionIndex positions;  // soups: every point by exact position
-  if (options.soup)
-    for (PointId id = 0; id < num_inputs; ++id)
-      if (rep(id) == id) positions.find_or_insert(table.input(id), id);
+  std::vector<PointId> positioned;  // soups: constructions named by exact position, below
   auto final_id = [&](const PairPoint& p) {
     PointId id = p.id;
     switch (p.naming) {
@@ -669,7 +681,8 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
       }
       case Naming::Position:
         if (id == kNoPoint) id = table.add(p.recipe);
-        return positions.find_or_insert(table.point(id), id);
+        positioned.push_back(id);
+        return id;
     }
     return id;
   };
@@ -677,8 +690,27 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
     for (PairPoint& p : outcomes[k].points)
       if (p.naming != Naming::Known) {
         p.id = final_id(p);
-        p.naming = Naming::Known;
+        if (p.naming == Naming::EdgeEdge) p.naming = Naming::Known;
       }
+  if (options.soup) {
+    // Constructions of a soup may coincide with each other or with vertices: each position is
+    // named by its least id.
+    std::sort(positioned.begin(), positioned.end());
+    positioned.erase(std::unique(positioned.begin(), positioned.end()), positioned.end());
+    std::vector<PointId> ids;
+    for (PointId id = 0; id < num_inputs; ++id)
+      if (rep(id) == id) ids.push_back(id);
+    ids.insert(ids.end(), positioned.begin(), positioned.end());
+    const std::vector<PointId> first = coincident_representatives(table, ids);
+    std::vector<PointId> named(table.size(), kNoPoint);
+    for (std::size_t i = 0; i < ids.size(); ++i) named[ids[i]] = first[i];
+    for (std::size_t k = 0; k < np; ++k)
+      for (PairPoint& p : outcomes[k].points)
+        if (p.naming == Naming::Position) {
+          p.id = named[p.id];
+          p.naming = Naming::Known;
+        }
+  }
 
   // The cuts, built per facet in parallel from its pairs in pair order.
   for (int side = 0; side < 2; ++side) {

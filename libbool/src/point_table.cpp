@@ -4,12 +4,15 @@
 #include <CGAL/predicates/kernel_ftC2.h>
 #include <CGAL/predicates/kernel_ftC3.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "filtered.h"
 #include "fixed_integer.h"
+#include "union_find.h"
 
 namespace morphex::detail {
 
@@ -147,6 +150,14 @@ Homogeneous homogeneous_of(const Point& p) {
 Homogeneous construct_homogeneous(const Recipe& recipe, const Homogeneous& p, const Homogeneous& q,
                                   const Homogeneous& a, const Homogeneous& b,
                                   const Homogeneous& c) {
+  if (recipe.kind == Recipe::Kind::Centroid) {
+    // (P/Wp + Q/Wq + A/Wa) / 3 over the common denominator 3 Wp Wq Wa.
+    const mpz_class wqa = q[3] * a[3], wpa = p[3] * a[3], wpq = p[3] * q[3];
+    Homogeneous r;
+    for (int i = 0; i < 3; ++i) r[i] = p[i] * wqa + q[i] * wpa + a[i] * wpq;
+    r[3] = 3 * p[3] * wqa;
+    return r;
+  }
   const auto plane = recipe.kind == Recipe::Kind::EdgePlane
                          ? plane_through(a, b, c)
                          : plane_along_axis(recipe.dropped, a, b);
@@ -216,6 +227,11 @@ Point PointTable::point(PointId id) const {
 ApproxPoint PointTable::approximate(const Recipe& r) const {
   IntervalStage rounding;
   const ApproxPoint &p = approx(r.p), &q = approx(r.q), &a = approx(r.a), &b = approx(r.b);
+  if (r.kind == Recipe::Kind::Centroid) {
+    Interval c[3];
+    for (int i = 0; i < 3; ++i) c[i] = (p.cartesian(i) + q.cartesian(i) + a.cartesian(i)) / 3;
+    return ApproxPoint(c[0], c[1], c[2]);
+  }
   Interval dp, dq;
   if (r.kind == Recipe::Kind::EdgePlane) {
     const auto n = CGAL::cross_product(b - a, approx(r.c) - a);
@@ -393,6 +409,33 @@ int PointTable::dominant_axis(PointId p, PointId q, PointId r) const {
   const mpz_class ax = abs(n[0]), ay = abs(n[1]), az = abs(n[2]);
   if (ax >= ay && ax >= az) return 0;
   return ay >= az ? 1 : 2;
+}
+
+std::vector<PointId> coincident_representatives(const PointTable& table,
+                                                const std::vector<PointId>& ids) {
+  std::vector<std::pair<double, std::uint32_t>> by_x(ids.size());  // (lowest x, slot in ids)
+  tbb::parallel_for(std::size_t(0), ids.size(), [&](std::size_t i) {
+    by_x[i] = {table.approx(ids[i]).x().inf(), std::uint32_t(i)};
+  });
+  tbb::parallel_sort(by_x.begin(), by_x.end());
+  UnionFind same(ids.size());
+  for (std::size_t i = 0; i < by_x.size(); ++i) {
+    const ApproxPoint& p = table.approx(ids[by_x[i].second]);
+    for (std::size_t j = i + 1; j < by_x.size() && by_x[j].first <= p.x().sup(); ++j) {
+      const ApproxPoint& q = table.approx(ids[by_x[j].second]);
+      if (p.y().inf() <= q.y().sup() && q.y().inf() <= p.y().sup() && p.z().inf() <= q.z().sup() &&
+          q.z().inf() <= p.z().sup() && table.equal(ids[by_x[i].second], ids[by_x[j].second]))
+        same.join(by_x[i].second, by_x[j].second);
+    }
+  }
+  std::vector<PointId> least(ids.size(), std::numeric_limits<PointId>::max());
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    PointId& first = least[same.find(std::uint32_t(i))];
+    first = std::min(first, ids[i]);
+  }
+  std::vector<PointId> out(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) out[i] = least[same.find(std::uint32_t(i))];
+  return out;
 }
 
 }  // namespace morphex::detail

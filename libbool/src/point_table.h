@@ -106,6 +106,8 @@ struct Recipe {
     EdgeProjectedLine,  // the edge pq crossing the line ab, all seen along the axis `dropped`
                         // (p, q strictly on both sides of the line)
     Explicit,           // an exact point given by the caller
+    Centroid,           // the centroid of p, q and a: a sample point inside a sub-triangle, for
+                        // the winding numbers of a soup (never an output point)
   };
   Kind kind = Kind::Explicit;
   std::int8_t dropped = -1;
@@ -211,5 +213,11 @@ class PointTable {
   std::unique_ptr<std::atomic<Homogeneous*>[]> input_exact_;
   mutable std::deque<std::atomic<Homogeneous*>> constructed_exact_;
 };
+
+// Exact identity among many points: for each of `ids`, the smallest id of `ids` at its exact
+// position. Boxes are swept along x; points are compared exactly only where their interval boxes
+// overlap, which for points of distinct positions is rare.
+std::vector<PointId> coincident_representatives(const PointTable& table,
+                                                const std::vector<PointId>& ids);
 
 }  // namespace morphex::detail

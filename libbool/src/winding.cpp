@@ -1,0 +1,191 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// winding_solid: the chain, the pairs, the driver and the assembly (morphex/winding.h).
+#include "morphex/winding.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
+#include <chrono>
+#include <numeric>
+
+#include "point_index.h"
+#include "winding_internal.h"
+
+namespace morphex::detail {
+
+Chain prepare_chain(const Mesh& surface, const std::vector<int>& weights, WindingStats& stats) {
+  Chain chain;
+  stats.input_faces = surface.triangles.size();
+  // Distinct positions: one vertex each.
+  std::vector<VertexIndex> id(surface.points.size());
+  {
+    PointIndex index(chain.soup.points);
+    index.reserve(surface.points.size());
+    for (std::size_t v = 0; v < surface.points.size(); ++v) id[v] = index.id(surface.points[v]);
+  }
+  stats.merged_vertices = surface.points.size() - chain.soup.points.size();
+  // Each triangle by its corners in increasing order and the parity of its orientation: a
+  // triangle and its reverse have one key and opposite signs, so their weights cancel.
+  struct Keyed {
+    std::array<VertexIndex, 3> sorted;
+    int weight;
+  };
+  std::vector<Keyed> keyed(surface.triangles.size(), Keyed{{0, 0, 0}, 0});
+  std::vector<std::uint8_t> degenerate(surface.triangles.size(), 0);
+  const auto& p = chain.soup.points;
+  tbb::parallel_for(std::size_t(0), surface.triangles.size(), [&](std::size_t f) {
+    const int w = weights.empty() ? 1 : weights[f];
+    if (w == 0) return;
+    std::array<VertexIndex, 3> t = {id[surface.triangles[f][0]], id[surface.triangles[f][1]],
+                                    id[surface.triangles[f][2]]};
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || CGAL::collinear(p[t[0]], p[t[1]], p[t[2]])) {
+      degenerate[f] = 1;
+      return;
+    }
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    keyed[f] = t[1] < t[2] ? Keyed{t, w} : Keyed{{t[0], t[2], t[1]}, -w};
+  });
+  stats.degenerate_faces = std::size_t(std::count(degenerate.begin(), degenerate.end(), 1));
+  keyed.erase(std::remove_if(keyed.begin(), keyed.end(), [](const Keyed& k) { return k.weight == 0; }),
+              keyed.end());
+  const std::size_t kept = keyed.size();
+  tbb::parallel_sort(keyed.begin(), keyed.end(),
+                     [](const Keyed& a, const Keyed& b) { return a.sorted < b.sorted; });
+  for (std::size_t i = 0; i < keyed.size();) {
+    std::size_t j = i;
+    int sum = 0;
+    for (; j < keyed.size() && keyed[j].sorted == keyed[i].sorted; ++j) sum += keyed[j].weight;
+    if (sum != 0) {
+      const auto& t = keyed[i].sorted;
+      chain.soup.triangles.push_back(sum > 0 ? Triangle{t[0], t[1], t[2]}
+                                             : Triangle{t[0], t[2], t[1]});
+      chain.weight.push_back(std::abs(sum));
+    }
+    i = j;
+  }
+  stats.cancelled_faces = kept - chain.soup.triangles.size();
+  return chain;
+}
+
+Pairs self_pairs(const TriangleTree& tree) {
+  std::vector<Pairs> per_task(tree.self_pair_tasks());
+  tree.for_each_self_pair([&](std::size_t task, std::uint32_t i, std::uint32_t j) {
+    per_task[task].emplace_back(i, j);
+  });
+  Pairs pairs;
+  std::size_t total = 0;
+  for (const Pairs& p : per_task) total += p.size();
+  pairs.reserve(total);
+  for (const Pairs& p : per_task) pairs.insert(pairs.end(), p.begin(), p.end());
+  return pairs;
+}
+
+std::vector<Member> members_of(const Mesh& soup, const Refined& refined, const Intersection& x) {
+  std::vector<Member> members;
+  members.reserve(soup.triangles.size() + refined.triangles.size());
+  std::size_t cut = 0;
+  for (std::uint32_t f = 0; f < soup.triangles.size(); ++f) {
+    if (cut < refined.facets.size() && refined.facets[cut] == f) {
+      ++cut;
+      continue;
+    }
+    const Triangle& t = soup.triangles[f];
+    members.push_back({{x.vertex_id(0, t[0]), x.vertex_id(0, t[1]), x.vertex_id(0, t[2])}, f});
+  }
+  for (const SubTriangle& s : refined.triangles) members.push_back({s.v, s.facet});
+  return members;
+}
+
+namespace {
+
+// The kept members as a closed surface: non-manifold features separated, coplanar faces merged.
+Mesh assemble_kept(const Chain& chain, Intersection& x, const std::vector<Member>& members,
+                   const std::vector<std::int8_t>& keep, bool merge) {
+  std::vector<Triangle> faces;
+  std::vector<FaceOrigin> origin;  // `mesh` says whether the face is its facet reversed
+  for (std::size_t i = 0; i < members.size(); ++i) {
+    if (keep[i] == 0) continue;
+    const auto& v = members[i].v;
+    faces.push_back(keep[i] > 0 ? Triangle{v[0], v[1], v[2]} : Triangle{v[0], v[2], v[1]});
+    origin.push_back({std::uint8_t(keep[i] < 0), members[i].facet});
+  }
+  if (faces.empty()) return {};
+  // Any point of a soup may be where the result is not a 2-manifold.
+  IdMesh surface =
+      separate_non_manifold(x.points, faces, std::vector<std::uint8_t>(x.points.size(), 1),
+                            &origin);
+  if (merge) {
+    // Each face lies in its facet's plane, oriented as the face.
+    std::vector<std::array<PointId, 3>> planes;
+    std::vector<std::uint32_t> plane_of(origin.size());
+    std::vector<std::uint32_t> slot(2 * chain.soup.triangles.size(), UINT32_MAX);
+    for (std::size_t f = 0; f < origin.size(); ++f) {
+      std::uint32_t& plane = slot[2 * origin[f].face + origin[f].mesh];
+      if (plane == UINT32_MAX) {
+        const Triangle& t = chain.soup.triangles[origin[f].face];
+        plane = std::uint32_t(planes.size());
+        std::array<PointId, 3> corners = {x.vertex_id(0, t[0]), x.vertex_id(0, t[1]),
+                                          x.vertex_id(0, t[2])};
+        if (origin[f].mesh) std::swap(corners[1], corners[2]);
+        planes.push_back(corners);
+      }
+      plane_of[f] = plane;
+    }
+    merge_coplanar(x.points, surface, planes, plane_of);
+  }
+  return materialize(x.points, surface);
+}
+
+double seconds_since(std::chrono::steady_clock::time_point& last) {
+  const auto now = std::chrono::steady_clock::now();
+  const double s = std::chrono::duration<double>(now - last).count();
+  last = now;
+  return s;
+}
+
+}  // namespace
+}  // namespace morphex::detail
+
+namespace morphex {
+
+Mesh winding_solid(const Mesh& surface, const std::vector<int>& weights,
+                   const WindingOptions& options, WindingStats* stats_out) {
+  using namespace detail;
+  if (!weights.empty() && weights.size() != surface.triangles.size())
+    throw std::invalid_argument("winding_solid: one weight per triangle expected");
+  WindingStats stats;
+  auto clock = std::chrono::steady_clock::now();
+  const Chain chain = prepare_chain(surface, weights, stats);
+  stats.seconds_chain = seconds_since(clock);
+  Mesh result;
+  if (!chain.soup.triangles.empty()) {
+    const TriangleTree tree(chain.soup);
+    const Pairs pairs = self_pairs(tree);
+    stats.candidate_pairs = pairs.size();
+    stats.seconds_pairs = seconds_since(clock);
+
+    IntersectOptions soup;
+    soup.soup = true;
+    Intersection x = intersect(chain.soup, chain.soup, pairs, soup);
+    stats.intersecting_pairs = x.intersecting_pairs;
+    stats.triple_points = merge_soup_cuts(chain.soup, x);
+    stats.cut_facets = x.cuts[0].size();
+    stats.seconds_segments = seconds_since(clock);
+
+    const Refined refined = retriangulate(chain.soup, 0, x);
+    const std::vector<Member> members = members_of(chain.soup, refined, x);
+    stats.seconds_cuts = seconds_since(clock);
+
+    const std::vector<std::int8_t> keep =
+        select_by_winding(chain, tree, members, x, options.threshold, stats);
+    stats.seconds_winding = seconds_since(clock);
+
+    result = assemble_kept(chain, x, members, keep, options.merge_coplanar);
+    stats.seconds_assembly = seconds_since(clock);
+  }
+  if (stats_out) *stats_out = stats;
+  return result;
+}
+
+}  // namespace morphex
