@@ -184,6 +184,8 @@ Mesh sum_with_component(const Mesh& a, const Mesh& b, bool b_convex, MinkowskiSt
     make_exact(hull);
     return hull;
   }
+  if (b_convex)
+    if (const auto box = axis_box(b)) return box_morphology(a, *box, false);
   if (b_convex) {
     const Point c = interior_point(b);
     if (auto pieces = timed_convolution_pieces(a, b, c, stats)) {

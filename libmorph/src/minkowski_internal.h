@@ -2,6 +2,7 @@
 // Pieces of the Minkowski machinery shared with morphology.cpp.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <unordered_map>
@@ -66,6 +67,18 @@ std::optional<std::vector<Mesh>> convolution_pieces(const Mesh& surface, const M
 std::optional<std::vector<Mesh>> timed_convolution_pieces(const Mesh& surface, const Mesh& b,
                                                           const Point& c, MinkowskiStats* stats);
 Mesh timed_union(std::vector<Mesh> solids, MinkowskiStats* stats);
+
+// An axis-aligned box: its centre and half sizes.
+struct AxisBox {
+  Point centre;
+  std::array<FT, 3> half;
+};
+// B as an axis-aligned box when its eight vertices are exactly its bounding box's corners.
+std::optional<AxisBox> axis_box(const Mesh& b);
+// A + [-h e, h e] (or the erosion by it) along the axis e, as one winding_solid (box_sweep.cpp).
+Mesh segment_sweep(const Mesh& a, int axis, const FT& half_length, bool erode);
+// A + B or A - B for an axis-aligned box B: the centre, then one sweep per axis.
+Mesh box_morphology(const Mesh& a, const AxisBox& box, bool erode);
 
 // A + B for one connected B whose convexity is known.
 Mesh sum_with_component(const Mesh& a, const Mesh& b, bool b_convex, MinkowskiStats* stats);

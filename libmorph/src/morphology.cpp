@@ -75,6 +75,8 @@ Mesh dilate_valid(const Mesh& a, const std::vector<SePart>& parts, MinkowskiStat
 // (its surface is A's, reversed; c strictly inside -B) when B is convex, else (A - b0) minus
 // the shell dA + (-B) of the facet-hull formula.
 Mesh erode_by_part(const Mesh& a, const SePart& b, MinkowskiStats& stats) {
+  if (b.convex)
+    if (const auto box = detail::axis_box(b.mesh)) return detail::box_morphology(a, *box, true);
   const Mesh minus_b = reflected(b.mesh);
   Mesh shell, moved;
   std::optional<std::vector<Mesh>> pieces;

@@ -1,0 +1,144 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Morphology by axis-aligned boxes as three sweeps along the axes.
+//
+// A box is the Minkowski sum of its centre and three segments S = [-h e, h e] along the axes, so
+// A + B = (((A + centre) + Sx) + Sy) + Sz, and the erosion is the erosion by each segment in turn
+// (erosion by a sum is the composition of the erosions). Each step is one winding_solid.
+//
+// Dilation by a segment. Write S = -h e + [0, 2h e]. For a solid A and a direction d,
+//   A + [0, d] = A  u  U { f + [0, d] : facets f with n_f . d > 0 }
+// (almost every point x of A + [0, d] outside A has a first point a = x - t d of A along -d
+// inside a facet f that d leaves through, so n_f . d > 0 and x lies in f's prism; both sides are
+// closed and the left one is the closure of its interior). As a chain, the prisms' bottoms cancel
+// the facets of A - h e they stand on, and the walls of neighbouring prisms cancel in pairs: what
+// is left is every front facet (n_f . e > 0) moved by +h e, every other facet by -h e, and over
+// each edge between a moved-up and a moved-down facet, the wall the edge sweeps. {w >= 1} of that
+// chain is A + S.
+// Erosion by a segment: A - S is the complement of A's complement dilated by -S = S. The same
+// construction on the reversed surface moves the back facets (n_f . e < 0) up and every other facet
+// down: {w >= 1} of that chain is A - S.
+//
+// Unlike the reduced convolution's prisms, which overlap wherever the supporting vertex changes,
+// the sheets of a sweep overlap only where the solid folds back along the axis within 2h.
+#include <tbb/parallel_for.h>
+
+#include <array>
+
+#include "minkowski_internal.h"
+#include "morphex/generators.h"
+#include "morphex/winding.h"
+
+namespace morphex::detail {
+namespace {
+
+// The sign of the `axis` component of the facet's normal, exactly: the orientation of the facet
+// seen along the axis, in the cyclic coordinates (axis + 1, axis + 2).
+CGAL::Sign normal_component_sign(const Point& p, const Point& q, const Point& r, int axis) {
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  {
+    CGAL::Protect_FPU_rounding<true> rounding;
+    const auto& ap = CGAL::approx(p);
+    const auto& aq = CGAL::approx(q);
+    const auto& ar = CGAL::approx(r);
+    const CGAL::Uncertain<CGAL::Sign> s =
+        CGAL::orientationC2(ap.cartesian(u), ap.cartesian(v), aq.cartesian(u), aq.cartesian(v),
+                            ar.cartesian(u), ar.cartesian(v));
+    if (CGAL::is_certain(s)) return CGAL::get_certain(s);
+  }
+  const auto &ep = CGAL::exact(p), &eq = CGAL::exact(q), &er = CGAL::exact(r);
+  return CGAL::orientationC2(ep.cartesian(u), ep.cartesian(v), eq.cartesian(u), eq.cartesian(v),
+                             er.cartesian(u), er.cartesian(v));
+}
+
+// p + offset along `axis`, as an evaluated exact point.
+Point shifted(const Kernel::Exact_kernel::Point_3& p, int axis, const Kernel::Exact_kernel::FT& d) {
+  std::array<Kernel::Exact_kernel::FT, 3> c = {p.x(), p.y(), p.z()};
+  c[axis] += d;
+  return point_from_exact({c[0], c[1], c[2]});
+}
+
+}  // namespace
+
+Mesh segment_sweep(const Mesh& a, int axis, const FT& half_length, bool erode) {
+  if (a.empty()) return {};
+  const std::size_t nv = a.points.size(), nf = a.triangles.size();
+  // Lazy coordinates are evaluated once here (CGAL's lazy evaluation of a shared point is not safe
+  // from several threads).
+  for (const Point& p : a.points) CGAL::exact(p);
+  const auto& h = CGAL::exact(half_length);
+  Mesh chain;
+  chain.points.resize(2 * nv);  // vertex v at -h e is 2 v, at +h e is 2 v + 1
+  tbb::parallel_for(std::size_t(0), nv, [&](std::size_t v) {
+    const auto& p = CGAL::exact(a.points[v]);
+    chain.points[2 * v] = shifted(p, axis, -h);
+    chain.points[2 * v + 1] = shifted(p, axis, h);
+  });
+  std::vector<std::uint8_t> up(nf);
+  tbb::parallel_for(std::size_t(0), nf, [&](std::size_t f) {
+    const Triangle& t = a.triangles[f];
+    const CGAL::Sign s = normal_component_sign(a.points[t[0]], a.points[t[1]], a.points[t[2]], axis);
+    up[f] = erode ? s == CGAL::NEGATIVE : s == CGAL::POSITIVE;
+  });
+  const DirectedEdges edges(a);
+  chain.triangles.reserve(nf + nf / 2);
+  for (std::uint32_t f = 0; f < nf; ++f) {
+    const Triangle& t = a.triangles[f];
+    const VertexIndex lift = up[f] ? 1 : 0;
+    chain.triangles.push_back({2 * t[0] + lift, 2 * t[1] + lift, 2 * t[2] + lift});
+    if (!up[f]) continue;
+    // The walls between this moved-up facet and moved-down neighbours, (u-, v-, v+, u+).
+    for (int i = 0; i < 3; ++i) {
+      const VertexIndex u = t[i], v = t[(i + 1) % 3];
+      const std::uint32_t g = edges.facet(v, u);
+      if (g == DirectedEdges::kNone || up[g]) continue;
+      chain.triangles.push_back({2 * u, 2 * v, 2 * v + 1});
+      chain.triangles.push_back({2 * u, 2 * v + 1, 2 * u + 1});
+    }
+  }
+  return winding_solid(chain);
+}
+
+}  // namespace morphex::detail
+
+namespace morphex::detail {
+
+std::optional<AxisBox> axis_box(const Mesh& b) {
+  if (b.points.size() != 8 || b.triangles.size() != 12) return std::nullopt;
+  std::array<FT, 3> lo, hi;
+  for (int k = 0; k < 3; ++k) {
+    lo[k] = hi[k] = b.points[0].cartesian(k);
+    for (const Point& p : b.points) {
+      lo[k] = CGAL::min(lo[k], p.cartesian(k));
+      hi[k] = CGAL::max(hi[k], p.cartesian(k));
+    }
+    if (!(lo[k] < hi[k])) return std::nullopt;
+  }
+  // Every vertex a corner, and all eight corners present.
+  unsigned seen = 0;
+  for (const Point& p : b.points) {
+    unsigned corner = 0;
+    for (int k = 0; k < 3; ++k) {
+      if (p.cartesian(k) == hi[k])
+        corner |= 1u << k;
+      else if (p.cartesian(k) != lo[k])
+        return std::nullopt;
+    }
+    seen |= 1u << corner;
+  }
+  if (seen != 0xffu) return std::nullopt;
+  AxisBox box;
+  box.centre = Point((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2);
+  for (int k = 0; k < 3; ++k) box.half[k] = (hi[k] - lo[k]) / 2;
+  return box;
+}
+
+Mesh box_morphology(const Mesh& a, const AxisBox& box, bool erode) {
+  const Vector offset = box.centre - CGAL::ORIGIN;
+  Mesh m = erode ? a : translated(a, offset);
+  for (int axis = 0; axis < 3 && !m.empty(); ++axis)
+    m = segment_sweep(m, axis, box.half[axis], erode);
+  if (erode && offset != CGAL::NULL_VECTOR) m = translated(m, -offset);
+  return m;
+}
+
+}  // namespace morphex::detail
