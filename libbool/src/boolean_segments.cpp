@@ -442,12 +442,24 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
   }
   tbb::parallel_sort(questions.begin(), questions.end());
   questions.erase(std::unique(questions.begin(), questions.end()), questions.end());
+  // Questions come sorted by plane: each plane's exact equation is computed once for its group.
   std::vector<std::int8_t> answers(questions.size());
-  tbb::parallel_for(std::size_t(0), questions.size(), [&](std::size_t i) {
-    const std::uint32_t plane = std::uint32_t(questions[i] >> 32);
+  std::vector<std::size_t> plane_groups;
+  for (std::size_t i = 0; i < questions.size(); ++i)
+    if (i == 0 || (questions[i] >> 32) != (questions[i - 1] >> 32)) plane_groups.push_back(i);
+  plane_groups.push_back(questions.size());
+  tbb::parallel_for(std::size_t(0), plane_groups.size() - 1, [&](std::size_t g) {
+    const std::uint32_t plane = std::uint32_t(questions[plane_groups[g]] >> 32);
     const std::uint32_t side = plane >> 31, facet = plane & 0x7fffffffu;
     const Corners f = corner_ids(options.soup ? 0 : int(side), facet);
-    answers[i] = std::int8_t(table.orientation_exact(f[0], f[1], f[2], PointId(questions[i])));
+    if (plane_groups[g + 1] - plane_groups[g] == 1) {
+      answers[plane_groups[g]] = std::int8_t(
+          table.orientation_exact(f[0], f[1], f[2], PointId(questions[plane_groups[g]])));
+      return;
+    }
+    const PointTable::Plane equation = table.exact_plane(f[0], f[1], f[2]);
+    for (std::size_t i = plane_groups[g]; i < plane_groups[g + 1]; ++i)
+      answers[i] = std::int8_t(table.plane_side(equation, PointId(questions[i])));
   });
   auto answer = [&](std::uint64_t q) {
     return answers[std::lower_bound(questions.begin(), questions.end(), q) - questions.begin()];

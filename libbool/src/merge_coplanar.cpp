@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <queue>
 #include <unordered_map>
@@ -211,15 +212,22 @@ void merge_coplanar(const PointTable& table, IdMesh& surface,
   // Two planes are one when each corner of the second is on the first and the normals agree;
   // decided once per pair of planes.
   FlatMap<std::uint64_t, std::uint8_t, Hash64> same_plane_cache;
+  std::vector<std::unique_ptr<PointTable::Plane>> equation(planes.size());
   auto same_plane = [&](std::uint32_t a, std::uint32_t b) {
     if (a == b) return true;
     const std::uint64_t key = edge_key(std::min(a, b), std::max(a, b));
     if (const std::uint8_t* known = same_plane_cache.find(key)) return *known != 0;
     const auto &pa = planes[a], &pb = planes[b];
-    const bool same = std::all_of(pb.begin(), pb.end(),
-                                  [&](PointId q) {
-                                    return table.orientation(pa[0], pa[1], pa[2], q) == CGAL::ZERO;
-                                  }) &&
+    // Intervals first; the planes that meet here are mostly one plane, so the exact test is
+    // against the plane's equation, computed once.
+    auto on_plane = [&](PointId q) {
+      const CGAL::Uncertain<CGAL::Sign> s = table.orientation_filter(pa[0], pa[1], pa[2], q);
+      if (s.is_certain()) return s.make_certain() == CGAL::ZERO;
+      if (!equation[a])
+        equation[a] = std::make_unique<PointTable::Plane>(table.exact_plane(pa[0], pa[1], pa[2]));
+      return table.plane_side(*equation[a], q) == CGAL::ZERO;
+    };
+    const bool same = std::all_of(pb.begin(), pb.end(), on_plane) &&
                       table.normal_dot(pa, pb) == CGAL::POSITIVE;
     same_plane_cache.emplace(key, same);
     return same;

@@ -305,6 +305,16 @@ CGAL::Sign PointTable::orientation_exact(PointId p, PointId q, PointId r, PointI
   return CGAL::Sign(-sign_of_det4(*rows[0], *rows[1], *rows[2], *rows[3]));
 }
 
+PointTable::Plane PointTable::exact_plane(PointId a, PointId b, PointId c) const {
+  return plane_through(exact(a), exact(b), exact(c));
+}
+
+CGAL::Sign PointTable::plane_side(const Plane& plane, PointId s) const {
+  // The plane's form at s is -det [a; b; c; s] over homogeneous rows, whose sign is orientation's
+  // (see orientation_exact).
+  return CGAL::Sign(sgn(evaluate(plane, exact(s))));
+}
+
 CGAL::Sign PointTable::orientation_2(int dropped, PointId p, PointId q, PointId r) const {
   if (p == q || q == r || p == r) return CGAL::ZERO;
   const int u = dropped == 0 ? 1 : 0, v = dropped == 2 ? 1 : 2;

@@ -179,6 +179,12 @@ class PointTable {
   CGAL::Uncertain<CGAL::Sign> side_filter(const ApproxVector& normal, PointId p, PointId s) const {
     return CGAL::sign(normal * (approx(s) - approx(p)));
   }
+  // The exact plane through a, b, c as integer coefficients over homogeneous coordinates: the
+  // sign of plane_side(plane, s) is orientation(a, b, c, s). For many questions against one
+  // facet's plane (coplanar regions ask them all exactly), computed once.
+  using Plane = std::array<mpz_class, 4>;
+  Plane exact_plane(PointId a, PointId b, PointId c) const;
+  CGAL::Sign plane_side(const Plane& plane, PointId s) const;
   // orientation of (p, q, r) seen along the axis `dropped` (coordinates u < v of the other two).
   CGAL::Sign orientation_2(int dropped, PointId p, PointId q, PointId r) const;
   // CGAL's side_of_oriented_circle of the projected points.

@@ -73,26 +73,41 @@ Mesh segment_sweep(const Mesh& a, int axis, const FT& half_length, bool erode) {
     chain.points[2 * v] = shifted(p, axis, -h);
     chain.points[2 * v + 1] = shifted(p, axis, h);
   });
-  std::vector<std::uint8_t> up(nf);
+  // Which copy each corner takes: a facet with n_f . e > 0 (< 0 for an erosion) moves up, one
+  // with the opposite sign down. A facet parallel to e (often a wall of an earlier sweep along
+  // e) may take either copy at each corner: the chains differ by pieces parallel to e, whose
+  // winding number is zero. Its corners take the copy of the facets around the vertex when
+  // those all agree, so that it stretches with them instead of meeting a coplanar wall.
+  std::vector<std::int8_t> side(nf);
   tbb::parallel_for(std::size_t(0), nf, [&](std::size_t f) {
     const Triangle& t = a.triangles[f];
     const CGAL::Sign s = normal_component_sign(a.points[t[0]], a.points[t[1]], a.points[t[2]], axis);
-    up[f] = erode ? s == CGAL::NEGATIVE : s == CGAL::POSITIVE;
+    side[f] = std::int8_t(erode ? -s : s);  // +1 up, -1 down, 0 parallel
   });
+  std::vector<std::uint8_t> around(nv, 0);  // bit 0: an up facet at the vertex, bit 1: a down one
+  for (std::uint32_t f = 0; f < nf; ++f)
+    if (side[f] != 0)
+      for (VertexIndex v : a.triangles[f]) around[v] |= side[f] > 0 ? 1 : 2;
+  auto copy = [&](std::uint32_t f, VertexIndex v) {  // the chain vertex of corner v of facet f
+    const bool up = side[f] > 0 || (side[f] == 0 && around[v] == 1);
+    return 2 * v + (up ? 1 : 0);
+  };
   const DirectedEdges edges(a);
   chain.triangles.reserve(nf + nf / 2);
   for (std::uint32_t f = 0; f < nf; ++f) {
     const Triangle& t = a.triangles[f];
-    const VertexIndex lift = up[f] ? 1 : 0;
-    chain.triangles.push_back({2 * t[0] + lift, 2 * t[1] + lift, 2 * t[2] + lift});
-    if (!up[f]) continue;
-    // The walls between this moved-up facet and moved-down neighbours, (u-, v-, v+, u+).
+    chain.triangles.push_back({copy(f, t[0]), copy(f, t[1]), copy(f, t[2])});
+    // Where the facet across an edge u -> v (u < v: each edge once) takes other copies, the wall
+    // the edge sweeps between them: (v', u', u'', v''), primes for this facet's copies.
     for (int i = 0; i < 3; ++i) {
       const VertexIndex u = t[i], v = t[(i + 1) % 3];
+      if (u > v) continue;
       const std::uint32_t g = edges.facet(v, u);
-      if (g == DirectedEdges::kNone || up[g]) continue;
-      chain.triangles.push_back({2 * u, 2 * v, 2 * v + 1});
-      chain.triangles.push_back({2 * u, 2 * v + 1, 2 * u + 1});
+      if (g == DirectedEdges::kNone) continue;
+      const VertexIndex fu = copy(f, u), fv = copy(f, v), gu = copy(g, u), gv = copy(g, v);
+      if (fu == gu && fv == gv) continue;
+      if (fu != gu) chain.triangles.push_back({fv, fu, gu});
+      if (fv != gv) chain.triangles.push_back({fv, gu, gv});
     }
   }
   return winding_solid(chain);
