@@ -452,9 +452,9 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
     const std::uint32_t plane = std::uint32_t(questions[plane_groups[g]] >> 32);
     const std::uint32_t side = plane >> 31, facet = plane & 0x7fffffffu;
     const Corners f = corner_ids(options.soup ? 0 : int(side), facet);
-    if (plane_groups[g + 1] - plane_groups[g] == 1) {
-      answers[plane_groups[g]] = std::int8_t(
-          table.orientation_exact(f[0], f[1], f[2], PointId(questions[plane_groups[g]])));
+    if (plane_groups[g + 1] - plane_groups[g] < 8) {  // a plane equation pays off for many
+      for (std::size_t i = plane_groups[g]; i < plane_groups[g + 1]; ++i)
+        answers[i] = std::int8_t(table.orientation_exact(f[0], f[1], f[2], PointId(questions[i])));
       return;
     }
     const PointTable::Plane equation = table.exact_plane(f[0], f[1], f[2]);
@@ -481,21 +481,23 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
       return shared && side != 0;
     };
     if (beyond(ta, tb, s.a) || beyond(tb, ta, s.b)) return true;
-    // Coplanar neighbours across a common edge, on both sides of it: they meet along the edge.
-    int i = 0, j = 0;
-    for (; i < 3; ++i)
-      if (ta[i] != tb[0] && ta[i] != tb[1] && ta[i] != tb[2]) break;
-    for (; j < 3; ++j)
-      if (tb[j] != ta[0] && tb[j] != ta[1] && tb[j] != ta[2]) break;
-    const bool one_edge = i < 3 && j < 3 && s.a[i] == 0 && s.b[j] == 0 &&
-                          (ta[(i + 1) % 3] == tb[0] || ta[(i + 1) % 3] == tb[1] ||
-                           ta[(i + 1) % 3] == tb[2]) &&
-                          (ta[(i + 2) % 3] == tb[0] || ta[(i + 2) % 3] == tb[1] ||
-                           ta[(i + 2) % 3] == tb[2]);
-    if (!one_edge) return false;
-    const PointId p = ta[(i + 1) % 3], q = ta[(i + 2) % 3];
+    // Coplanar neighbours: apart when the line of an edge of one through a common corner has the
+    // other strictly on its far side (the one with the edge lies on its near closed side).
+    for (int i = 0; i < 3; ++i)
+      if (s.a[i] != 0 || s.b[i] != 0) return false;
     const int dropped = table.dominant_axis(ta[0], ta[1], ta[2]);
-    return table.orientation_2(dropped, p, q, ta[i]) == -table.orientation_2(dropped, p, q, tb[j]);
+    auto shared = [](const Corners& t, PointId p) { return p == t[0] || p == t[1] || p == t[2]; };
+    for (const auto& [own, other] : {std::pair(&ta, &tb), std::pair(&tb, &ta)})
+      for (int e = 0; e < 3; ++e) {
+        const PointId x = (*own)[e], y = (*own)[(e + 1) % 3], z = (*own)[(e + 2) % 3];
+        if (!shared(*other, x) && !shared(*other, y)) continue;
+        const CGAL::Sign near = table.orientation_2(dropped, x, y, z);
+        bool apart = true;
+        for (PointId w : *other)
+          if (w != x && w != y && table.orientation_2(dropped, x, y, w) != -near) apart = false;
+        if (apart) return true;
+      }
+    return false;
   };
   const TriangleOverlap overlap(table);
   for_each_upward(np, [&](std::size_t k) {
@@ -665,6 +667,13 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
     };
     out.points.push_back(pair_point(lo));
     if (extent == CGAL::ZERO) {
+      // In a soup, neighbours touching only at a common corner: nothing to cut.
+      const PointId p = out.points[0].id;
+      if (options.soup && p != kNoPoint && out.points[0].naming == Naming::Known &&
+          (p == ta[0] || p == ta[1] || p == ta[2]) && (p == tb[0] || p == tb[1] || p == tb[2])) {
+        out.points.clear();
+        return;
+      }
       out.kind = PairOutcome::Kind::Point;
       return;
     }
