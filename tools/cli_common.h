@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "morphex/mesh.h"
+#include "morphex/repair.h"
 
 namespace morphex::cli {
 
@@ -26,6 +27,9 @@ void emit_json(const nlohmann::json& value, const std::string& target);
 // validity and the operation's wall time.
 nlohmann::json result_stats(const Mesh& mesh, double seconds);
 
+// The repair report as the JSON object `repair` of --stats and of index entries.
+nlohmann::json repair_json(const RepairReport& report);
+
 // Reads an operand; a read error or an invalid solid is reported as "FILE: problem" and nullopt.
 std::optional<Mesh> read_solid(const std::string& path);
 
@@ -40,6 +44,7 @@ struct Command {
 };
 Command add_check_command(CLI::App& app);
 Command add_bool_command(CLI::App& app);
+Command add_repair_command(CLI::App& app);
 std::vector<Command> add_morphology_commands(CLI::App& app);
 std::vector<Command> add_pipeline_commands(CLI::App& app);
 std::vector<Command> add_retrieval_commands(CLI::App& app);

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "morphex/check.h"
+#include "morphex/winding.h"
 
 namespace morphex {
 namespace {
@@ -70,6 +71,14 @@ Mesh simplified_solid(const DoubleMesh& mesh, std::size_t max_facets, SimplifyRe
     result = from_double(to_double_mesh(sm));
     if (positive_valid_solid(result)) {
       r.simplified = true;
+      break;
+    }
+    // A collapse made far parts of the surface cross or touch: the copy is still closed and
+    // oriented, so the region it winds around positively is a valid solid near it.
+    Mesh repaired = winding_solid(result);
+    if (positive_valid_solid(repaired)) {
+      result = std::move(repaired);
+      r.simplified = r.repaired = true;
       break;
     }
   }

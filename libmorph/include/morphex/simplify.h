@@ -4,9 +4,10 @@
 //
 // The copy is made by edge collapse (CGAL Surface_mesh_simplification, Lindstrom-Turk cost and
 // placement, collapses that would flip a facet normal refused) on double coordinates, then taken
-// exactly and checked: a copy that is not a valid solid (a collapse can make far parts of the
-// surface cross) is made again with twice the budget, up to the input itself. The morphology run
-// on the copy is exact; only the copy is an approximation of the input.
+// exactly and checked. A collapse can make far parts of the surface cross: such a copy is
+// replaced by the region it winds around positively (winding_solid, exact), and when even that
+// is not a valid solid with volume, the copy is made again with twice the budget, up to the input
+// itself. The morphology run on the copy is exact; only the copy is an approximation of the input.
 #pragma once
 
 #include <cstddef>
@@ -20,6 +21,8 @@ struct SimplifyReport {
   std::size_t attempts = 0;  // budgets tried (the first one, then doubled)
   bool simplified = false;   // false: the input came back unchanged (small enough, or no coarser
                              // copy was a valid solid)
+  bool repaired = false;     // the collapsed copy crossed itself and was replaced by its
+                             // positive-winding region
 };
 
 // A valid solid with at most about `max_facets` facets (never more than the input's) near the

@@ -1,0 +1,156 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// repair_mesh: merged vertices, repeated faces, the closed-chain test and the orientation, then
+// winding_solid (morphex/repair.h).
+#include "morphex/repair.h"
+
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
+#include <sstream>
+
+#include "morphex/check.h"
+#include "morphex/generators.h"
+#include "morphex/winding.h"
+#include "point_index.h"
+#include "union_find.h"
+
+namespace morphex {
+namespace {
+
+// Faces joined through shared vertices.
+std::size_t component_count(const Mesh& m) {
+  detail::UnionFind sets(m.points.size());
+  for (const Triangle& t : m.triangles) {
+    sets.join(t[0], t[1]);
+    sets.join(t[0], t[2]);
+  }
+  std::vector<std::uint8_t> root(m.points.size(), 0);
+  std::size_t count = 0;
+  for (const Triangle& t : m.triangles) {
+    const std::uint32_t r = sets.find(t[0]);
+    count += root[r] == 0;
+    root[r] = 1;
+  }
+  return count;
+}
+
+// The mesh over distinct positions, each face once (a face repeated with the same orientation is
+// an error of the file, not a second shell: only the first is kept).
+Mesh merged(const Mesh& mesh, RepairReport& r) {
+  Mesh out;
+  std::vector<VertexIndex> id(mesh.points.size());
+  {
+    detail::PointIndex index(out.points);
+    index.reserve(mesh.points.size());
+    for (std::size_t v = 0; v < mesh.points.size(); ++v) id[v] = index.id(mesh.points[v]);
+  }
+  r.merged_vertices = mesh.points.size() - out.points.size();
+  std::vector<std::pair<Triangle, std::uint32_t>> keyed;  // (rotated to its least corner, face)
+  keyed.reserve(mesh.triangles.size());
+  for (std::uint32_t f = 0; f < mesh.triangles.size(); ++f) {
+    Triangle t = {id[mesh.triangles[f][0]], id[mesh.triangles[f][1]], id[mesh.triangles[f][2]]};
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    keyed.emplace_back(t, f);
+  }
+  tbb::parallel_sort(keyed.begin(), keyed.end());
+  std::vector<std::uint8_t> repeated(mesh.triangles.size(), 0);
+  for (std::size_t i = 1; i < keyed.size(); ++i)
+    if (keyed[i].first == keyed[i - 1].first) repeated[keyed[i].second] = 1;
+  for (std::uint32_t f = 0; f < mesh.triangles.size(); ++f) {
+    if (repeated[f]) {
+      ++r.duplicate_faces;
+      continue;
+    }
+    out.triangles.push_back(
+        {id[mesh.triangles[f][0]], id[mesh.triangles[f][1]], id[mesh.triangles[f][2]]});
+  }
+  return out;
+}
+
+// Every edge run as often one way as the other, or the error that names the first one that is
+// not.
+void require_closed_chain(const Mesh& m) {
+  struct Use {
+    std::uint64_t edge;  // (min, max)
+    std::uint32_t face;
+    bool forward;  // min -> max
+    bool operator<(const Use& o) const { return edge != o.edge ? edge < o.edge : face < o.face; }
+  };
+  std::vector<Use> uses;
+  uses.reserve(3 * m.triangles.size());
+  for (std::uint32_t f = 0; f < m.triangles.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const VertexIndex a = m.triangles[f][k], b = m.triangles[f][(k + 1) % 3];
+      if (a == b) continue;  // an edge of no length bounds nothing
+      uses.push_back({(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b), f, a < b});
+    }
+  tbb::parallel_sort(uses.begin(), uses.end());
+  for (std::size_t i = 0; i < uses.size();) {
+    std::size_t j = i;
+    int net = 0;
+    bool one_way = true;
+    for (; j < uses.size() && uses[j].edge == uses[i].edge; ++j) {
+      net += uses[j].forward ? 1 : -1;
+      one_way = one_way && uses[j].forward == uses[i].forward;
+    }
+    if (net != 0) {
+      const VertexIndex a = VertexIndex(uses[i].edge >> 32), b = VertexIndex(uses[i].edge);
+      std::ostringstream message;
+      if (one_way && j - i >= 2)
+        message << "mesh is not consistently oriented: faces " << uses[i].face << " and "
+                << uses[i + 1].face << " both run the edge between vertices " << a << " and " << b
+                << " the same way (one of them is turned)";
+      else
+        message << "mesh is not closed: the edge between vertices " << a << " and " << b
+                << " of face " << uses[i].face
+                << (j - i == 1 ? " has no face on its other side"
+                               : " has more faces on one side than on the other");
+      message << " (vertices and faces numbered after merging equal vertices and faces)";
+      throw InputError("", message.str());
+    }
+    i = j;
+  }
+}
+
+}  // namespace
+
+RepairResult repair_mesh(const Mesh& mesh, const RepairOptions& options) {
+  RepairResult result;
+  RepairReport& r = result.report;
+  r.input_faces = mesh.num_triangles();
+  if (mesh.empty()) throw InputError("", "mesh has no faces");
+  r.components_in = component_count(mesh);
+  if (check_mesh(mesh, kValidityOnly).valid_solid()) {
+    result.mesh = mesh;
+    r.output_faces = mesh.num_triangles();
+    r.components_out = r.components_in;
+    return result;
+  }
+  Mesh chain = merged(mesh, r);
+  require_closed_chain(chain);
+  switch (signed_volume_sign(chain)) {
+    case CGAL::ZERO:
+      throw InputError("", "mesh bounds no volume (its signed volume is zero)");
+    case CGAL::NEGATIVE:
+      chain = reversed(chain);
+      r.reversed = true;
+      break;
+    default:
+      break;
+  }
+  WindingOptions winding;
+  winding.merge_coplanar = options.merge_coplanar;
+  WindingStats stats;
+  result.mesh = winding_solid(chain, {}, winding, &stats);
+  if (result.mesh.empty())
+    throw InputError("", "mesh bounds no region of positive winding number");
+  r.degenerate_faces = stats.degenerate_faces;
+  r.cancelled_faces = stats.cancelled_faces;
+  r.intersecting_pairs = stats.intersecting_pairs;
+  r.output_faces = result.mesh.num_triangles();
+  r.components_out = component_count(result.mesh);
+  r.changed = true;
+  return result;
+}
+
+}  // namespace morphex
