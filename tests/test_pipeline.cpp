@@ -139,6 +139,26 @@ TEST(Pipeline, OneBadMeshAmongGoodOnesFailsAloneAndKeepsTheOthers) {
   EXPECT_EQ(j["inputs"][0]["stages"][1]["type"], "dilate");
 }
 
+TEST(Pipeline, RepairStageTakesWhatReadWouldRefuse) {
+  mp::RunOptions options;
+  options.inputs = {kData + "/crossing_cubes.off"};
+  const mp::RunReport repaired = run_text(R"({"pipeline": [{"type": "read", "path": "${input}"},
+                                                           {"type": "repair"},
+                                                           {"type": "check"}]})",
+                                          options);
+  ASSERT_TRUE(repaired.ok()) << repaired.inputs[0].error;
+  EXPECT_EQ(repaired.inputs[0].stages[1].volume, "15/8");
+  EXPECT_EQ(repaired.inputs[0].stages[1].extra["repair"]["intersecting_pairs"], 18);
+  // Without the repair stage the read refuses the mesh and says what would take it.
+  const mp::RunReport refused = run_text(R"({"pipeline": [{"type": "read", "path": "${input}"},
+                                                          {"type": "check"}]})",
+                                         options);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.inputs[0].error.find("self-intersects"), std::string::npos);
+  EXPECT_NE(refused.inputs[0].error.find("a repair stage after the read repairs it"),
+            std::string::npos);
+}
+
 TEST(Pipeline, SeveralInputsWritingOneFileAreRefused) {
   mp::RunOptions options;
   options.inputs = {kData + "/unit_cube.off", kData + "/third_cube_exact.off"};
@@ -246,7 +266,7 @@ TEST(Pipeline, RegistryDocumentsEveryStage) {
   const auto& registry = mp::StageRegistry::builtin();
   for (const char* type :
        {"read", "write", "dilate", "erode", "open", "close", "union", "intersection", "difference",
-        "minkowski", "translate", "scale", "rotate", "check"}) {
+        "minkowski", "translate", "scale", "rotate", "check", "repair", "simplify", "describe"}) {
     const mp::StageInfo* s = registry.find(type);
     ASSERT_NE(s, nullptr) << type;
     EXPECT_FALSE(s->description.empty()) << type;

@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "morphex/mesh.h"
-#include "morphex/repair.h"
 
 namespace morphex::cli {
 
@@ -26,9 +25,6 @@ void emit_json(const nlohmann::json& value, const std::string& target);
 // The --stats keys every mesh-producing command shares (conventions.md): sizes, exact volume,
 // validity and the operation's wall time.
 nlohmann::json result_stats(const Mesh& mesh, double seconds);
-
-// The repair report as the JSON object `repair` of --stats and of index entries.
-nlohmann::json repair_json(const RepairReport& report);
 
 // Reads an operand; a read error or an invalid solid is reported as "FILE: problem" and nullopt.
 std::optional<Mesh> read_solid(const std::string& path);

@@ -4,21 +4,10 @@
 
 #include "cli_common.h"
 #include "morphex/io.h"
+#include "morphex/pipeline.h"
 #include "morphex/repair.h"
 
 namespace morphex::cli {
-
-nlohmann::json repair_json(const RepairReport& r) {
-  return {{"changed", r.changed},
-          {"reversed", r.reversed},
-          {"merged_vertices", r.merged_vertices},
-          {"duplicate_faces", r.duplicate_faces},
-          {"degenerate_faces", r.degenerate_faces},
-          {"cancelled_faces", r.cancelled_faces},
-          {"intersecting_pairs", r.intersecting_pairs},
-          {"components_in", r.components_in},
-          {"components_out", r.components_out}};
-}
 
 Command add_repair_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
@@ -62,7 +51,7 @@ Command add_repair_command(CLI::App& app) {
               nlohmann::json stats = result_stats(result.mesh, seconds);
               stats["operation"] = "repair";
               stats["input_faces"] = result.report.input_faces;
-              stats["repair"] = repair_json(result.report);
+              stats["repair"] = pipeline::to_json(result.report);
               emit_json(stats, args->stats);
             }
             return kSuccess;

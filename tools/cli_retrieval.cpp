@@ -25,6 +25,39 @@ namespace fs = std::filesystem;
 const char* kDefaultPipeline =
     R"({"pipeline": [{"type": "read", "path": "${input}"}, {"type": "describe"}]})";
 
+// The document with a repair stage after every read: the repair takes the read's tag (the read
+// gets "<tag>.as-read"), so that every stage that took the read's mesh takes the repaired one.
+nlohmann::json with_repairs(const nlohmann::json& document) {
+  nlohmann::json out = document;
+  nlohmann::json& stages = out.is_array() ? out : out["pipeline"];
+  nlohmann::json rewritten = nlohmann::json::array();
+  for (const nlohmann::json& stage : stages) {
+    if (!stage.is_object() || stage.value("type", "") != "read") {
+      rewritten.push_back(stage);
+      continue;
+    }
+    nlohmann::json read = stage, repair = {{"type", "repair"}};
+    if (stage.contains("tag") && stage["tag"].is_string()) {
+      const std::string tag = stage["tag"].get<std::string>();
+      read["tag"] = tag + ".as-read";
+      repair["tag"] = tag;
+      repair["inputs"] = read["tag"];
+    }
+    rewritten.push_back(read);
+    rewritten.push_back(repair);
+  }
+  stages = rewritten;
+  return out;
+}
+
+// What the repair stage of a finished input changed, as JSON text (empty when nothing).
+std::string repair_of(const mp::InputReport& input) {
+  for (const mp::StageReport& s : input.stages)
+    if (s.type == "repair" && s.extra.contains("repair") && s.extra["repair"].value("changed", false))
+      return s.extra["repair"].dump();
+  return "";
+}
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -63,13 +96,15 @@ Command add_describe_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("describe", "Morphological descriptors and D2 of a closed mesh");
   struct Args {
     std::string mesh;
-    bool json = false;
+    bool json = false, repair = false;
     DescriptorSettings settings;
   };
   auto args = std::make_shared<Args>();
   auto& s = args->settings;
   cmd->add_option("MESH", args->mesh, "Closed mesh")->required();
   cmd->add_flag("--json", args->json, "One JSON object on stdout");
+  cmd->add_flag("--repair", args->repair,
+                "Repair the mesh first when it is not a valid solid (morphex repair)");
   cmd->add_option("--scales", s.scales, "Number of opening and closing radii")
       ->capture_default_str()
       ->check(CLI::Range(1, 64));
@@ -106,11 +141,27 @@ Command add_describe_command(CLI::App& app) {
               print_error("--open-from/--close-from must not exceed --open-to/--close-to");
               return kBadInput;
             }
-            const auto mesh = read_solid(args->mesh);
+            std::optional<Mesh> mesh;
+            std::optional<RepairReport> repaired;
+            if (args->repair) {
+              try {
+                RepairResult r = repair_mesh(read_mesh(args->mesh));
+                mesh = std::move(r.mesh);
+                repaired = r.report;
+              } catch (const InputError& e) {
+                // A reader's error names the file; the repair's says what it cannot repair.
+                print_error(e.where().empty() ? args->mesh + ": cannot repair: " + e.what()
+                                              : std::string(e.what()));
+                return kBadInput;
+              }
+            } else {
+              mesh = read_solid(args->mesh);
+            }
             if (!mesh) return kBadInput;
             const auto start = std::chrono::steady_clock::now();
             const Descriptors d = describe(*mesh, s);
             nlohmann::json j = descriptors_json(d);
+            if (repaired) j["repair"] = mp::to_json(*repaired);
             j["name"] = fs::path(args->mesh).stem().string();
             j["path"] = args->mesh;
             j["settings"] = s.to_string();
@@ -196,9 +247,13 @@ Command add_index_command(CLI::App& app) {
   struct Args {
     std::vector<std::string> inputs, sets;
     std::string db, pipeline;
+    bool repair = true;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("INPUT", args->inputs, "Meshes or quoted globs")->required();
+  cmd->add_flag("--repair,!--no-repair", args->repair,
+                "Repair meshes that are not valid solids (self-intersecting, touching, repeated or "
+                "degenerate faces) before describing them; on by default, recorded per mesh");
   cmd->add_option("--db", args->db, "Index file (SQLite), created if missing")->required();
   cmd->add_option("--pipeline", args->pipeline,
                   "Descriptor pipeline run on each ${input}; its last describe stage is stored "
@@ -209,6 +264,7 @@ Command add_index_command(CLI::App& app) {
             try {
               document = args->pipeline.empty() ? mp::parse_document(kDefaultPipeline, "default")
                                                 : mp::load_document(args->pipeline);
+              if (args->repair) document = with_repairs(document);
               const auto p = mp::validate(document, args->pipeline, {}, {"input", "stem"});
               if (std::none_of(p.stages.begin(), p.stages.end(),
                                [](const mp::Stage& s) { return s.type == "describe"; }))
@@ -273,6 +329,7 @@ Command add_index_command(CLI::App& app) {
               m.status = r.ok ? "ok" : "failed";
               m.error = r.error;
               if (r.ok) m.descriptors = descriptors_of(r);
+              m.repair = repair_of(r);
               const std::size_t faces = r.stages.empty() ? 0 : r.stages.front().faces;
               const std::string volume = r.stages.empty() ? "" : r.stages.front().volume;
               db.store(m, faces, volume, r.seconds);

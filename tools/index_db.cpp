@@ -64,6 +64,11 @@ IndexDb::IndexDb(const std::string& path) : path_(path) {
       "path TEXT NOT NULL UNIQUE, hash TEXT NOT NULL, settings TEXT NOT NULL, "
       "status TEXT NOT NULL, error TEXT, faces INTEGER, volume TEXT, seconds REAL, "
       "indexed_at TEXT DEFAULT CURRENT_TIMESTAMP)");
+  {
+    // Indexes made before repairs were recorded lack the column.
+    Statement columns(db_, "SELECT 1 FROM pragma_table_info('meshes') WHERE name = 'repair'");
+    if (!columns.step()) exec("ALTER TABLE meshes ADD COLUMN repair TEXT");
+  }
   exec(
       "CREATE TABLE IF NOT EXISTS descriptors(mesh_id INTEGER NOT NULL REFERENCES meshes(id) "
       "ON DELETE CASCADE, kind TEXT NOT NULL, vector TEXT NOT NULL, PRIMARY KEY(mesh_id, kind))");
@@ -111,14 +116,15 @@ void IndexDb::store(const IndexedMesh& mesh, std::size_t faces, const std::strin
   try {
     Statement upsert(db_,
                      "INSERT INTO meshes(name, path, hash, settings, status, error, faces, volume, "
-                     "seconds) VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?) ON CONFLICT(path) DO UPDATE SET "
+                     "seconds, repair) VALUES(?, ?, ?, ?, ?, ?, ?, ?, ?, NULLIF(?, '')) "
+                     "ON CONFLICT(path) DO UPDATE SET "
                      "name = excluded.name, hash = excluded.hash, settings = excluded.settings, "
                      "status = excluded.status, error = excluded.error, faces = excluded.faces, "
                      "volume = excluded.volume, seconds = excluded.seconds, "
-                     "indexed_at = CURRENT_TIMESTAMP");
+                     "repair = excluded.repair, indexed_at = CURRENT_TIMESTAMP");
     upsert.bind(1, mesh.name).bind(2, mesh.path).bind(3, mesh.hash).bind(4, mesh.settings);
     upsert.bind(5, mesh.status).bind(6, mesh.error).bind(7, (long long)faces).bind(8, volume);
-    upsert.bind(9, seconds).step();
+    upsert.bind(9, seconds).bind(10, mesh.repair).step();
     Statement id(db_, "SELECT id FROM meshes WHERE path = ?");
     id.bind(1, mesh.path).step();
     const long long mesh_id = id.integer(0);
@@ -138,8 +144,8 @@ void IndexDb::store(const IndexedMesh& mesh, std::size_t faces, const std::strin
 std::vector<IndexedMesh> IndexDb::load(bool only_ok) {
   std::vector<IndexedMesh> out;
   std::map<long long, std::size_t> position;
-  Statement meshes(db_, std::string("SELECT id, name, path, hash, settings, status, error FROM "
-                                    "meshes") +
+  Statement meshes(db_, std::string("SELECT id, name, path, hash, settings, status, error, "
+                                    "repair FROM meshes") +
                             (only_ok ? " WHERE status = 'ok'" : "") + " ORDER BY name, path");
   while (meshes.step()) {
     IndexedMesh m;
@@ -150,6 +156,7 @@ std::vector<IndexedMesh> IndexDb::load(bool only_ok) {
     m.settings = meshes.text(4);
     m.status = meshes.text(5);
     m.error = meshes.text(6);
+    m.repair = meshes.text(7);
     position[m.id] = out.size();
     out.push_back(std::move(m));
   }

@@ -2,7 +2,8 @@
 // The retrieval index: one SQLite file. Tables:
 //   meta(key PRIMARY KEY, value)            "describe_options": the describe stage's options (JSON)
 //   meshes(id, name, path UNIQUE, hash, settings, status 'ok'|'failed', error, faces, volume,
-//          seconds, indexed_at)
+//          seconds, indexed_at, repair)  repair: what the repair changed (JSON), NULL when the
+//          mesh was a valid solid as read
 //   descriptors(mesh_id, kind, vector)       vector: a JSON array of doubles
 // Every mesh is committed in its own transaction, so a run killed midway keeps what it committed.
 #pragma once
@@ -19,6 +20,7 @@ namespace morphex::cli {
 struct IndexedMesh {
   long long id = 0;
   std::string name, path, hash, settings, status, error;
+  std::string repair;  // the repair report (JSON) when the mesh was repaired, else empty
   std::map<std::string, std::vector<double>> descriptors;
 };
 

@@ -16,6 +16,18 @@
 
 namespace morphex::pipeline {
 
+nlohmann::json to_json(const RepairReport& r) {
+  return {{"changed", r.changed},
+          {"reversed", r.reversed},
+          {"merged_vertices", r.merged_vertices},
+          {"duplicate_faces", r.duplicate_faces},
+          {"degenerate_faces", r.degenerate_faces},
+          {"cancelled_faces", r.cancelled_faces},
+          {"intersecting_pairs", r.intersecting_pairs},
+          {"components_in", r.components_in},
+          {"components_out", r.components_out}};
+}
+
 const char* to_string(OptionType type) {
   switch (type) {
     case OptionType::String:
@@ -175,15 +187,29 @@ std::vector<OptionInfo> describe_options() {
 
 void add_builtin_stages(StageRegistry& r) {
   r.add({"read",
-         "read a closed mesh (OFF, OBJ, STL, PLY) and check that it is a valid solid",
+         "read a closed mesh (OFF, OBJ, STL, PLY) and check that it is a valid solid (unless it "
+         "goes only to repair stages)",
          0,
          {required("path", OptionType::Path, "mesh file")},
          [](StageContext& c) {
            const std::string path = c.option("path").get<std::string>();
            Mesh mesh = read_mesh(path);
+           if (c.stage.unchecked) return mesh;
            const MeshReport report = check_mesh(mesh, kValidityOnly);
-           if (!report.valid_solid()) throw InputError(path, describe_problems(report));
+           if (!report.valid_solid())
+             throw InputError(path, describe_problems(report) +
+                                        " (a repair stage after the read repairs it)");
            return mesh;
+         }});
+  r.add({"repair",
+         "exact repair: the valid solid a closed mesh bounds where it crosses or touches itself, "
+         "repeats vertices or faces, or has faces without area (a valid solid passes unchanged)",
+         1,
+         {},
+         [](StageContext& c) {
+           RepairResult r = repair_mesh(*c.inputs[0]);
+           c.extra["repair"] = to_json(r.report);
+           return std::move(r.mesh);
          }});
   r.add({"write",
          "write the mesh atomically (format from the extension); passes it on",

@@ -367,6 +367,18 @@ Pipeline validate(const nlohmann::json& document, const std::string& name,
   };
   for (std::size_t s = 0; s < pipeline.stages.size(); ++s) visit(s);
 
+  // A read feeding only repair stages passes its mesh on unchecked.
+  for (Stage& r : pipeline.stages) {
+    if (r.type != "read") continue;
+    bool consumed = false, only_repairs = true;
+    for (const Stage& s : pipeline.stages)
+      if (std::find(s.inputs.begin(), s.inputs.end(), r.index) != s.inputs.end()) {
+        consumed = true;
+        only_repairs = only_repairs && s.type == "repair";
+      }
+    r.unchecked = consumed && only_repairs;
+  }
+
   // No write may replace a file that a read stage (or a mesh SE) takes as input.
   for (const Stage& w : pipeline.stages) {
     if (w.type != "write" || !w.options.contains("path")) continue;

@@ -38,3 +38,25 @@ morphex_cli_test(dilate_refuses_overwrite 2 "refusing to overwrite"
 morphex_cli_test(dilate_chained_exact 0 "\"volume\":\"125/8\""
   dilate ${out}/dilated.off --se cube:r=1/2 -o ${out}/dilated_twice.off --stats -)
 set_tests_properties(cli.dilate_chained_exact PROPERTIES DEPENDS cli.dilate_cube)
+
+# `morphex repair`: a self-intersecting mesh becomes its positive-winding solid exactly; what
+# cannot be repaired is bad input (exit 2) naming the file and the first open edge.
+morphex_cli_test(repair_crossing_cubes 0
+  "\"intersecting_pairs\":18.*\"valid\":true.*\"volume\":\"15/8\""
+  repair ${data}/crossing_cubes.off -o ${out}/repaired.off --exact --stats -)
+morphex_cli_test(repair_valid_unchanged 0 "\"changed\":false.*\"volume\":\"1\""
+  repair ${data}/unit_cube.off -o ${out}/unchanged.off --stats -)
+morphex_cli_test(repair_inward_turned 0 "\"reversed\":true.*\"volume\":\"1\""
+  repair ${data}/inward_cube.off -o ${out}/turned.off --stats -)
+morphex_cli_test(repair_open_refused 2
+  "open_cube.off: cannot repair: mesh is not closed: the edge between vertices"
+  repair ${data}/open_cube.off -o ${out}/never.off)
+morphex_cli_test(repair_refuses_overwrite 2 "refusing to overwrite"
+  repair ${data}/crossing_cubes.off -o ${data}/crossing_cubes.off)
+morphex_cli_test(repair_reread_valid 0 "\"valid\":true.*\"volume\":\"15/8\""
+  check --json ${out}/repaired.off)
+set_tests_properties(cli.repair_reread_valid PROPERTIES DEPENDS cli.repair_crossing_cubes)
+morphex_cli_test(describe_repair 0 "\"repair\":\\{\"cancelled_faces\":0,\"changed\":true"
+  describe --repair --json --scales 2 ${data}/crossing_cubes.off)
+morphex_cli_test(describe_without_repair 2 "crossing_cubes.off: mesh self-intersects"
+  describe --json ${data}/crossing_cubes.off)

@@ -25,10 +25,20 @@ morphex_cli_test(index_resume 0 "indexed 9 meshes \\(3 already up to date, 0 fai
   index "${rdir}/coll2/*.off" --db ${rdir}/index.sqlite --pipeline ${quick})
 set_tests_properties(cli.index_resume PROPERTIES DEPENDS cli.index_first)
 # failure isolation: an open mesh is recorded as failed, the others are indexed, exit 1
-morphex_cli_test(index_bad_mesh 1 "indexed 2 meshes \\(0 already up to date, 1 failed\\).*open_cube.off: pipeline\\[0\\] \\(read\\).*not closed"
+# (meshes are repaired by default: the open one is refused by the repair stage, exit 1)
+morphex_cli_test(index_bad_mesh 1 "indexed 2 meshes \\(0 already up to date, 1 failed\\).*open_cube.off: pipeline\\[1\\] \\(repair\\).*not closed"
   index ${data}/open_cube.off ${data}/unit_cube.off ${data}/third_cube_exact.off
   --db ${rdir}/other.sqlite --pipeline ${quick})
 set_tests_properties(cli.index_bad_mesh PROPERTIES FIXTURES_REQUIRED retrieval)
+morphex_cli_test(index_no_repair 1 "indexed 1 meshes \\(0 already up to date, 1 failed\\).*crossing_cubes.off: pipeline\\[0\\] \\(read\\).*self-intersects"
+  index ${data}/crossing_cubes.off ${data}/unit_cube.off --no-repair
+  --db ${rdir}/unrepaired.sqlite --pipeline ${quick})
+set_tests_properties(cli.index_no_repair PROPERTIES FIXTURES_REQUIRED retrieval)
+# a self-intersecting mesh is repaired, indexed, and the index records what changed
+morphex_cli_test(index_repairs 0 "indexed 2 meshes \\(0 already up to date, 0 failed\\)"
+  index ${data}/crossing_cubes.off ${data}/unit_cube.off --db ${rdir}/repaired.sqlite
+  --pipeline ${quick})
+set_tests_properties(cli.index_repairs PROPERTIES FIXTURES_REQUIRED retrieval)
 morphex_cli_test(index_no_describe 2 "needs a describe stage"
   index ${data}/unit_cube.off --db ${rdir}/never.sqlite --pipeline ${PROJECT_SOURCE_DIR}/pipelines/examples/granulometry.json)
 # a renamed copy of an indexed mesh finds the original first, at distance 0

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "morphex/mesh.h"
+#include "morphex/repair.h"
 
 namespace morphex::pipeline {
 
@@ -101,6 +102,9 @@ struct Stage {
   std::vector<std::size_t> inputs;  // indices of the stages it reads
   nlohmann::json options;           // validated, defaults filled in, variables substituted
   const StageInfo* info = nullptr;
+  // A read whose mesh goes only to repair stages: passed on as read, not refused when it is not
+  // a valid solid (the repair says what it cannot repair).
+  bool unchecked = false;
 };
 
 struct Pipeline {
@@ -165,6 +169,9 @@ RunReport run(const nlohmann::json& document, const std::string& name, const Run
               const StageRegistry& registry = StageRegistry::builtin());
 
 // What a stage sees while it runs.
+// The repair report as JSON (the `repair` object of reports, --stats and index entries).
+nlohmann::json to_json(const RepairReport& report);
+
 struct StageContext {
   const Stage& stage;
   std::vector<const Mesh*> inputs;
