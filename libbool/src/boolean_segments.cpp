@@ -536,7 +536,7 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
   std::vector<CrossingKey> keys(first_key[np]);
   tbb::parallel_for(std::size_t(0), np, [&](std::size_t k) {
     if (signs[k].separated || signs[k].coplanar) return;
-    const auto [ia, ib] = pairs[k];
+    const std::uint32_t ia = pairs[k].first, ib = pairs[k].second;  // captured below
     const Corners ta = corner_ids(0, ia), tb = corner_ids(1, ib);
     std::uint32_t slot = first_key[k];
     for_each_crossing_edge(signs[k].a,

@@ -321,6 +321,7 @@ MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
     struct Found {
       std::size_t count = 0;
       std::pair<std::uint32_t, std::uint32_t> first{UINT32_MAX, UINT32_MAX};
+      std::vector<std::pair<std::uint32_t, std::uint32_t>> all;  // when listed
     };
     std::vector<Found> found(tree.self_pair_tasks());
     tree.for_each_self_pair<detail::UpwardRounding>(
@@ -329,13 +330,18 @@ MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
           if (!test.improper(mesh.triangles[i], mesh.triangles[j])) return;
           Found& f = found[task];
           ++f.count;
-          f.first = std::min(f.first, std::make_pair(std::min(i, j), std::max(i, j)));
+          const auto pair = std::make_pair(std::min(i, j), std::max(i, j));
+          f.first = std::min(f.first, pair);
+          if (options.list_self_intersections) f.all.push_back(pair);
         });
     for (const Found& f : found) {
       r.self_intersections += f.count;
       if (f.count > 0 && (!r.first_self_intersection || f.first < *r.first_self_intersection))
         r.first_self_intersection = f.first;
+      r.self_intersecting_pairs.insert(r.self_intersecting_pairs.end(), f.all.begin(),
+                                       f.all.end());
     }
+    std::sort(r.self_intersecting_pairs.begin(), r.self_intersecting_pairs.end());
   }
 
   // Outward: a shell nested in an even number of others bounds material (positive volume), in an

@@ -35,8 +35,9 @@ std::size_t component_count(const Mesh& m) {
 }
 
 // The mesh over distinct positions, each face once (a face repeated with the same orientation is
-// an error of the file, not a second shell: only the first is kept).
-Mesh merged(const Mesh& mesh, RepairReport& r) {
+// an error of the file, not a second shell: only the first is kept). `face_of` maps each input
+// face to its face in the result (a repeated face to its first copy).
+Mesh merged(const Mesh& mesh, RepairReport& r, std::vector<std::uint32_t>& face_of) {
   Mesh out;
   std::vector<VertexIndex> id(mesh.points.size());
   {
@@ -53,14 +54,19 @@ Mesh merged(const Mesh& mesh, RepairReport& r) {
     keyed.emplace_back(t, f);
   }
   tbb::parallel_sort(keyed.begin(), keyed.end());
-  std::vector<std::uint8_t> repeated(mesh.triangles.size(), 0);
-  for (std::size_t i = 1; i < keyed.size(); ++i)
-    if (keyed[i].first == keyed[i - 1].first) repeated[keyed[i].second] = 1;
+  std::vector<std::uint32_t> first(mesh.triangles.size());  // the first copy of each face
+  for (std::size_t i = 0; i < keyed.size(); ++i)
+    first[keyed[i].second] =
+        i > 0 && keyed[i].first == keyed[i - 1].first ? first[keyed[i - 1].second]
+                                                      : keyed[i].second;
+  face_of.assign(mesh.triangles.size(), 0);
   for (std::uint32_t f = 0; f < mesh.triangles.size(); ++f) {
-    if (repeated[f]) {
+    if (first[f] != f) {
       ++r.duplicate_faces;
+      face_of[f] = face_of[first[f]];  // the least index of equal faces is the first copy
       continue;
     }
+    face_of[f] = std::uint32_t(out.triangles.size());
     out.triangles.push_back(
         {id[mesh.triangles[f][0]], id[mesh.triangles[f][1]], id[mesh.triangles[f][2]]});
   }
@@ -120,14 +126,25 @@ RepairResult repair_mesh(const Mesh& mesh, const RepairOptions& options) {
   r.input_faces = mesh.num_triangles();
   if (mesh.empty()) throw InputError("", "mesh has no faces");
   r.components_in = component_count(mesh);
-  if (check_mesh(mesh, kValidityOnly).valid_solid()) {
+  // One check says whether there is anything to do, and lists the pairs of faces that meet
+  // improperly: the arrangement intersects only those.
+  CheckOptions check = kValidityOnly;
+  check.list_self_intersections = true;
+  const MeshReport report = check_mesh(mesh, check);
+  if (report.valid_solid()) {
     result.mesh = mesh;
     r.output_faces = mesh.num_triangles();
     r.components_out = r.components_in;
     return result;
   }
-  Mesh chain = merged(mesh, r);
+  std::vector<std::uint32_t> face_of;
+  Mesh chain = merged(mesh, r, face_of);
   require_closed_chain(chain);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  pairs.reserve(report.self_intersecting_pairs.size());
+  for (const auto& [i, j] : report.self_intersecting_pairs)
+    if (face_of[i] != face_of[j])
+      pairs.emplace_back(std::min(face_of[i], face_of[j]), std::max(face_of[i], face_of[j]));
   switch (signed_volume_sign(chain)) {
     case CGAL::ZERO:
       throw InputError("", "mesh bounds no volume (its signed volume is zero)");
@@ -140,6 +157,7 @@ RepairResult repair_mesh(const Mesh& mesh, const RepairOptions& options) {
   }
   WindingOptions winding;
   winding.merge_coplanar = options.merge_coplanar;
+  winding.pairs = &pairs;
   WindingStats stats;
   result.mesh = winding_solid(chain, {}, winding, &stats);
   if (result.mesh.empty())

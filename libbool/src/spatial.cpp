@@ -230,7 +230,10 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> TriangleTree::overlapping_p
     const Node start{task_level, task};
     if (a.node_box(start).overlaps(b.node_box(root_b))) stack[top++] = {start, root_b};
     while (top > 0) {
-      const auto [na, nb] = stack[--top];
+      // (not a structured binding: the leaf loop below captures the nodes, which C++17 allows
+      // only for variables)
+      const Node na = stack[top - 1].first, nb = stack[top - 1].second;
+      --top;
       if (na.level == 0 && nb.level == 0) {
         a.for_each_triangle(na, [&](std::uint32_t t, const FloatBox& box_t) {
           std::uint32_t hits = b.leaf_overlaps(nb.index, box_t);

@@ -30,8 +30,9 @@ Chain prepare_chain(const Mesh& surface, const std::vector<int>& weights, Windin
   struct Keyed {
     std::array<VertexIndex, 3> sorted;
     int weight;
+    std::uint32_t face;
   };
-  std::vector<Keyed> keyed(surface.triangles.size(), Keyed{{0, 0, 0}, 0});
+  std::vector<Keyed> keyed(surface.triangles.size(), Keyed{{0, 0, 0}, 0, 0});
   std::vector<std::uint8_t> degenerate(surface.triangles.size(), 0);
   const auto& p = chain.soup.points;
   tbb::parallel_for(std::size_t(0), surface.triangles.size(), [&](std::size_t f) {
@@ -44,7 +45,8 @@ Chain prepare_chain(const Mesh& surface, const std::vector<int>& weights, Windin
       return;
     }
     std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
-    keyed[f] = t[1] < t[2] ? Keyed{t, w} : Keyed{{t[0], t[2], t[1]}, -w};
+    keyed[f] = t[1] < t[2] ? Keyed{t, w, std::uint32_t(f)}
+                           : Keyed{{t[0], t[2], t[1]}, -w, std::uint32_t(f)};
   });
   stats.degenerate_faces = std::size_t(std::count(degenerate.begin(), degenerate.end(), 1));
   keyed.erase(std::remove_if(keyed.begin(), keyed.end(), [](const Keyed& k) { return k.weight == 0; }),
@@ -52,11 +54,14 @@ Chain prepare_chain(const Mesh& surface, const std::vector<int>& weights, Windin
   const std::size_t kept = keyed.size();
   tbb::parallel_sort(keyed.begin(), keyed.end(),
                      [](const Keyed& a, const Keyed& b) { return a.sorted < b.sorted; });
+  chain.face_of.assign(surface.triangles.size(), Chain::kNoFace);
   for (std::size_t i = 0; i < keyed.size();) {
     std::size_t j = i;
     int sum = 0;
     for (; j < keyed.size() && keyed[j].sorted == keyed[i].sorted; ++j) sum += keyed[j].weight;
     if (sum != 0) {
+      for (std::size_t k = i; k < j; ++k)
+        chain.face_of[keyed[k].face] = std::uint32_t(chain.soup.triangles.size());
       const auto& t = keyed[i].sorted;
       chain.soup.triangles.push_back(sum > 0 ? Triangle{t[0], t[1], t[2]}
                                              : Triangle{t[0], t[2], t[1]});
@@ -78,6 +83,21 @@ Pairs self_pairs(const TriangleTree& tree) {
   for (const Pairs& p : per_task) total += p.size();
   pairs.reserve(total);
   for (const Pairs& p : per_task) pairs.insert(pairs.end(), p.begin(), p.end());
+  return pairs;
+}
+
+Pairs known_pairs(const Chain& chain, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& of_input) {
+  Pairs pairs;
+  pairs.reserve(of_input.size());
+  for (const auto& [i, j] : of_input) {
+    if (i >= chain.face_of.size() || j >= chain.face_of.size())
+      throw std::invalid_argument("winding_solid: a listed pair names a triangle that is not there");
+    const std::uint32_t a = chain.face_of[i], b = chain.face_of[j];
+    if (a != Chain::kNoFace && b != Chain::kNoFace && a != b)
+      pairs.emplace_back(std::min(a, b), std::max(a, b));
+  }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   return pairs;
 }
 
@@ -161,7 +181,7 @@ Mesh winding_solid(const Mesh& surface, const std::vector<int>& weights,
   Mesh result;
   if (!chain.soup.triangles.empty()) {
     const TriangleTree tree(chain.soup);
-    const Pairs pairs = self_pairs(tree);
+    const Pairs pairs = options.pairs ? known_pairs(chain, *options.pairs) : self_pairs(tree);
     stats.candidate_pairs = pairs.size();
     stats.seconds_pairs = seconds_since(clock);
 

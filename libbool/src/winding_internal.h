@@ -19,12 +19,17 @@ using Corners3 = std::array<PointId, 3>;
 struct Chain {
   Mesh soup;
   std::vector<int> weight;
+  std::vector<std::uint32_t> face_of;  // per input triangle: its soup triangle, or kNoFace
+  static constexpr std::uint32_t kNoFace = UINT32_MAX;
 };
 Chain prepare_chain(const Mesh& surface, const std::vector<int>& weights, WindingStats& stats);
 
 // Every pair of distinct triangles whose boxes overlap, each once, in an order that depends only
 // on the tree.
 Pairs self_pairs(const TriangleTree& tree);
+// The listed pairs of input triangles as pairs of soup triangles (dropped ones left out).
+Pairs known_pairs(const Chain& chain,
+                  const std::vector<std::pair<std::uint32_t, std::uint32_t>>& of_input);
 
 // The soup's cuts from both roles of its pairs as one list per facet (x.cuts[0]), with segments
 // that cross inside a facet split at their crossing (a point of three sheets, named once by exact

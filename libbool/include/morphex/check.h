@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "morphex/mesh.h"
 
@@ -17,6 +18,9 @@ struct CheckOptions {
   // The exact volume in the report. Without it, `volume` stays 0 and only the signs the
   // orientation test needs are computed, by an interval sum that is exact whenever it decides.
   bool volume = true;
+  // Also list every pair of faces that meets improperly (MeshReport::self_intersecting_pairs),
+  // for a repair that then needs to intersect only those.
+  bool list_self_intersections = false;
 };
 // Everything valid_solid() needs, without the exact volume.
 inline constexpr CheckOptions kValidityOnly{true, false};
@@ -29,6 +33,8 @@ struct MeshReport {
   bool outward = true;                // each shell's volume sign matches its nesting depth
   std::size_t self_intersections = 0;
   std::optional<std::pair<std::uint32_t, std::uint32_t>> first_self_intersection;
+  // Every such pair (i < j, sorted), when CheckOptions::list_self_intersections asks for them.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> self_intersecting_pairs;
   long genus = 0;  // sum over closed shells of (2 - chi) / 2; -1 when not a closed 2-manifold
   CGAL::Bbox_3 bbox;
   FT volume = 0;  // exact signed volume (0 when CheckOptions::volume is off)

@@ -30,6 +30,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "morphex/mesh.h"
@@ -40,6 +42,10 @@ struct WindingOptions {
   int threshold = 1;  // keep {x : w(x) >= threshold}
   // Merge neighbouring coplanar result triangles (as the Boolean does): no new points.
   bool merge_coplanar = true;
+  // When set: every pair of triangles (indices into the surface) that meets other than at common
+  // corners or along a common edge, for example MeshReport::self_intersecting_pairs of the same
+  // surface. The arrangement then intersects only these instead of searching all pairs.
+  const std::vector<std::pair<std::uint32_t, std::uint32_t>>* pairs = nullptr;
 };
 
 struct WindingStats {

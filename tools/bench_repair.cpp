@@ -1,0 +1,124 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// bench_repair: the exact repair against the validity check on the same meshes, in one run.
+//
+//   bench_repair [--threads N] [--runs K] [--json FILE] MESH...
+// For each mesh: the time of check_mesh (what `morphex check` and every command's input check
+// run; CGAL's does_self_intersect beside it as a peer), the time of repair_mesh, their ratio, and
+// whether the result is a valid solid whose volume stays near the input's signed volume. Times are
+// medians of K runs (default 3) after a warm-up.
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "morphex/check.h"
+#include "morphex/io.h"
+#include "morphex/repair.h"
+#include "peers.h"
+
+using namespace morphex;
+
+namespace {
+
+template <class Body>
+double median_seconds(int runs, Body&& body) {
+  body();  // warm-up
+  std::vector<double> times;
+  for (int i = 0; i < runs; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    body();
+    times.push_back(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::sort(times.begin(), times.end());
+  return times[times.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int runs = 3;
+  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  std::string json_path;
+  std::vector<std::string> inputs;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--runs" && i + 1 < argc)
+      runs = std::max(1, std::stoi(argv[++i]));
+    else if (arg == "--threads" && i + 1 < argc)
+      threads = unsigned(std::max(1, std::stoi(argv[++i])));
+    else if (arg == "--json" && i + 1 < argc)
+      json_path = argv[++i];
+    else if (arg.rfind("--", 0) == 0) {
+      std::cerr << "bench_repair: unknown option " << arg << '\n';
+      return 2;
+    } else
+      inputs.push_back(arg);
+  }
+  if (inputs.empty()) {
+    std::cerr << "usage: bench_repair [--threads N] [--runs K] [--json FILE] MESH...\n";
+    return 2;
+  }
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+  nlohmann::json rows = nlohmann::json::array();
+  bool all_valid = true;
+  std::cout << std::left << std::setw(34) << "mesh" << std::right << std::setw(8) << "faces"
+            << std::setw(7) << "pairs" << std::setw(10) << "check s" << std::setw(10) << "CGAL s"
+            << std::setw(10) << "repair s" << std::setw(8) << "ratio" << std::setw(11)
+            << "volume" << "  result\n";
+  for (const std::string& input : inputs) {
+    Mesh mesh;
+    try {
+      mesh = read_mesh(input);
+    } catch (const std::exception& e) {
+      std::cerr << e.what() << '\n';
+      return 2;
+    }
+    MeshReport report;
+    const double check_seconds =
+        median_seconds(runs, [&] { report = check_mesh(mesh, kValidityOnly); });
+    bool cgal_says = false;
+    const double cgal_seconds =
+        median_seconds(runs, [&] { cgal_says = peers::cgal_does_self_intersect(mesh); });
+    RepairResult repaired;
+    std::string outcome;
+    double repair_seconds = 0;
+    try {
+      repair_seconds = median_seconds(runs, [&] { repaired = repair_mesh(mesh); });
+      outcome = check_mesh(repaired.mesh, kValidityOnly).valid_solid() ? "valid" : "INVALID";
+    } catch (const InputError& e) {
+      outcome = std::string("refused: ") + e.what();
+    }
+    all_valid = all_valid && outcome != "INVALID";
+    const double v_in = CGAL::to_double(signed_volume(mesh));
+    const double v_out = repaired.mesh.empty() ? 0 : CGAL::to_double(signed_volume(repaired.mesh));
+    const double change = v_in != 0 ? (v_out - std::abs(v_in)) / std::abs(v_in) : 0;
+    std::cout << std::left << std::setw(33) << input.substr(input.size() > 33 ? input.size() - 33 : 0)
+              << ' ' << std::right << std::setw(8) << mesh.num_triangles() << std::setw(7)
+              << report.self_intersections << std::setw(10) << std::setprecision(3)
+              << check_seconds << std::setw(10) << cgal_seconds << std::setw(10) << repair_seconds
+              << std::setw(8) << std::setprecision(3) << repair_seconds / check_seconds
+              << std::setw(10) << std::setprecision(2) << 100 * change << "%  " << outcome
+              << (report.valid_solid() ? " (was valid)" : "") << std::endl;
+    rows.push_back({{"mesh", input},
+                    {"faces", mesh.num_triangles()},
+                    {"self_intersections", report.self_intersections},
+                    {"cgal_self_intersects", cgal_says},
+                    {"check_seconds", check_seconds},
+                    {"cgal_does_self_intersect_seconds", cgal_seconds},
+                    {"repair_seconds", repair_seconds},
+                    {"ratio", repair_seconds / check_seconds},
+                    {"volume_change", change},
+                    {"result", outcome},
+                    {"threads", threads}});
+  }
+  if (!json_path.empty()) std::ofstream(json_path) << rows.dump(2) << '\n';
+  return all_valid ? 0 : 1;
+}
