@@ -101,6 +101,8 @@ struct IntersectOptions {
   // pairs are its own triangle pairs, and every constructed point is identified by its exact
   // position (in a soup, distinct constructions may coincide).
   bool soup = false;
+  // Optional plane labels of a soup's triangles (winding.h): pairs with one label are coplanar.
+  const std::vector<std::uint32_t>* planes = nullptr;
 };
 Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
                        const IntersectOptions& options = {});
@@ -169,9 +171,10 @@ IdMesh separate_non_manifold(PointTable& points, const std::vector<Triangle>& fa
 // merge_coplanar_faces on a surface over point ids, where face f lies in the plane of the
 // triangle planes[plane_of[f]] (three point ids, oriented as the face): coplanarity is decided on
 // those planes, once per pair.
+// plane_of is updated to the merged surface's faces (a merged face lies in its region's plane).
 void merge_coplanar(const PointTable& points, IdMesh& surface,
                     const std::vector<std::array<PointId, 3>>& planes,
-                    const std::vector<std::uint32_t>& plane_of);
+                    std::vector<std::uint32_t>& plane_of);
 
 // The mesh with the surface's points (input points, lazily evaluated constructions).
 Mesh materialize(const PointTable& points, const IdMesh& surface);

@@ -418,6 +418,12 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
     const auto [ia, ib] = pairs[k];
     const Corners ta = corner_ids(0, ia), tb = corner_ids(1, ib);
     PairSigns& s = signs[k];
+    if (options.planes && (*options.planes)[ia] == (*options.planes)[ib]) {
+      // Known to lie in one plane: every sign is zero, with no question asked.
+      for (int i = 0; i < 3; ++i) s.a[i] = s.b[i] = 0;
+      s.separated = false;
+      return;
+    }
     auto against = [&](const Corners& t, const Corners& other, const ApproxVector& normal,
                        std::int8_t(&out)[3]) {
       for (int i = 0; i < 3; ++i) {

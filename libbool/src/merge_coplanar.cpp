@@ -179,7 +179,7 @@ std::vector<std::uint8_t> coincident(const PointTable& table, const IdMesh& surf
 
 void merge_coplanar(const PointTable& table, IdMesh& surface,
                     const std::vector<std::array<PointId, 3>>& planes,
-                    const std::vector<std::uint32_t>& plane_of) {
+                    std::vector<std::uint32_t>& plane_of) {
   const std::size_t nf = surface.triangles.size(), nv = surface.vertex_point.size();
   if (nf == 0) return;
   const auto& tri = surface.triangles;
@@ -350,7 +350,9 @@ void merge_coplanar(const PointTable& table, IdMesh& surface,
     faces_of[region[f]].push_back(f);
   }
   std::vector<Triangle> out;
+  std::vector<std::uint32_t> out_plane;
   out.reserve(nf);
+  out_plane.reserve(nf);
   std::unordered_map<VertexIndex, VertexIndex> next;  // along one region's boundary
   for (std::uint32_t r = 0; r < region_seed.size(); ++r) {
     if (!region_changes[r]) continue;
@@ -393,9 +395,13 @@ void merge_coplanar(const PointTable& table, IdMesh& surface,
     // crease vertex, so the only safe answer is the unmerged surface, which is always valid.
     if (!merged) return;
     out.insert(out.end(), merged->begin(), merged->end());
+    out_plane.resize(out.size(), plane_of[faces_of[r].front()]);
   }
   for (std::uint32_t f = 0; f < nf; ++f)
-    if (!changes[f]) out.push_back(tri[f]);
+    if (!changes[f]) {
+      out.push_back(tri[f]);
+      out_plane.push_back(plane_of[f]);
+    }
 
   // Compact: keep referenced vertices in their original order.
   std::vector<VertexIndex> new_index(nv, kNone);
@@ -411,6 +417,7 @@ void merge_coplanar(const PointTable& table, IdMesh& surface,
   for (const Triangle& t : out)
     result.triangles.push_back({new_index[t[0]], new_index[t[1]], new_index[t[2]]});
   surface = std::move(result);
+  plane_of = std::move(out_plane);
 }
 
 Mesh materialize(const PointTable& table, const IdMesh& surface) {

@@ -8,13 +8,15 @@
 #include <algorithm>
 #include <chrono>
 #include <numeric>
+#include <unordered_map>
 
 #include "point_index.h"
 #include "winding_internal.h"
 
 namespace morphex::detail {
 
-Chain prepare_chain(const Mesh& surface, const std::vector<int>& weights, WindingStats& stats) {
+Chain prepare_chain(const Mesh& surface, const std::vector<int>& weights,
+                    const std::vector<std::uint32_t>* planes, WindingStats& stats) {
   Chain chain;
   stats.input_faces = surface.triangles.size();
   // Distinct positions: one vertex each.
@@ -62,6 +64,8 @@ Chain prepare_chain(const Mesh& surface, const std::vector<int>& weights, Windin
     if (sum != 0) {
       for (std::size_t k = i; k < j; ++k)
         chain.face_of[keyed[k].face] = std::uint32_t(chain.soup.triangles.size());
+      chain.plane.push_back(planes ? (*planes)[keyed[i].face]
+                                   : std::uint32_t(chain.soup.triangles.size()));
       const auto& t = keyed[i].sorted;
       chain.soup.triangles.push_back(sum > 0 ? Triangle{t[0], t[1], t[2]}
                                              : Triangle{t[0], t[2], t[1]});
@@ -120,39 +124,59 @@ std::vector<Member> members_of(const Mesh& soup, const Refined& refined, const I
 namespace {
 
 // The kept members as a closed surface: non-manifold features separated, coplanar faces merged.
+// `labels` receives each face's plane label.
 Mesh assemble_kept(const Chain& chain, Intersection& x, const std::vector<Member>& members,
-                   const std::vector<std::int8_t>& keep, bool merge) {
+                   const std::vector<std::int8_t>& keep, bool merge,
+                   std::vector<std::uint32_t>* labels) {
+  // Planes: one per label and orientation, from the first facet with the label; a face's
+  // orientation is its facet's against that one, turned when the face is reversed.
+  const std::size_t nf = chain.soup.triangles.size();
+  auto corners = [&](std::uint32_t f) {
+    const Triangle& t = chain.soup.triangles[f];
+    return std::array<PointId, 3>{x.vertex_id(0, t[0]), x.vertex_id(0, t[1]),
+                                  x.vertex_id(0, t[2])};
+  };
+  std::unordered_map<std::uint32_t, std::uint32_t> label_index;  // label -> its slot
+  std::vector<std::uint32_t> first_facet;                        // per slot
+  std::vector<std::uint32_t> slot_of(nf);
+  for (std::uint32_t f = 0; f < nf; ++f) {
+    const auto [it, added] = label_index.emplace(chain.plane[f], std::uint32_t(first_facet.size()));
+    if (added) first_facet.push_back(f);
+    slot_of[f] = it->second;
+  }
+  std::vector<std::uint8_t> turned(nf, 0);  // against its label's first facet
+  for_each_upward(nf, [&](std::size_t f) {
+    const std::uint32_t first = first_facet[slot_of[f]];
+    if (first != f)
+      turned[f] = x.points.normal_dot(corners(first), corners(std::uint32_t(f))) == CGAL::NEGATIVE;
+  });
   std::vector<Triangle> faces;
-  std::vector<FaceOrigin> origin;  // `mesh` says whether the face is its facet reversed
+  std::vector<FaceOrigin> origin;  // `mesh`: the face's plane is its label's turned over
   for (std::size_t i = 0; i < members.size(); ++i) {
     if (keep[i] == 0) continue;
     const auto& v = members[i].v;
     faces.push_back(keep[i] > 0 ? Triangle{v[0], v[1], v[2]} : Triangle{v[0], v[2], v[1]});
-    origin.push_back({std::uint8_t(keep[i] < 0), members[i].facet});
+    origin.push_back({std::uint8_t((keep[i] < 0) != bool(turned[members[i].facet])),
+                      members[i].facet});
   }
   if (faces.empty()) return {};
   // Any point of a soup may be where the result is not a 2-manifold.
   IdMesh surface =
       separate_non_manifold(x.points, faces, std::vector<std::uint8_t>(x.points.size(), 1),
                             &origin);
-  if (merge) {
-    // Each face lies in its facet's plane, oriented as the face.
-    std::vector<std::array<PointId, 3>> planes;
-    std::vector<std::uint32_t> plane_of(origin.size());
-    std::vector<std::uint32_t> slot(2 * chain.soup.triangles.size(), UINT32_MAX);
-    for (std::size_t f = 0; f < origin.size(); ++f) {
-      std::uint32_t& plane = slot[2 * origin[f].face + origin[f].mesh];
-      if (plane == UINT32_MAX) {
-        const Triangle& t = chain.soup.triangles[origin[f].face];
-        plane = std::uint32_t(planes.size());
-        std::array<PointId, 3> corners = {x.vertex_id(0, t[0]), x.vertex_id(0, t[1]),
-                                          x.vertex_id(0, t[2])};
-        if (origin[f].mesh) std::swap(corners[1], corners[2]);
-        planes.push_back(corners);
-      }
-      plane_of[f] = plane;
-    }
-    merge_coplanar(x.points, surface, planes, plane_of);
+  std::vector<std::array<PointId, 3>> planes(2 * first_facet.size());
+  for (std::size_t k = 0; k < first_facet.size(); ++k) {
+    planes[2 * k] = planes[2 * k + 1] = corners(first_facet[k]);
+    std::swap(planes[2 * k + 1][1], planes[2 * k + 1][2]);
+  }
+  std::vector<std::uint32_t> plane_of(origin.size());
+  for (std::size_t f = 0; f < origin.size(); ++f)
+    plane_of[f] = 2 * slot_of[origin[f].face] + origin[f].mesh;
+  if (merge) merge_coplanar(x.points, surface, planes, plane_of);
+  if (labels) {
+    labels->resize(plane_of.size());
+    for (std::size_t f = 0; f < plane_of.size(); ++f)
+      (*labels)[f] = chain.plane[first_facet[plane_of[f] / 2]];
   }
   return materialize(x.points, surface);
 }
@@ -176,7 +200,9 @@ Mesh winding_solid(const Mesh& surface, const std::vector<int>& weights,
     throw std::invalid_argument("winding_solid: one weight per triangle expected");
   WindingStats stats;
   auto clock = std::chrono::steady_clock::now();
-  const Chain chain = prepare_chain(surface, weights, stats);
+  if (options.planes && options.planes->size() != surface.triangles.size())
+    throw std::invalid_argument("winding_solid: one plane label per triangle expected");
+  const Chain chain = prepare_chain(surface, weights, options.planes, stats);
   stats.seconds_chain = seconds_since(clock);
   Mesh result;
   if (!chain.soup.triangles.empty()) {
@@ -187,6 +213,7 @@ Mesh winding_solid(const Mesh& surface, const std::vector<int>& weights,
 
     IntersectOptions soup;
     soup.soup = true;
+    soup.planes = &chain.plane;
     Intersection x = intersect(chain.soup, chain.soup, pairs, soup);
     stats.intersecting_pairs = x.intersecting_pairs;
     stats.triple_points = merge_soup_cuts(chain.soup, x);
@@ -201,9 +228,11 @@ Mesh winding_solid(const Mesh& surface, const std::vector<int>& weights,
         select_by_winding(chain, tree, members, x, options.threshold, stats);
     stats.seconds_winding = seconds_since(clock);
 
-    result = assemble_kept(chain, x, members, keep, options.merge_coplanar);
+    result = assemble_kept(chain, x, members, keep, options.merge_coplanar,
+                           options.result_planes);
     stats.seconds_assembly = seconds_since(clock);
   }
+  if (options.result_planes && result.empty()) options.result_planes->clear();
   if (stats_out) *stats_out = stats;
   return result;
 }

@@ -19,10 +19,13 @@ using Corners3 = std::array<PointId, 3>;
 struct Chain {
   Mesh soup;
   std::vector<int> weight;
+  std::vector<std::uint32_t> plane;    // per soup triangle: its plane label
   std::vector<std::uint32_t> face_of;  // per input triangle: its soup triangle, or kNoFace
   static constexpr std::uint32_t kNoFace = UINT32_MAX;
 };
-Chain prepare_chain(const Mesh& surface, const std::vector<int>& weights, WindingStats& stats);
+// `planes`: optional labels of coplanar triangles (without: every triangle its own label).
+Chain prepare_chain(const Mesh& surface, const std::vector<int>& weights,
+                    const std::vector<std::uint32_t>* planes, WindingStats& stats);
 
 // Every pair of distinct triangles whose boxes overlap, each once, in an order that depends only
 // on the tree.

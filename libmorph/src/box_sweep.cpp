@@ -23,6 +23,8 @@
 #include <tbb/parallel_for.h>
 
 #include <array>
+#include <numeric>
+#include <unordered_map>
 
 #include "minkowski_internal.h"
 #include "morphex/generators.h"
@@ -59,7 +61,8 @@ Point shifted(const Kernel::Exact_kernel::Point_3& p, int axis, const Kernel::Ex
 
 }  // namespace
 
-Mesh segment_sweep(const Mesh& a, int axis, const FT& half_length, bool erode) {
+LabelledSolid segment_sweep(const LabelledSolid& in, int axis, const FT& half_length, bool erode) {
+  const Mesh& a = in.mesh;
   if (a.empty()) return {};
   const std::size_t nv = a.points.size(), nf = a.triangles.size();
   // Lazy coordinates are evaluated once here (CGAL's lazy evaluation of a shared point is not safe
@@ -92,11 +95,22 @@ Mesh segment_sweep(const Mesh& a, int axis, const FT& half_length, bool erode) {
     const bool up = side[f] > 0 || (side[f] == 0 && around[v] == 1);
     return 2 * v + (up ? 1 : 0);
   };
+  // Plane labels: a facet parallel to e stays in its plane; coplanar facets moved alike stay
+  // coplanar; the two triangles of a wall share one.
+  std::vector<std::uint32_t> planes;
+  planes.reserve(nf + nf / 2);
+  std::unordered_map<std::uint64_t, std::uint32_t> moved_plane;  // (label, side) -> label
+  auto moved = [&](std::uint32_t f) {
+    const std::uint64_t key = (std::uint64_t(in.plane[f]) << 2) | std::uint64_t(side[f] + 1);
+    return moved_plane.emplace(key, std::uint32_t(moved_plane.size())).first->second;
+  };
+  auto wall_plane = std::uint32_t(nf);  // above every moved label (at most one per facet)
   const DirectedEdges edges(a);
   chain.triangles.reserve(nf + nf / 2);
   for (std::uint32_t f = 0; f < nf; ++f) {
     const Triangle& t = a.triangles[f];
     chain.triangles.push_back({copy(f, t[0]), copy(f, t[1]), copy(f, t[2])});
+    planes.push_back(moved(f));
     // Where the facet across an edge u -> v (u < v: each edge once) takes other copies, the wall
     // the edge sweeps between them: (v', u', u'', v''), primes for this facet's copies.
     for (int i = 0; i < 3; ++i) {
@@ -106,11 +120,23 @@ Mesh segment_sweep(const Mesh& a, int axis, const FT& half_length, bool erode) {
       if (g == DirectedEdges::kNone) continue;
       const VertexIndex fu = copy(f, u), fv = copy(f, v), gu = copy(g, u), gv = copy(g, v);
       if (fu == gu && fv == gv) continue;
-      if (fu != gu) chain.triangles.push_back({fv, fu, gu});
-      if (fv != gv) chain.triangles.push_back({fv, gu, gv});
+      if (fu != gu) {
+        chain.triangles.push_back({fv, fu, gu});
+        planes.push_back(wall_plane);
+      }
+      if (fv != gv) {
+        chain.triangles.push_back({fv, gu, gv});
+        planes.push_back(wall_plane);
+      }
+      ++wall_plane;
     }
   }
-  return winding_solid(chain);
+  LabelledSolid out;
+  WindingOptions options;
+  options.planes = &planes;
+  options.result_planes = &out.plane;
+  out.mesh = winding_solid(chain, {}, options);
+  return out;
 }
 
 }  // namespace morphex::detail
@@ -147,13 +173,23 @@ std::optional<AxisBox> axis_box(const Mesh& b) {
   return box;
 }
 
-Mesh box_morphology(const Mesh& a, const AxisBox& box, bool erode) {
+LabelledSolid labelled(const Mesh& m) {
+  LabelledSolid out{m, std::vector<std::uint32_t>(m.triangles.size())};
+  std::iota(out.plane.begin(), out.plane.end(), 0u);
+  return out;
+}
+
+LabelledSolid box_morphology(LabelledSolid a, const AxisBox& box, bool erode) {
   const Vector offset = box.centre - CGAL::ORIGIN;
-  Mesh m = erode ? a : translated(a, offset);
-  for (int axis = 0; axis < 3 && !m.empty(); ++axis)
-    m = segment_sweep(m, axis, box.half[axis], erode);
-  if (erode && offset != CGAL::NULL_VECTOR) m = translated(m, -offset);
-  return m;
+  if (!erode && offset != CGAL::NULL_VECTOR) a.mesh = translated(a.mesh, offset);
+  for (int axis = 0; axis < 3 && !a.mesh.empty(); ++axis)
+    a = segment_sweep(a, axis, box.half[axis], erode);
+  if (erode && offset != CGAL::NULL_VECTOR) a.mesh = translated(a.mesh, -offset);
+  return a;
+}
+
+Mesh box_morphology(const Mesh& a, const AxisBox& box, bool erode) {
+  return box_morphology(labelled(a), box, erode).mesh;
 }
 
 }  // namespace morphex::detail

@@ -112,6 +112,15 @@ StructuringElement cube_of(const FT& half_side) {
 
 // The copy that is filtered: posed and scaled to unit volume in double precision, simplified to
 // the budget; the exact rotation of the full mesh when the rounded copy is not a valid solid.
+// The filtered copy's coordinates and the cube radii are multiples of this (the copy has unit
+// volume): exact arithmetic then works with short dyadic numbers, at a relative precision far
+// below what the descriptor resolves.
+constexpr double kGrid = 1.0 / (1 << 20);
+
+double on_grid(double r) {
+  return std::max(kGrid, std::round(r / kGrid) * kGrid);
+}
+
 Mesh filtered_copy(const Mesh& solid, double scale, const DescriptorSettings& s,
                    Descriptors& d) {
   const DoubleMesh dm = to_double(solid);
@@ -121,7 +130,7 @@ Mesh filtered_copy(const Mesh& solid, double scale, const DescriptorSettings& s,
   const std::size_t budget = s.facet_budget ? s.facet_budget : posed.triangles.size();
   try {
     SimplifyReport report;
-    Mesh copy = simplified_solid(posed, budget, &report);
+    Mesh copy = simplified_solid(posed, budget, &report, kGrid);
     d.simplified = report.simplified;
     return copy;
   } catch (const std::invalid_argument&) {
@@ -146,9 +155,8 @@ void filter_by_cubes(const Mesh& a, const DescriptorSettings& s, Descriptors& d)
     const StructuringElement cube = cube_of(FT(r));
     Mesh opened;
     if (!vanished) {
-      const Mesh eroded = erosion_of_valid(a, cube);
-      if (!eroded.empty()) opened = dilation_of_valid(eroded, cube);
-      vanished = eroded.empty();
+      opened = opening_of_valid(a, cube);
+      vanished = opened.empty();  // the erosion was empty
     }
     const Moments m = opened.empty() ? Moments{} : moments_of(opened);
     const double g = std::clamp(m.volume / whole.volume, 0.0, 1.0);
@@ -161,7 +169,7 @@ void filter_by_cubes(const Mesh& a, const DescriptorSettings& s, Descriptors& d)
   if (!s.closings) return;
   for (double r : d.close_radii) {
     const StructuringElement cube = cube_of(FT(r));
-    const Moments m = moments_of(erosion_of_valid(dilation_of_valid(a, cube), cube));
+    const Moments m = moments_of(closing_of_valid(a, cube));
     d.anti_granulometry.push_back(std::max(0.0, m.volume / whole.volume - 1));
     append_placement(d.closing_residue, m - whole, whole);
   }
@@ -186,8 +194,11 @@ Descriptors describe(const Mesh& solid, const DescriptorSettings& settings) {
   const MeshReport report = check_mesh(solid, kValidityOnly);
   if (!report.valid_solid())
     throw std::invalid_argument("cannot describe: " + describe_problems(report));
-  const double volume = CGAL::to_double(signed_volume(solid));
-  if (!(volume > 0)) throw std::invalid_argument("cannot describe: the mesh has no volume");
+  // The volume only sets the scale (the descriptor is computed in double precision around the
+  // exact filtering): its sign exactly, its value in double precision.
+  if (signed_volume_sign(solid) != CGAL::POSITIVE)
+    throw std::invalid_argument("cannot describe: the mesh has no volume");
+  const double volume = moments_of(solid).volume;
   const auto start = std::chrono::steady_clock::now();
   Descriptors d;
   d.scale_length = std::cbrt(volume);
@@ -196,9 +207,10 @@ Descriptors describe(const Mesh& solid, const DescriptorSettings& settings) {
   // Unit volume: L = 1, and T = 3 / area.
   d.thickness = 3.0 * CGAL::to_double(signed_volume(a)) / detail::surface_area(to_double(a));
   for (double f : geometric(settings.open_from, settings.open_to, settings.scales))
-    d.open_radii.push_back(f * d.thickness);
-  if (settings.closings) d.close_radii = geometric(settings.close_from, settings.close_to,
-                                                   settings.scales);
+    d.open_radii.push_back(on_grid(f * d.thickness));
+  if (settings.closings)
+    for (double f : geometric(settings.close_from, settings.close_to, settings.scales))
+      d.close_radii.push_back(on_grid(f));
   filter_by_cubes(a, settings, d);
   d.seconds_morphology =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -75,9 +75,17 @@ struct AxisBox {
 };
 // B as an axis-aligned box when its eight vertices are exactly its bounding box's corners.
 std::optional<AxisBox> axis_box(const Mesh& b);
+// A solid with plane labels (morphex/winding.h): faces with one label lie in one plane. Chained
+// sweeps pass them on, so that the coplanarity each sweep creates is known to the next.
+struct LabelledSolid {
+  Mesh mesh;
+  std::vector<std::uint32_t> plane;
+};
+LabelledSolid labelled(const Mesh& m);  // every face its own label
 // A + [-h e, h e] (or the erosion by it) along the axis e, as one winding_solid (box_sweep.cpp).
-Mesh segment_sweep(const Mesh& a, int axis, const FT& half_length, bool erode);
+LabelledSolid segment_sweep(const LabelledSolid& a, int axis, const FT& half_length, bool erode);
 // A + B or A - B for an axis-aligned box B: the centre, then one sweep per axis.
+LabelledSolid box_morphology(LabelledSolid a, const AxisBox& box, bool erode);
 Mesh box_morphology(const Mesh& a, const AxisBox& box, bool erode);
 
 // A + B for one connected B whose convexity is known.

@@ -105,6 +105,27 @@ Mesh erode_valid(const Mesh& a, const std::vector<SePart>& parts, MinkowskiStats
   return result;
 }
 
+// An opening or closing by one axis-aligned box: its two halves as six sweeps, the plane labels
+// of the first half passed on to the second. Empty optional for any other SE.
+std::optional<Mesh> box_round_trip(const Mesh& a, const std::vector<SePart>& parts, bool open) {
+  if (parts.size() != 1 || !parts[0].convex) return std::nullopt;
+  const auto box = detail::axis_box(parts[0].mesh);
+  if (!box) return std::nullopt;
+  detail::LabelledSolid s = detail::box_morphology(detail::labelled(a), *box, open);
+  if (s.mesh.empty()) return Mesh{};
+  return detail::box_morphology(std::move(s), *box, !open).mesh;
+}
+
+Mesh open_valid(const Mesh& a, const std::vector<SePart>& parts, MinkowskiStats& s) {
+  if (auto round_trip = box_round_trip(a, parts, true)) return std::move(*round_trip);
+  return dilate_valid(erode_valid(a, parts, s), parts, s);
+}
+
+Mesh close_valid(const Mesh& a, const std::vector<SePart>& parts, MinkowskiStats& s) {
+  if (auto round_trip = box_round_trip(a, parts, false)) return std::move(*round_trip);
+  return erode_valid(dilate_valid(a, parts, s), parts, s);
+}
+
 template <class Body>
 Mesh timed(const Mesh& a, MorphologyStats* stats, Body&& body, bool validate = true) {
   const auto start = std::chrono::steady_clock::now();
@@ -142,17 +163,21 @@ Mesh erosion_of_valid(const Mesh& a, const StructuringElement& se, MorphologySta
 }
 
 Mesh opening(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
-  return timed(a, stats, [&](MinkowskiStats& s) {
-    const auto parts = parts_of(se);
-    return dilate_valid(erode_valid(a, parts, s), parts, s);
-  });
+  return timed(a, stats, [&](MinkowskiStats& s) { return open_valid(a, parts_of(se), s); });
 }
 
 Mesh closing(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
-  return timed(a, stats, [&](MinkowskiStats& s) {
-    const auto parts = parts_of(se);
-    return erode_valid(dilate_valid(a, parts, s), parts, s);
-  });
+  return timed(a, stats, [&](MinkowskiStats& s) { return close_valid(a, parts_of(se), s); });
+}
+
+Mesh opening_of_valid(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
+  return timed(
+      a, stats, [&](MinkowskiStats& s) { return open_valid(a, parts_of(se), s); }, false);
+}
+
+Mesh closing_of_valid(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
+  return timed(
+      a, stats, [&](MinkowskiStats& s) { return close_valid(a, parts_of(se), s); }, false);
 }
 
 Mesh apply_morphology(MorphologyOp op, const Mesh& a, const StructuringElement& se,

@@ -9,6 +9,7 @@
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_stop_predicate.h>
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 
+#include <cmath>
 #include <stdexcept>
 
 #include "morphex/check.h"
@@ -56,7 +57,20 @@ bool positive_valid_solid(const Mesh& m) {
 
 }  // namespace
 
-Mesh simplified_solid(const DoubleMesh& mesh, std::size_t max_facets, SimplifyReport* report) {
+namespace {
+
+// Every coordinate rounded to a multiple of `grid` (a power of two), or the mesh as it is.
+DoubleMesh on_grid(DoubleMesh mesh, double grid) {
+  if (grid > 0)
+    for (auto& p : mesh.points)
+      for (double& c : p) c = std::round(c / grid) * grid;
+  return mesh;
+}
+
+}  // namespace
+
+Mesh simplified_solid(const DoubleMesh& mesh, std::size_t max_facets, SimplifyReport* report,
+                      double grid) {
   SimplifyReport r;
   r.input_facets = mesh.triangles.size();
   Mesh result;
@@ -68,7 +82,7 @@ Mesh simplified_solid(const DoubleMesh& mesh, std::size_t max_facets, SimplifyRe
     SMS::Count_stop_predicate<SurfaceMesh> stop(budget * 3 / 2);
     SMS::Bounded_normal_change_filter<> no_flips;
     SMS::edge_collapse(sm, stop, CGAL::parameters::filter(no_flips));
-    result = from_double(to_double_mesh(sm));
+    result = from_double(on_grid(to_double_mesh(sm), grid));
     if (positive_valid_solid(result)) {
       r.simplified = true;
       break;
@@ -83,7 +97,8 @@ Mesh simplified_solid(const DoubleMesh& mesh, std::size_t max_facets, SimplifyRe
     }
   }
   if (!r.simplified) {
-    result = from_double(mesh);
+    result = from_double(on_grid(mesh, grid));
+    if (grid > 0 && !positive_valid_solid(result)) result = from_double(mesh);
     if (!positive_valid_solid(result))
       throw std::invalid_argument("simplify: the input is not a valid solid with positive volume");
   }

@@ -46,6 +46,12 @@ struct WindingOptions {
   // corners or along a common edge, for example MeshReport::self_intersecting_pairs of the same
   // surface. The arrangement then intersects only these instead of searching all pairs.
   const std::vector<std::pair<std::uint32_t, std::uint32_t>>* pairs = nullptr;
+  // Optional plane labels, one per surface triangle: triangles with one label lie in one plane,
+  // which spares the exact tests that would find it (walls, translated planar regions; triangles
+  // with different labels may still be coplanar). With `result_planes`, each result triangle gets
+  // the label of the surface triangle it lies on, for the next operation of a chain.
+  const std::vector<std::uint32_t>* planes = nullptr;
+  std::vector<std::uint32_t>* result_planes = nullptr;
 };
 
 struct WindingStats {

@@ -36,6 +36,10 @@ Mesh dilation_of_valid(const Mesh& a, const StructuringElement& se,
                        MorphologyStats* stats = nullptr);
 Mesh erosion_of_valid(const Mesh& a, const StructuringElement& se,
                       MorphologyStats* stats = nullptr);
+Mesh opening_of_valid(const Mesh& a, const StructuringElement& se,
+                      MorphologyStats* stats = nullptr);
+Mesh closing_of_valid(const Mesh& a, const StructuringElement& se,
+                      MorphologyStats* stats = nullptr);
 Mesh opening(const Mesh& a, const StructuringElement& se, MorphologyStats* stats = nullptr);
 Mesh closing(const Mesh& a, const StructuringElement& se, MorphologyStats* stats = nullptr);
 Mesh apply_morphology(MorphologyOp op, const Mesh& a, const StructuringElement& se,

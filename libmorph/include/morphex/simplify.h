@@ -28,7 +28,10 @@ struct SimplifyReport {
 // A valid solid with at most about `max_facets` facets (never more than the input's) near the
 // double-precision surface `mesh`. Precondition: `mesh` is a closed oriented 2-manifold whose
 // exact copy is a valid solid; throws std::invalid_argument when even that copy is not one.
+// With `grid` (a power of two), every coordinate of the copy is rounded to a multiple of it
+// before the copy is checked: exact arithmetic on the copy and its translates by radii on the same
+// grid then works with short dyadic numbers.
 Mesh simplified_solid(const DoubleMesh& mesh, std::size_t max_facets,
-                      SimplifyReport* report = nullptr);
+                      SimplifyReport* report = nullptr, double grid = 0);
 
 }  // namespace morphex
