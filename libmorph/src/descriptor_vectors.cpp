@@ -49,7 +49,7 @@ const char* default_descriptor_kind() {
 
 // 1: three cube radii relative to cbrt(volume); 2: per-mesh scales, residue placements, D2 64.
 const char* descriptor_version() {
-  return "3";
+  return "4";
 }
 
 std::vector<double> descriptor_vector(const Descriptors& d, const std::string& kind) {

@@ -121,9 +121,8 @@ double on_grid(double r) {
   return std::max(kGrid, std::round(r / kGrid) * kGrid);
 }
 
-Mesh filtered_copy(const Mesh& solid, double scale, const DescriptorSettings& s,
-                   Descriptors& d) {
-  const DoubleMesh dm = to_double(solid);
+Mesh filtered_copy(const Mesh& solid, const DoubleMesh& dm, double scale,
+                   const DescriptorSettings& s, Descriptors& d) {
   detail::PrincipalFrame frame;
   if (s.normalise_pose) frame = detail::principal_frame(dm);
   const DoubleMesh posed = detail::posed_copy(dm, frame, scale);
@@ -198,11 +197,17 @@ Descriptors describe(const Mesh& solid, const DescriptorSettings& settings) {
   // exact filtering): its sign exactly, its value in double precision.
   if (signed_volume_sign(solid) != CGAL::POSITIVE)
     throw std::invalid_argument("cannot describe: the mesh has no volume");
-  const double volume = moments_of(solid).volume;
+  const DoubleMesh dm = to_double(solid);
+  double volume = 0;
+  for (const Triangle& t : dm.triangles) {
+    const auto &a = dm.points[t[0]], &b = dm.points[t[1]], &c = dm.points[t[2]];
+    volume += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+               a[2] * (b[0] * c[1] - b[1] * c[0])) / 6;
+  }
   const auto start = std::chrono::steady_clock::now();
   Descriptors d;
   d.scale_length = std::cbrt(volume);
-  const Mesh a = filtered_copy(solid, d.scale_length, settings, d);
+  const Mesh a = filtered_copy(solid, dm, d.scale_length, settings, d);
   d.facets = a.triangles.size();
   // Unit volume: L = 1, and T = 3 / area.
   d.thickness = 3.0 * CGAL::to_double(signed_volume(a)) / detail::surface_area(to_double(a));
@@ -214,8 +219,7 @@ Descriptors describe(const Mesh& solid, const DescriptorSettings& settings) {
   filter_by_cubes(a, settings, d);
   d.seconds_morphology =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  d.d2 = detail::d2_histogram(to_double(solid), settings.d2_samples, settings.d2_bins,
-                              settings.seed);
+  d.d2 = detail::d2_histogram(dm, settings.d2_samples, settings.d2_bins, settings.seed);
   return d;
 }
 
