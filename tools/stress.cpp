@@ -5,7 +5,9 @@
 // random rational rigid motions, chosen so that coplanar faces, shared edges and vertices and
 // nesting are frequent. Every result must be a valid solid and satisfy the exact identities
 //   vol(A u B) + vol(A n B) = vol(A) + vol(B),   vol(A - B) = vol(A) - vol(A n B);
-// every 20th case also checks that an opening is inside A and a closing contains it. A failing
+// the two written as one mesh must give the same solids through repair and winding_solid (its
+// union; {w >= 2}, the intersection; with B reversed, the difference); every 20th case also checks
+// that an opening is inside A and a closing contains it. A failing
 // case is written to DIR as exact OFF files with a line saying how to replay it; exit code 1.
 #include <chrono>
 #include <filesystem>
@@ -19,6 +21,8 @@
 #include "morphex/generators.h"
 #include "morphex/io.h"
 #include "morphex/morphology.h"
+#include "morphex/repair.h"
+#include "morphex/winding.h"
 
 using namespace morphex;
 
@@ -125,6 +129,30 @@ int main(int argc, char** argv) {
         failure = "vol(A u B) + vol(A n B) != vol(A) + vol(B)";
       else if (vd != va - vi)
         failure = "vol(A - B) != vol(A) - vol(A n B)";
+    }
+    if (failure.empty()) {
+      // The two solids written as one mesh: its repair is their union, and its winding regions
+      // give the intersection (covered twice) and, with B reversed, the difference.
+      try {
+        const Mesh both = concatenate(a, b);
+        WindingOptions twice;
+        twice.threshold = 2;
+        const RepairResult joined = repair_mesh(both);
+        const Mesh common = winding_solid(both, {}, twice);
+        const Mesh minus = winding_solid(concatenate(a, reversed(b)));
+        if (const std::string p = problem_with(joined.mesh) + problem_with(common) +
+                                  problem_with(minus);
+            !p.empty())
+          failure = "a winding solid of A and B as one mesh is not a valid solid: " + p;
+        else if (signed_volume(joined.mesh) != signed_volume(r[0].mesh))
+          failure = "repair of A and B as one mesh != A u B";
+        else if (signed_volume(common) != signed_volume(r[1].mesh))
+          failure = "{w >= 2} of A and B as one mesh != A n B";
+        else if (signed_volume(minus) != signed_volume(r[2].mesh))
+          failure = "{w >= 1} of A and reversed B != A - B";
+      } catch (const std::exception& e) {
+        failure = std::string("repair of A and B as one mesh failed: ") + e.what();
+      }
     }
     if (failure.empty() && c % 20 == 0) {
       StructuringElement se;
