@@ -60,7 +60,8 @@ std::uint32_t morton_code_30(const FloatBox& box, const FloatBox& frame) {
   for (int k = 0; k < 3; ++k) {
     const float extent = frame.hi[k] - frame.lo[k];
     const float centre = 0.5f * (box.lo[k] + box.hi[k]);
-    const float unit = extent > 0 ? std::clamp((centre - frame.lo[k]) / extent, 0.0f, 1.0f) : 0;
+    float unit = extent > 0 ? std::clamp((centre - frame.lo[k]) / extent, 0.0f, 1.0f) : 0;
+    if (!(unit >= 0.0f)) unit = 0;  // coordinates beyond float range: infinite boxes, NaN here
     code |= spread(static_cast<std::uint32_t>(unit * 1023.0f)) << k;
   }
   return code;
@@ -121,7 +122,7 @@ std::uint64_t morton_code(const std::array<double, 3>& unit) {
   };
   std::uint64_t code = 0;
   for (int i = 0; i < 3; ++i) {
-    const double clamped = std::clamp(unit[i], 0.0, 1.0);
+    const double clamped = unit[i] >= 0 ? std::min(unit[i], 1.0) : 0.0;  // NaN: 0
     code |= spread(static_cast<std::uint64_t>(clamped * double(0x1fffff))) << i;
   }
   return code;
