@@ -3,17 +3,19 @@
 // same input in the same run, with exact volumes compared, wall time and peak memory.
 //
 //   bench_morph [--se SPEC] [--ops dilate,erode,open,close] [--peer] [--nary] [--chain N]
-//               [--json FILE] INPUT...
+//               [--threads N] [--json FILE] INPUT...
 // INPUT is a mesh file or a generated mesh: torus:U,V (U*V*2 facets, non-convex), l-shape,
 // icosphere:L. --peer runs minkowski_sum_3 on every dilation; --nary also times the dilation with
 // the pieces united by the n-ary union instead of the binary-union tree (the default); --chain N
 // dilates N times in a row and reports the first and the last step.
 #include <sys/resource.h>
+#include <tbb/global_control.h>
 
 #include <chrono>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -69,6 +71,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> ops = {"dilate"}, inputs;
   bool peer = false, nary = false;
   int chain = 0;
+  unsigned threads = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--se" && i + 1 < argc)
@@ -83,6 +86,8 @@ int main(int argc, char** argv) {
       chain = std::stoi(argv[++i]);
     else if (arg == "--json" && i + 1 < argc)
       json_path = argv[++i];
+    else if (arg == "--threads" && i + 1 < argc)
+      threads = unsigned(std::max(1, std::stoi(argv[++i])));
     else if (arg.rfind("--", 0) == 0) {
       std::cerr << "bench_morph: unknown option " << arg << '\n';
       return 2;
@@ -91,14 +96,17 @@ int main(int argc, char** argv) {
   }
   if (inputs.empty()) {
     std::cerr << "usage: bench_morph [--se SPEC] [--ops dilate,erode,open,close] [--peer] "
-                 "[--chain N] [--json FILE] INPUT...\n";
+                 "[--chain N] [--threads N] [--json FILE] INPUT...\n";
     return 2;
   }
+  std::optional<tbb::global_control> limit;
+  if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, threads);
   const StructuringElement se = parse_structuring_element(se_spec);
   nlohmann::json rows = nlohmann::json::array();
   bool all_agree = true;
   std::cout << std::left << std::setw(28) << "input" << std::setw(8) << "op" << std::right
-            << std::setw(8) << "facets" << std::setw(10) << "morphex s" << std::setw(10) << "CGAL s"
+            << std::setw(8) << "facets" << std::setw(10) << "morphex s" << std::setw(9)
+            << "ms/facet" << std::setw(10) << "CGAL s"
             << std::setw(9) << "ratio" << std::setw(9) << "result" << std::setw(10) << "peak MiB"
             << "  exact volumes\n";
   for (const std::string& input : inputs) {
@@ -112,7 +120,9 @@ int main(int argc, char** argv) {
       const MeshReport report = check_mesh(ours);
       nlohmann::json row = {{"input", input},         {"op", op_name},
                             {"se", se.spec},          {"facets", a.num_triangles()},
-                            {"seconds", our_seconds}, {"result_facets", ours.num_triangles()},
+                            {"seconds", our_seconds},
+                            {"ms_per_facet", 1000 * our_seconds / double(a.num_triangles())},
+                            {"result_facets", ours.num_triangles()},
                             {"pieces", stats.pieces}, {"valid", report.valid_solid()},
                             {"peak_mib", peak_mib()}};
       std::string agreement = report.valid_solid() ? "valid" : "INVALID";
@@ -143,7 +153,8 @@ int main(int argc, char** argv) {
       // Rows are flushed as they come: a large input's opening can take minutes.
       std::cout << std::left << std::setw(27) << input << ' ' << std::setw(8) << op_name
                 << std::right << std::setw(8) << a.num_triangles() << std::setw(10)
-                << std::setprecision(3) << our_seconds << std::setw(10)
+                << std::setprecision(3) << our_seconds << std::setw(9)
+                << 1000 * our_seconds / double(a.num_triangles()) << std::setw(10)
                 << (their_seconds > 0 ? std::to_string(their_seconds).substr(0, 6) : "-")
                 << std::setw(9)
                 << (their_seconds > 0 ? std::to_string(their_seconds / our_seconds).substr(0, 6)

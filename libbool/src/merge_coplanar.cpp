@@ -113,22 +113,25 @@ std::vector<std::uint8_t> coincident(const PointTable& table, const IdMesh& surf
                                      const std::vector<std::uint8_t>& of_interest) {
   const std::size_t nv = surface.vertex_point.size();
   std::vector<std::uint8_t> shared(nv, 0);
-  std::vector<FloatBox> boxes(nv);
-  FloatBox frame;
+  // Double boxes: coordinates beyond float range stay finite.
+  std::vector<CGAL::Bbox_3> boxes(nv);
+  CGAL::Bbox_3 frame;
   for (std::size_t v = 0; v < nv; ++v) {
-    boxes[v] = FloatBox::of(table.approx(surface.vertex_point[v]).bbox());
+    boxes[v] = table.approx(surface.vertex_point[v]).bbox();
     frame += boxes[v];
   }
   // Cells about 2^-20 of the extent: far wider than any point's interval box, so that a box
   // covers one cell, rarely two along an axis.
   double cell = 0;
-  for (int k = 0; k < 3; ++k) cell = std::max(cell, double(frame.hi[k]) - double(frame.lo[k]));
+  for (int k = 0; k < 3; ++k) cell = std::max(cell, frame.max(k) - frame.min(k));
   cell = cell > 0 ? std::ldexp(cell, -20) : 1;
-  auto cell_range = [&](const FloatBox& b, std::int64_t(&lo)[3], std::int64_t(&hi)[3]) {
+  const bool finite = std::isfinite(cell);  // else every box counts as wide
+  auto cell_range = [&](const CGAL::Bbox_3& b, std::int64_t(&lo)[3], std::int64_t(&hi)[3]) {
+    if (!finite) return std::numeric_limits<std::int64_t>::max();
     std::int64_t count = 1;
     for (int k = 0; k < 3; ++k) {
-      lo[k] = std::int64_t(std::floor((double(b.lo[k]) - double(frame.lo[k])) / cell));
-      hi[k] = std::int64_t(std::floor((double(b.hi[k]) - double(frame.lo[k])) / cell));
+      lo[k] = std::int64_t(std::floor((b.min(k) - frame.min(k)) / cell));
+      hi[k] = std::int64_t(std::floor((b.max(k) - frame.min(k)) / cell));
       count *= std::min<std::int64_t>(hi[k] - lo[k] + 1, 1 << 20);
     }
     return count;
@@ -143,7 +146,7 @@ std::vector<std::uint8_t> coincident(const PointTable& table, const IdMesh& surf
                       std::uint64_t(z) << 42));
   };
   auto compare = [&](VertexIndex u, VertexIndex v) {
-    if (v != u && boxes[u].overlaps(boxes[v]) &&
+    if (v != u && CGAL::do_overlap(boxes[u], boxes[v]) &&
         table.equal(surface.vertex_point[u], surface.vertex_point[v]))
       shared[v] = 1;
   };
