@@ -159,7 +159,7 @@ Command add_describe_command(CLI::App& app) {
             }
             if (!mesh) return kBadInput;
             const auto start = std::chrono::steady_clock::now();
-            const Descriptors d = describe(*mesh, s);
+            const Descriptors d = describe_valid(*mesh, s);  // read_solid or repair checked it
             nlohmann::json j = descriptors_json(d);
             if (repaired) j["repair"] = mp::to_json(*repaired);
             j["name"] = fs::path(args->mesh).stem().string();

@@ -311,7 +311,8 @@ void add_builtin_stages(StageRegistry& r) {
          describe_options(),
          [](StageContext& c) {
            const DescriptorSettings settings = detail::descriptor_settings(c.stage.options);
-           const Descriptors d = describe(*c.inputs[0], settings);
+           // Stage outputs are valid solids (read checks, repair and every operation make them).
+           const Descriptors d = describe_valid(*c.inputs[0], settings);
            nlohmann::json vectors;
            for (const std::string& kind : descriptor_kinds())
              vectors[kind] = descriptor_vector(d, kind);

@@ -68,6 +68,9 @@ struct Descriptors {
 
 // Precondition: a valid solid with positive volume (throws std::invalid_argument otherwise).
 Descriptors describe(const Mesh& solid, const DescriptorSettings& settings = {});
+// The same for a mesh already known to be a valid solid (a pipeline stage's output, a repair's
+// result): the input check, which costs about as much as reading the mesh, is skipped.
+Descriptors describe_valid(const Mesh& solid, const DescriptorSettings& settings = {});
 
 // The names under which descriptor vectors are stored and compared, and the vector for each:
 //   "morphology"        every morphological block, weighted (the best purely morphological one)
