@@ -29,7 +29,7 @@ nlohmann::json result_stats(const Mesh& mesh, double seconds) {
 std::optional<Mesh> read_solid(const std::string& path) {
   try {
     Mesh mesh = read_mesh(path);
-    const MeshReport report = check_mesh(mesh);
+    const MeshReport report = check_mesh(mesh, kValidityOnly);
     if (!report.valid_solid()) {
       print_error(path + ": " + describe_problems(report));
       return std::nullopt;

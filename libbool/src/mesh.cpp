@@ -4,6 +4,7 @@
 #include <gmpxx.h>
 #include <tbb/parallel_for.h>
 
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -63,23 +64,44 @@ std::string to_rational_string(const FT& value) {
   return text;
 }
 
-FT parse_exact_number(const std::string& text) {
+FT parse_exact_number(std::string_view text) {
   if (text.empty()) throw std::invalid_argument("empty number");
-  // Integers and fractions are exact; decimal literals mean the nearest double, as in any
-  // mesh file written by floating-point software.
-  if (text.find_first_of(".eEnNiI") == std::string::npos) {
+  const std::string_view digits = text[0] == '+' ? text.substr(1) : text;  // GMP rejects '+'
+  auto malformed = [&] {
+    std::string shown(text.substr(0, 40));
+    for (char& c : shown)
+      if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
+    return std::invalid_argument("malformed number '" + shown + (text.size() > 40 ? "...'" : "'"));
+  };
+  // Integers and fractions are exact; decimal literals mean the nearest double, as in any mesh
+  // file written by floating-point software.
+  if (digits.find_first_of(".eEnNiI") == std::string_view::npos) {
+    // Short integers are doubles exactly: no rational arithmetic for the commonest coordinates.
+    if (!digits.empty() && digits.size() <= 15 && digits.find('/') == std::string_view::npos) {
+      long long value = 0;
+      const auto r = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+      if (r.ec == std::errc() && r.ptr == digits.data() + digits.size()) return FT(double(value));
+    }
     mpq_class q;
-    const std::string digits = text[0] == '+' ? text.substr(1) : text;  // GMP rejects '+'
-    if (digits.empty() || digits[0] == '+' || q.set_str(digits, 10) != 0 || q.get_den() == 0)
-      throw std::invalid_argument("malformed number '" + text + "'");
+    const std::string copy(digits);
+    if (copy.empty() || copy[0] == '+' || q.set_str(copy, 10) != 0 || q.get_den() == 0)
+      throw malformed();
     q.canonicalize();
     return FT(ExactFT(q.get_str()));
   }
-  char* end = nullptr;
-  const double d = std::strtod(text.c_str(), &end);
-  if (end == text.c_str() || *end != '\0')
-    throw std::invalid_argument("malformed number '" + text + "'");
-  if (!std::isfinite(d)) throw std::invalid_argument("non-finite number '" + text + "'");
+  double d = 0;
+  const auto r = std::from_chars(digits.data(), digits.data() + digits.size(), d);
+  if (r.ec != std::errc() || r.ptr != digits.data() + digits.size()) {
+    // Forms from_chars does not take (hexadecimal floats): strtod decides.
+    const std::string copy(text);
+    char* end = nullptr;
+    d = std::strtod(copy.c_str(), &end);
+    if (end == copy.c_str() || *end != '\0') throw malformed();
+  }
+  if (!std::isfinite(d)) {
+    std::string shown(text.substr(0, 40));
+    throw std::invalid_argument("non-finite number '" + shown + "'");
+  }
   return FT(d);
 }
 

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace morphex {
@@ -62,7 +63,7 @@ void make_exact(Mesh& mesh);
 std::string to_rational_string(const FT& value);
 // Parses "num/den", "num" or a decimal/scientific literal (read as the nearest double).
 // Throws std::invalid_argument on malformed text.
-FT parse_exact_number(const std::string& text);
+FT parse_exact_number(std::string_view text);
 
 // Exact signed volume of a closed mesh (positive when outward oriented), summed pairwise so the
 // rational sizes stay balanced.

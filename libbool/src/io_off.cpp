@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// OFF, plain (coordinates as decimals) and exact (integers and fractions num/den, read and
+// written without loss).
+#include <charconv>
+#include <ostream>
+
+#include "io_text.h"
+
+namespace morphex::detail {
+
+Mesh read_off(const std::string& content, const std::string& name) {
+  TextReader reader(content);
+  Line line;
+  if (!reader.next(line)) throw InputError(name, "empty file");
+  std::vector<std::string_view> header = line.tokens;
+  const std::string_view magic = header[0];
+  if (magic.size() < 3 || magic.compare(magic.size() - 3, 3, "OFF") != 0 ||
+      magic.find('4') != std::string_view::npos)
+    throw InputError(name, "not an OFF file: header is " + shown(magic) + at_line(line.number));
+  header.erase(header.begin());
+  std::size_t counts_line = line.number;
+  if (header.empty()) {
+    if (!reader.next(line))
+      throw InputError(name, "truncated file: missing vertex and face counts");
+    header = line.tokens;
+    counts_line = line.number;
+  }
+  if (header.size() < 2) throw InputError(name, "missing face count" + at_line(counts_line));
+  const std::uint64_t nv = count(header[0], name, counts_line, "vertex count");
+  const std::uint64_t nf = count(header[1], name, counts_line, "face count");
+  // Every vertex needs at least 6 bytes ("0 0 0\n") and every face 8: never trust a huge count.
+  if (nv * 6 + nf * 8 > reader.remaining_bytes() + 8)
+    throw InputError(name, "truncated file: header announces " + std::to_string(nv) +
+                               " vertices and " + std::to_string(nf) + " faces" +
+                               at_line(counts_line));
+  Mesh mesh;
+  mesh.points.reserve(nv);
+  for (std::uint64_t v = 0; v < nv; ++v) {
+    if (!reader.next(line))
+      throw InputError(
+          name, "truncated file: " + std::to_string(v) + " of " + std::to_string(nv) + " vertices");
+    if (line.tokens.size() < 3)
+      throw InputError(name, "vertex " + std::to_string(v) + " has fewer than 3 coordinates" +
+                                 at_line(line.number));
+    mesh.points.emplace_back(number(line.tokens[0], name, line.number),
+                             number(line.tokens[1], name, line.number),
+                             number(line.tokens[2], name, line.number));
+  }
+  mesh.triangles.reserve(nf);
+  std::vector<VertexIndex> polygon;
+  for (std::uint64_t f = 0; f < nf; ++f) {
+    if (!reader.next(line))
+      throw InputError(
+          name, "truncated file: " + std::to_string(f) + " of " + std::to_string(nf) + " faces");
+    const std::uint64_t n = count(line.tokens[0], name, line.number, "polygon size");
+    if (line.tokens.size() < n + 1)
+      throw InputError(name, "face " + std::to_string(f) + " lists fewer than " +
+                                 std::to_string(n) + " vertices" + at_line(line.number));
+    polygon.clear();
+    for (std::uint64_t k = 1; k <= n; ++k) {
+      const std::string_view t = line.tokens[k];
+      std::uint64_t index = 0;
+      const auto r = std::from_chars(t.data(), t.data() + t.size(), index);
+      if (t.size() > 10 || r.ec != std::errc() || r.ptr != t.data() + t.size() || index >= nv)
+        throw InputError(name, "face " + std::to_string(f) + " has vertex index " + shown(t) +
+                                   " out of range [0, " + std::to_string(nv) + ")" +
+                                   at_line(line.number));
+      polygon.push_back(VertexIndex(index));
+    }
+    add_polygon(mesh, polygon, name, f, line.number);
+  }
+  return mesh;
+}
+
+void write_off(const Mesh& m, std::ostream& out, bool exact) {
+  std::string text = "OFF\n" + std::to_string(m.points.size()) + ' ' +
+                     std::to_string(m.triangles.size()) + " 0\n";
+  auto flush = [&](bool always) {
+    if (always || text.size() > (1u << 20)) {
+      out.write(text.data(), std::streamsize(text.size()));
+      text.clear();
+    }
+  };
+  for (const Point& p : m.points) {
+    for (int k = 0; k < 3; ++k) {
+      if (exact)
+        text += to_rational_string(p.cartesian(k));
+      else
+        append_double(text, CGAL::to_double(p.cartesian(k)));
+      text += k < 2 ? ' ' : '\n';
+    }
+    flush(false);
+  }
+  for (const Triangle& t : m.triangles) {
+    text += "3 ";
+    for (int k = 0; k < 3; ++k) {
+      text += std::to_string(t[k]);
+      text += k < 2 ? ' ' : '\n';
+    }
+    flush(false);
+  }
+  flush(true);
+}
+
+}  // namespace morphex::detail

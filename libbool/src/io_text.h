@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// What the mesh readers and writers share: the per-format entry points, a text scanner that
+// splits lines into tokens without copying them, exact number parsing with the fast paths that
+// plain files need, and the wording of located errors.
+#pragma once
+
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "morphex/io.h"
+
+namespace morphex::detail {
+
+// One reader and one writer per format (io_off.cpp, io_obj.cpp, io_stl.cpp, io_ply.cpp).
+Mesh read_off(const std::string& content, const std::string& name);
+Mesh read_obj(const std::string& content, const std::string& name);
+Mesh read_stl(const std::string& content, const std::string& name);
+Mesh read_ply(const std::string& content, const std::string& name);
+void write_off(const Mesh& mesh, std::ostream& out, bool exact);
+void write_obj(const Mesh& mesh, std::ostream& out);
+void write_stl(const Mesh& mesh, std::ostream& out);
+void write_ply(const Mesh& mesh, std::ostream& out);
+
+// Lines of a text, '#' comments stripped, split on whitespace; the tokens view the text.
+struct Line {
+  std::size_t number = 0;
+  std::vector<std::string_view> tokens;
+};
+
+class TextReader {
+ public:
+  explicit TextReader(std::string_view content, std::size_t begin = 0)
+      : content_(content), pos_(begin) {}
+  // The next line with at least one token; false at the end.
+  bool next(Line& line);
+  std::size_t remaining_bytes() const {
+    return pos_ < content_.size() ? content_.size() - pos_ : 0;
+  }
+
+ private:
+  std::string_view content_;
+  std::size_t pos_;
+  std::size_t number_ = 0;
+};
+
+// Whitespace-separated tokens of one piece of text (header lines).
+std::vector<std::string_view> split(std::string_view text);
+
+// <cctype> takes an int that must be an unsigned char value: bytes above 127 would be UB.
+inline bool is_digit(char c) {
+  return c >= '0' && c <= '9';
+}
+
+std::string at_line(std::size_t line);
+// A token as shown in a message: quoted, bytes outside printable ASCII escaped, long ones cut.
+std::string shown(std::string_view token);
+
+// A coordinate: integers and fractions exactly, decimals as the nearest double. InputError
+// naming the file and the line when malformed.
+FT number(std::string_view token, const std::string& name, std::size_t line);
+// The same as a double (formats that store doubles), refusing non-finite values.
+double double_number(std::string_view token, const std::string& name, std::size_t line);
+// A non-negative count of at most 18 digits.
+std::uint64_t count(std::string_view token, const std::string& name, std::size_t line,
+                    const char* what);
+
+// Appends the triangulation of a polygon face; InputError naming the face when it cannot be.
+void add_polygon(Mesh& mesh, const std::vector<VertexIndex>& polygon, const std::string& name,
+                 std::size_t face, std::size_t line);
+
+// Appends the shortest decimal that reads back as exactly `value`.
+void append_double(std::string& out, double value);
+
+}  // namespace morphex::detail
