@@ -3,15 +3,19 @@
 // same input in the same run, with exact volumes compared, wall time and peak memory.
 //
 //   bench_morph [--se SPEC] [--ops dilate,erode,open,close] [--peer] [--nary] [--chain N]
-//               [--threads N] [--json FILE] INPUT...
+//               [--threads N] [--normalize] [--repair] [--json FILE] INPUT...
 // INPUT is a mesh file or a generated mesh: torus:U,V (U*V*2 facets, non-convex), l-shape,
-// icosphere:L. --peer runs minkowski_sum_3 on every dilation; --nary also times the dilation with
+// icosphere:L. --normalize scales each input by a power of two so that its bounding-box
+// diagonal lies in [1, 2) (one SE size for every input, coordinates still doubles); --repair
+// makes inputs that are not valid solids valid first (morphex repair). --peer runs
+// minkowski_sum_3 on every dilation; --nary also times the dilation with
 // the pieces united by the n-ary union instead of the binary-union tree (the default); --chain N
 // dilates N times in a row and reports the first and the last step.
 #include <sys/resource.h>
 #include <tbb/global_control.h>
 
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -25,6 +29,7 @@
 #include "morphex/io.h"
 #include "morphex/minkowski.h"
 #include "morphex/morphology.h"
+#include "morphex/repair.h"
 #include "peers.h"
 
 using namespace morphex;
@@ -57,6 +62,21 @@ Mesh load(const std::string& input) {
   return read_mesh(input);
 }
 
+// Scaled by the power of two that brings its bounding-box diagonal into [1, 2): an exact
+// scaling that keeps double coordinates doubles, so that one SE size fits every input.
+Mesh scaled_to_unit_diagonal(const Mesh& m) {
+  CGAL::Bbox_3 box;
+  for (const Point& p : m.points) box += p.bbox();
+  const double diagonal = std::sqrt(std::pow(box.xmax() - box.xmin(), 2) +
+                                    std::pow(box.ymax() - box.ymin(), 2) +
+                                    std::pow(box.zmax() - box.zmin(), 2));
+  int exponent = 0;
+  std::frexp(diagonal, &exponent);  // diagonal = f 2^exponent, f in [1/2, 1)
+  Mesh out = transformed(m, Transformation(CGAL::SCALING, FT(std::ldexp(1.0, 1 - exponent))));
+  make_exact(out);
+  return out;
+}
+
 std::vector<std::string> split(const std::string& text) {
   std::vector<std::string> out;
   std::stringstream in(text);
@@ -69,7 +89,7 @@ std::vector<std::string> split(const std::string& text) {
 int main(int argc, char** argv) {
   std::string se_spec = "cube:r=1/20", json_path;
   std::vector<std::string> ops = {"dilate"}, inputs;
-  bool peer = false, nary = false;
+  bool peer = false, nary = false, normalize = false, repair = false;
   int chain = 0;
   unsigned threads = 0;
   for (int i = 1; i < argc; ++i) {
@@ -86,6 +106,10 @@ int main(int argc, char** argv) {
       chain = std::stoi(argv[++i]);
     else if (arg == "--json" && i + 1 < argc)
       json_path = argv[++i];
+    else if (arg == "--normalize")
+      normalize = true;
+    else if (arg == "--repair")
+      repair = true;
     else if (arg == "--threads" && i + 1 < argc)
       threads = unsigned(std::max(1, std::stoi(argv[++i])));
     else if (arg.rfind("--", 0) == 0) {
@@ -96,7 +120,7 @@ int main(int argc, char** argv) {
   }
   if (inputs.empty()) {
     std::cerr << "usage: bench_morph [--se SPEC] [--ops dilate,erode,open,close] [--peer] "
-                 "[--chain N] [--threads N] [--json FILE] INPUT...\n";
+                 "[--chain N] [--threads N] [--normalize] [--repair] [--json FILE] INPUT...\n";
     return 2;
   }
   std::optional<tbb::global_control> limit;
@@ -110,7 +134,9 @@ int main(int argc, char** argv) {
             << std::setw(9) << "ratio" << std::setw(9) << "result" << std::setw(10) << "peak MiB"
             << "  exact volumes\n";
   for (const std::string& input : inputs) {
-    const Mesh a = load(input);
+    Mesh a = load(input);
+    if (repair) a = repair_mesh(a).mesh;
+    if (normalize) a = scaled_to_unit_diagonal(a);
     for (const std::string& op_name : ops) {
       const MorphologyOp op = parse_morphology_op(op_name);
       MorphologyStats stats;

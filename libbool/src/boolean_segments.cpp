@@ -413,6 +413,27 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
       });
     }
   }
+  // Labelled soups: the planes through each vertex are those of its faces. A vertex on the plane
+  // of a label its faces carry is on it, with no question asked (an intersection point of an
+  // earlier operation lies on the planes that made it; a translate, on their translates).
+  std::vector<std::uint32_t> label_start, label_at;
+  if (options.planes) {
+    label_start.assign(num_inputs + 1, 0);
+    for (std::uint32_t f = 0; f < a.triangles.size(); ++f)
+      for (VertexIndex v : a.triangles[f]) ++label_start[rep(v) + 1];
+    for (std::size_t v = 0; v < num_inputs; ++v) label_start[v + 1] += label_start[v];
+    label_at.resize(label_start.back());
+    std::vector<std::uint32_t> fill(label_start.begin(), label_start.end() - 1);
+    for (std::uint32_t f = 0; f < a.triangles.size(); ++f)
+      for (VertexIndex v : a.triangles[f]) label_at[fill[rep(v)]++] = (*options.planes)[f];
+  }
+  auto on_labelled_plane = [&](PointId vertex, std::uint32_t facet) {
+    if (!options.planes || vertex >= num_inputs) return false;
+    const std::uint32_t label = (*options.planes)[facet];
+    return std::find(label_at.begin() + label_start[vertex],
+                     label_at.begin() + label_start[vertex + 1], label) !=
+           label_at.begin() + label_start[vertex + 1];
+  };
   std::vector<PairSigns> signs(np);
   for_each_upward(np, [&](std::size_t k) {
     const auto [ia, ib] = pairs[k];
@@ -424,17 +445,19 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
       s.separated = false;
       return;
     }
-    auto against = [&](const Corners& t, const Corners& other, const ApproxVector& normal,
-                       std::int8_t(&out)[3]) {
+    auto against = [&](const Corners& t, const Corners& other, std::uint32_t other_facet,
+                       const ApproxVector& normal, std::int8_t(&out)[3]) {
       for (int i = 0; i < 3; ++i) {
         const auto o = t[i] == other[0] || t[i] == other[1] || t[i] == other[2]
                            ? CGAL::make_uncertain(CGAL::ZERO)
                            : table.side_filter(normal, other[0], t[i]);
-        out[i] = o.is_certain() ? std::int8_t(o.make_certain()) : kUndecided;
+        out[i] = o.is_certain()                         ? std::int8_t(o.make_certain())
+                 : on_labelled_plane(t[i], other_facet) ? std::int8_t(0)
+                                                        : kUndecided;
       }
       return out[0] != 0 && out[0] != kUndecided && out[0] == out[1] && out[1] == out[2];
     };
-    s.separated = against(ta, tb, normals[1][ib], s.a) || against(tb, ta, normals[0][ia], s.b);
+    s.separated = against(ta, tb, ib, normals[1][ib], s.a) || against(tb, ta, ia, normals[0][ia], s.b);
   });
   std::vector<std::uint64_t> questions;
   for (std::size_t k = 0; k < np; ++k) {
