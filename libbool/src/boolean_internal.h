@@ -71,7 +71,8 @@ enum PointFlag : std::uint8_t {
   kMerged = 2,     // several input vertices at this position were given this id
 };
 
-// Step 3: all intersection points, each with one id, and the per-facet cuts.
+// Step 3 (step3_*.cpp): all intersection points, each with one id; step 4 (step4_orient.cpp): the
+// per-facet cuts with transversal segments oriented.
 struct Intersection {
   PointTable points;
   // Input id -> the id its position has: coincident input vertices near the other mesh (on facets

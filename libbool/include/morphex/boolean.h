@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Exact Boolean operations on closed triangle meshes, after Leconte, Barki and Dupont.
 //
-// Notation shared by every phase (libbool/src/boolean_*.cpp, docs/boolean-design.md):
+// Notation shared by every phase (libbool/src/stepN_*.cpp, docs/boolean-design.md):
 //   A, B       the two input solids; ta, tb a triangle of A, of B.
 //   cut facet  an input triangle that meets the other mesh (any contact).
 //   segment    a constraint between two intersection points, lying in both ta and tb.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Coplanar merging: after a Boolean, coplanar overlaps leave planar regions cut into many
+// Step 7, coplanar merging: after a Boolean, coplanar overlaps leave planar regions cut into many
 // triangles by segments that no longer bound anything. The faces around each removable vertex
 // (inside a region, or on a straight crease between two) are re-triangulated from their boundary
 // without it. Only existing points are used, so the result is exact and unchanged as a set; both

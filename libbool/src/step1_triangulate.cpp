@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Triangulation of the polygons that mesh files list (ear clipping in the plane of the exact
-// Newell normal): the seed's step 1, done as files are read.
+// Step 1: triangulation of the polygons that mesh files list (ear clipping in the plane of the
+// exact Newell normal), done as files are read.
 #include <algorithm>
 #include <stdexcept>
 #include <string>
