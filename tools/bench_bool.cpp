@@ -37,15 +37,12 @@
 #include "morphex/check.h"
 #include "morphex/generators.h"
 #include "morphex/io.h"
+#include "morphex/stopwatch.h"
 #include "peers.h"
 
 using namespace morphex;
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Exact rotation about z then x by the rational angle whose half-tangent is near tan(deg/2).
 Transformation rational_rotation(double degrees) {
@@ -289,9 +286,9 @@ int main(int argc, char** argv) {
       std::vector<std::pair<double, PhaseSeconds>> runs;
       const double seconds = median_seconds([&] {
         r = BooleanResult{};  // the previous run's result is freed off the clock, as the peers'
-        const auto start = std::chrono::steady_clock::now();
+        const Stopwatch start;
         r = compute_boolean(c.a, c.b, op, trusted);
-        runs.emplace_back(seconds_since(start), r.stats.seconds);
+        runs.emplace_back(start.seconds(), r.stats.seconds);
         return runs.back().first;
       });
       if (!r.ok()) return std::nullopt;
@@ -314,10 +311,10 @@ int main(int argc, char** argv) {
       own_inputs();
       bool valid = false;
       const double seconds = median_seconds([&] {
-        const auto start = std::chrono::steady_clock::now();
+        const Stopwatch start;
         valid = check_mesh(c.a, kValidityOnly).valid_solid() &&
                 check_mesh(c.b, kValidityOnly).valid_solid();
-        return seconds_since(start);
+        return start.seconds();
       });
       if (!valid) return std::nullopt;
       return std::make_pair(seconds, FT(0));

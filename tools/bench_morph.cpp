@@ -19,8 +19,8 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
-#include <optional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "morphex/boolean.h"
@@ -30,15 +30,12 @@
 #include "morphex/minkowski.h"
 #include "morphex/morphology.h"
 #include "morphex/repair.h"
+#include "morphex/stopwatch.h"
 #include "peers.h"
 
 using namespace morphex;
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Peak resident memory of the process so far (Linux reports KiB).
 double peak_mib() {
@@ -67,9 +64,9 @@ Mesh load(const std::string& input) {
 Mesh scaled_to_unit_diagonal(const Mesh& m) {
   CGAL::Bbox_3 box;
   for (const Point& p : m.points) box += p.bbox();
-  const double diagonal = std::sqrt(std::pow(box.xmax() - box.xmin(), 2) +
-                                    std::pow(box.ymax() - box.ymin(), 2) +
-                                    std::pow(box.zmax() - box.zmin(), 2));
+  const double diagonal =
+      std::sqrt(std::pow(box.xmax() - box.xmin(), 2) + std::pow(box.ymax() - box.ymin(), 2) +
+                std::pow(box.zmax() - box.zmin(), 2));
   int exponent = 0;
   std::frexp(diagonal, &exponent);  // diagonal = f 2^exponent, f in [1/2, 1)
   Mesh out = transformed(m, Transformation(CGAL::SCALING, FT(std::ldexp(1.0, 1 - exponent))));
@@ -130,8 +127,8 @@ int main(int argc, char** argv) {
   bool all_agree = true;
   std::cout << std::left << std::setw(28) << "input" << std::setw(8) << "op" << std::right
             << std::setw(8) << "facets" << std::setw(10) << "morphex s" << std::setw(9)
-            << "ms/facet" << std::setw(10) << "CGAL s"
-            << std::setw(9) << "ratio" << std::setw(9) << "result" << std::setw(10) << "peak MiB"
+            << "ms/facet" << std::setw(10) << "CGAL s" << std::setw(9) << "ratio" << std::setw(9)
+            << "result" << std::setw(10) << "peak MiB"
             << "  exact volumes\n";
   for (const std::string& input : inputs) {
     Mesh a = load(input);
@@ -140,16 +137,19 @@ int main(int argc, char** argv) {
     for (const std::string& op_name : ops) {
       const MorphologyOp op = parse_morphology_op(op_name);
       MorphologyStats stats;
-      auto start = std::chrono::steady_clock::now();
+      Stopwatch start;
       const Mesh ours = apply_morphology(op, a, se, &stats);
-      const double our_seconds = seconds_since(start);
+      const double our_seconds = start.seconds();
       const MeshReport report = check_mesh(ours);
-      nlohmann::json row = {{"input", input},         {"op", op_name},
-                            {"se", se.spec},          {"facets", a.num_triangles()},
+      nlohmann::json row = {{"input", input},
+                            {"op", op_name},
+                            {"se", se.spec},
+                            {"facets", a.num_triangles()},
                             {"seconds", our_seconds},
                             {"ms_per_facet", 1000 * our_seconds / double(a.num_triangles())},
                             {"result_facets", ours.num_triangles()},
-                            {"pieces", stats.pieces}, {"valid", report.valid_solid()},
+                            {"pieces", stats.pieces},
+                            {"valid", report.valid_solid()},
                             {"peak_mib", peak_mib()}};
       std::string agreement = report.valid_solid() ? "valid" : "INVALID";
       double their_seconds = 0;
@@ -164,10 +164,10 @@ int main(int argc, char** argv) {
         row["agree"] = agree;
       }
       if (nary && op == MorphologyOp::Dilate && se.convex) {
-        start = std::chrono::steady_clock::now();
+        start.restart();
         Mesh shell = boundary_sum(a, se.mesh, true, nullptr, PieceUnion::NAry);
         const Mesh by_nary = compute_union({std::move(shell), a});  // the SEs hold the origin
-        const double nary_seconds = seconds_since(start);
+        const double nary_seconds = start.seconds();
         const bool agree = signed_volume(by_nary) == report.volume;
         all_agree = all_agree && agree;
         agreement += agree ? ", n-ary agrees" : ", N-ARY DIFFERS";
@@ -195,9 +195,9 @@ int main(int argc, char** argv) {
       std::vector<std::size_t> facets;
       for (int i = 0; i < chain; ++i) {
         facets.push_back(current.num_triangles());
-        const auto start = std::chrono::steady_clock::now();
+        const Stopwatch start;
         current = dilation(current, se);
-        steps.push_back(seconds_since(start));
+        steps.push_back(start.seconds());
       }
       std::cout << "chain of " << chain << " dilations of " << input << " (step: input facets, s):";
       for (int i = 0; i < chain; ++i)

@@ -21,6 +21,7 @@
 #include "morphex/check.h"
 #include "morphex/io.h"
 #include "morphex/repair.h"
+#include "morphex/stopwatch.h"
 #include "peers.h"
 
 using namespace morphex;
@@ -32,10 +33,9 @@ double median_seconds(int runs, Body&& body) {
   body();  // warm-up
   std::vector<double> times;
   for (int i = 0; i < runs; ++i) {
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch start;
     body();
-    times.push_back(
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    times.push_back(start.seconds());
   }
   std::sort(times.begin(), times.end());
   return times[times.size() / 2];
@@ -71,8 +71,8 @@ int main(int argc, char** argv) {
   bool all_valid = true;
   std::cout << std::left << std::setw(34) << "mesh" << std::right << std::setw(8) << "faces"
             << std::setw(7) << "pairs" << std::setw(10) << "check s" << std::setw(10) << "CGAL s"
-            << std::setw(10) << "repair s" << std::setw(8) << "ratio" << std::setw(11)
-            << "volume" << "  result\n";
+            << std::setw(10) << "repair s" << std::setw(8) << "ratio" << std::setw(11) << "volume"
+            << "  result\n";
   for (const std::string& input : inputs) {
     Mesh mesh;
     try {
@@ -100,12 +100,13 @@ int main(int argc, char** argv) {
     const double v_in = CGAL::to_double(signed_volume(mesh));
     const double v_out = repaired.mesh.empty() ? 0 : CGAL::to_double(signed_volume(repaired.mesh));
     const double change = v_in != 0 ? (v_out - std::abs(v_in)) / std::abs(v_in) : 0;
-    std::cout << std::left << std::setw(33) << input.substr(input.size() > 33 ? input.size() - 33 : 0)
-              << ' ' << std::right << std::setw(8) << mesh.num_triangles() << std::setw(7)
-              << report.self_intersections << std::setw(10) << std::setprecision(3)
-              << check_seconds << std::setw(10) << cgal_seconds << std::setw(10) << repair_seconds
-              << std::setw(8) << std::setprecision(3) << repair_seconds / check_seconds
-              << std::setw(10) << std::setprecision(2) << 100 * change << "%  " << outcome
+    std::cout << std::left << std::setw(33)
+              << input.substr(input.size() > 33 ? input.size() - 33 : 0) << ' ' << std::right
+              << std::setw(8) << mesh.num_triangles() << std::setw(7) << report.self_intersections
+              << std::setw(10) << std::setprecision(3) << check_seconds << std::setw(10)
+              << cgal_seconds << std::setw(10) << repair_seconds << std::setw(8)
+              << std::setprecision(3) << repair_seconds / check_seconds << std::setw(10)
+              << std::setprecision(2) << 100 * change << "%  " << outcome
               << (report.valid_solid() ? " (was valid)" : "") << std::endl;
     rows.push_back({{"mesh", input},
                     {"faces", mesh.num_triangles()},

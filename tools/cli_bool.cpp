@@ -7,6 +7,7 @@
 #include "morphex/boolean.h"
 #include "morphex/check.h"
 #include "morphex/io.h"
+#include "morphex/stopwatch.h"
 
 namespace morphex::cli {
 
@@ -39,10 +40,9 @@ Command add_bool_command(CLI::App& app) {
               print_error(e.what());
               return kBadInput;
             }
-            const auto start = std::chrono::steady_clock::now();
+            const Stopwatch start;
             const BooleanResult result = compute_boolean(a, b, parse_boolean_op(args->op));
-            const double seconds =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const double seconds = start.seconds();
             if (!result.ok()) {
               const std::string& file =
                   result.status == BooleanStatus::InvalidInputA ? args->a : args->b;

@@ -6,6 +6,7 @@
 #include "cli_common.h"
 #include "morphex/check.h"
 #include "morphex/io.h"
+#include "morphex/stopwatch.h"
 
 namespace morphex::cli {
 
@@ -71,10 +72,9 @@ Command add_check_command(CLI::App& app) {
               print_error(e.what());
               return kBadInput;
             }
-            const auto start = std::chrono::steady_clock::now();
+            const Stopwatch start;
             const MeshReport report = check_mesh(mesh);
-            const double seconds =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const double seconds = start.seconds();
             if (*json)
               emit_json(report_json(*path, report, seconds), "-");
             else

@@ -7,6 +7,7 @@
 #include "morphex/io.h"
 #include "morphex/minkowski.h"
 #include "morphex/morphology.h"
+#include "morphex/stopwatch.h"
 
 namespace morphex::cli {
 namespace {
@@ -20,10 +21,6 @@ void add_output_options(CLI::App* cmd, OutputArgs& args) {
   cmd->add_option("-o,--output", args.out, "Output mesh (format from the extension)")->required();
   cmd->add_flag("--exact", args.exact, "Write the lossless exact OFF format");
   cmd->add_option("--stats", args.stats, "Write statistics as JSON to FILE, or '-' for stdout");
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void write_result(const Mesh& mesh, const OutputArgs& args, nlohmann::json stats) {
@@ -68,10 +65,10 @@ Command add_morphology_command(CLI::App& app, MorphologyOp op, const std::string
             }
             const auto a = read_solid(args->in);
             if (!a) return kBadInput;
-            const auto start = std::chrono::steady_clock::now();
+            const Stopwatch start;
             MorphologyStats stats;
             const Mesh result = apply_morphology(op, *a, se, &stats);
-            nlohmann::json j = result_stats(result, seconds_since(start));
+            nlohmann::json j = result_stats(result, start.seconds());
             j["operation"] = to_string(op);
             j["se"] = se.spec;
             j["se_convex"] = se.convex;
@@ -98,10 +95,10 @@ Command add_minkowski_command(CLI::App& app) {
             if (!a) return kBadInput;
             const auto b = read_solid(args->b);
             if (!b) return kBadInput;
-            const auto start = std::chrono::steady_clock::now();
+            const Stopwatch start;
             MinkowskiStats stats;
             const Mesh result = minkowski_sum(*a, *b, &stats);
-            nlohmann::json j = result_stats(result, seconds_since(start));
+            nlohmann::json j = result_stats(result, start.seconds());
             j["operation"] = "minkowski";
             j["pieces"] = stats.pieces;
             j["binary_unions"] = stats.binary_unions;

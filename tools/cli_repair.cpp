@@ -6,6 +6,7 @@
 #include "morphex/io.h"
 #include "morphex/pipeline.h"
 #include "morphex/repair.h"
+#include "morphex/stopwatch.h"
 
 namespace morphex::cli {
 
@@ -34,7 +35,7 @@ Command add_repair_command(CLI::App& app) {
               print_error(e.what());
               return kBadInput;
             }
-            const auto start = std::chrono::steady_clock::now();
+            const Stopwatch start;
             RepairResult result;
             try {
               result = repair_mesh(mesh);
@@ -42,8 +43,7 @@ Command add_repair_command(CLI::App& app) {
               print_error(args->in + ": cannot repair: " + e.what());
               return kBadInput;
             }
-            const double seconds =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const double seconds = start.seconds();
             WriteOptions write_options;
             write_options.exact = args->exact;
             write_mesh(result.mesh, args->out, write_options);

@@ -15,6 +15,7 @@
 #include "morphex/io.h"
 #include "morphex/pipeline.h"
 #include "morphex/retrieval.h"
+#include "morphex/stopwatch.h"
 
 namespace morphex::cli {
 namespace {
@@ -53,13 +54,10 @@ nlohmann::json with_repairs(const nlohmann::json& document) {
 // What the repair stage of a finished input changed, as JSON text (empty when nothing).
 std::string repair_of(const mp::InputReport& input) {
   for (const mp::StageReport& s : input.stages)
-    if (s.type == "repair" && s.extra.contains("repair") && s.extra["repair"].value("changed", false))
+    if (s.type == "repair" && s.extra.contains("repair") &&
+        s.extra["repair"].value("changed", false))
       return s.extra["repair"].dump();
   return "";
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 // The descriptors of the last describe stage of a finished input, by kind.
@@ -158,14 +156,14 @@ Command add_describe_command(CLI::App& app) {
               mesh = read_solid(args->mesh);
             }
             if (!mesh) return kBadInput;
-            const auto start = std::chrono::steady_clock::now();
+            const Stopwatch start;
             const Descriptors d = describe_valid(*mesh, s);  // read_solid or repair checked it
             nlohmann::json j = descriptors_json(d);
             if (repaired) j["repair"] = mp::to_json(*repaired);
             j["name"] = fs::path(args->mesh).stem().string();
             j["path"] = args->mesh;
             j["settings"] = s.to_string();
-            j["seconds"] = seconds_since(start);
+            j["seconds"] = start.seconds();
             if (args->json) {
               std::cout << j.dump() << std::endl;
               return kSuccess;
@@ -218,7 +216,7 @@ class ProgressBar {
   explicit ProgressBar(std::size_t total) : total_(total), tty_(isatty(STDERR_FILENO) != 0) {}
   void update(std::size_t done, std::size_t failed) {
     if (total_ == 0) return;
-    const double elapsed = seconds_since(start_);
+    const double elapsed = start_.seconds();
     if (!tty_ && done != total_ && elapsed - last_line_ < 5) return;
     last_line_ = elapsed;
     const double eta = done > 0 ? elapsed / double(done) * double(total_ - done) : 0;
@@ -239,7 +237,7 @@ class ProgressBar {
   std::size_t total_;
   bool tty_;
   double last_line_ = 0;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  Stopwatch start_;
 };
 
 Command add_index_command(CLI::App& app) {
@@ -291,7 +289,7 @@ Command add_index_command(CLI::App& app) {
             db.set_meta("pipeline", document.dump());
             db.set_meta("sets", nlohmann::json(options.variables).dump());
 
-            const auto start = std::chrono::steady_clock::now();
+            const Stopwatch start;
             std::size_t skipped = 0, failed = 0, done = 0, indexed = 0;
             std::map<std::string, std::string> hashes;
             for (const std::string& input : expand_inputs(args->inputs)) {
@@ -349,7 +347,7 @@ Command add_index_command(CLI::App& app) {
                 return kBadInput;
               }
             }
-            const double seconds = seconds_since(start);
+            const double seconds = start.seconds();
             std::cout << args->db << ": indexed " << indexed << " meshes (" << skipped
                       << " already up to date, " << failed << " failed) in " << std::setprecision(3)
                       << seconds << " s";

@@ -22,6 +22,7 @@
 #include "morphex/io.h"
 #include "morphex/morphology.h"
 #include "morphex/repair.h"
+#include "morphex/stopwatch.h"
 #include "morphex/winding.h"
 
 using namespace morphex;
@@ -107,7 +108,7 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   RandomSolids random(seed);
   long failures = 0;
   for (long c = 0; c < count; ++c) {
@@ -140,8 +141,8 @@ int main(int argc, char** argv) {
         const RepairResult joined = repair_mesh(both);
         const Mesh common = winding_solid(both, {}, twice);
         const Mesh minus = winding_solid(concatenate(a, reversed(b)));
-        if (const std::string p = problem_with(joined.mesh) + problem_with(common) +
-                                  problem_with(minus);
+        if (const std::string p =
+                problem_with(joined.mesh) + problem_with(common) + problem_with(minus);
             !p.empty())
           failure = "a winding solid of A and B as one mesh is not a valid solid: " + p;
         else if (signed_volume(joined.mesh) != signed_volume(r[0].mesh))
@@ -181,8 +182,7 @@ int main(int argc, char** argv) {
                 << "-*\n";
     }
   }
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = start.seconds();
   std::cout << count << " cases (seed " << seed << "), " << failures << " failed, " << seconds
             << " s\n";
   return failures == 0 ? 0 : 1;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The Boolean driver: validation, then the phases in order, each timed.
 #include "morphex/boolean.h"
+#include "morphex/stopwatch.h"
 
 #include <chrono>
 #include <stdexcept>
@@ -29,21 +30,6 @@ const char* to_string(BooleanOp op) {
   }
   return "?";
 }
-
-namespace {
-class Stopwatch {
- public:
-  double lap() {
-    const auto now = std::chrono::steady_clock::now();
-    const double s = std::chrono::duration<double>(now - last_).count();
-    last_ = now;
-    return s;
-  }
-
- private:
-  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
-};
-}  // namespace
 
 BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
                               const BooleanOptions& options) {

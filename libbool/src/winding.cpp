@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // winding_solid: the chain, the pairs, the driver and the assembly (morphex/winding.h).
 #include "morphex/winding.h"
+#include "morphex/stopwatch.h"
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
@@ -42,7 +43,8 @@ Chain prepare_chain(const Mesh& surface, const std::vector<int>& weights,
     if (w == 0) return;
     std::array<VertexIndex, 3> t = {id[surface.triangles[f][0]], id[surface.triangles[f][1]],
                                     id[surface.triangles[f][2]]};
-    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || CGAL::collinear(p[t[0]], p[t[1]], p[t[2]])) {
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] ||
+        CGAL::collinear(p[t[0]], p[t[1]], p[t[2]])) {
       degenerate[f] = 1;
       return;
     }
@@ -51,8 +53,9 @@ Chain prepare_chain(const Mesh& surface, const std::vector<int>& weights,
                            : Keyed{{t[0], t[2], t[1]}, -w, std::uint32_t(f)};
   });
   stats.degenerate_faces = std::size_t(std::count(degenerate.begin(), degenerate.end(), 1));
-  keyed.erase(std::remove_if(keyed.begin(), keyed.end(), [](const Keyed& k) { return k.weight == 0; }),
-              keyed.end());
+  keyed.erase(
+      std::remove_if(keyed.begin(), keyed.end(), [](const Keyed& k) { return k.weight == 0; }),
+      keyed.end());
   const std::size_t kept = keyed.size();
   tbb::parallel_sort(keyed.begin(), keyed.end(),
                      [](const Keyed& a, const Keyed& b) { return a.sorted < b.sorted; });
@@ -90,12 +93,14 @@ Pairs self_pairs(const TriangleTree& tree) {
   return pairs;
 }
 
-Pairs known_pairs(const Chain& chain, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& of_input) {
+Pairs known_pairs(const Chain& chain,
+                  const std::vector<std::pair<std::uint32_t, std::uint32_t>>& of_input) {
   Pairs pairs;
   pairs.reserve(of_input.size());
   for (const auto& [i, j] : of_input) {
     if (i >= chain.face_of.size() || j >= chain.face_of.size())
-      throw std::invalid_argument("winding_solid: a listed pair names a triangle that is not there");
+      throw std::invalid_argument(
+          "winding_solid: a listed pair names a triangle that is not there");
     const std::uint32_t a = chain.face_of[i], b = chain.face_of[j];
     if (a != Chain::kNoFace && b != Chain::kNoFace && a != b)
       pairs.emplace_back(std::min(a, b), std::max(a, b));
@@ -133,8 +138,7 @@ Mesh assemble_kept(const Chain& chain, Intersection& x, const std::vector<Member
   const std::size_t nf = chain.soup.triangles.size();
   auto corners = [&](std::uint32_t f) {
     const Triangle& t = chain.soup.triangles[f];
-    return std::array<PointId, 3>{x.vertex_id(0, t[0]), x.vertex_id(0, t[1]),
-                                  x.vertex_id(0, t[2])};
+    return std::array<PointId, 3>{x.vertex_id(0, t[0]), x.vertex_id(0, t[1]), x.vertex_id(0, t[2])};
   };
   std::unordered_map<std::uint32_t, std::uint32_t> label_index;  // label -> its slot
   std::vector<std::uint32_t> first_facet;                        // per slot
@@ -156,14 +160,13 @@ Mesh assemble_kept(const Chain& chain, Intersection& x, const std::vector<Member
     if (keep[i] == 0) continue;
     const auto& v = members[i].v;
     faces.push_back(keep[i] > 0 ? Triangle{v[0], v[1], v[2]} : Triangle{v[0], v[2], v[1]});
-    origin.push_back({std::uint8_t((keep[i] < 0) != bool(turned[members[i].facet])),
-                      members[i].facet});
+    origin.push_back(
+        {std::uint8_t((keep[i] < 0) != bool(turned[members[i].facet])), members[i].facet});
   }
   if (faces.empty()) return {};
   // Any point of a soup may be where the result is not a 2-manifold.
-  IdMesh surface =
-      separate_non_manifold(x.points, faces, std::vector<std::uint8_t>(x.points.size(), 1),
-                            &origin);
+  IdMesh surface = separate_non_manifold(x.points, faces,
+                                         std::vector<std::uint8_t>(x.points.size(), 1), &origin);
   std::vector<std::array<PointId, 3>> planes(2 * first_facet.size());
   for (std::size_t k = 0; k < first_facet.size(); ++k) {
     planes[2 * k] = planes[2 * k + 1] = corners(first_facet[k]);
@@ -181,13 +184,6 @@ Mesh assemble_kept(const Chain& chain, Intersection& x, const std::vector<Member
   return materialize(x.points, surface);
 }
 
-double seconds_since(std::chrono::steady_clock::time_point& last) {
-  const auto now = std::chrono::steady_clock::now();
-  const double s = std::chrono::duration<double>(now - last).count();
-  last = now;
-  return s;
-}
-
 }  // namespace
 }  // namespace morphex::detail
 
@@ -199,17 +195,17 @@ Mesh winding_solid(const Mesh& surface, const std::vector<int>& weights,
   if (!weights.empty() && weights.size() != surface.triangles.size())
     throw std::invalid_argument("winding_solid: one weight per triangle expected");
   WindingStats stats;
-  auto clock = std::chrono::steady_clock::now();
+  Stopwatch clock;
   if (options.planes && options.planes->size() != surface.triangles.size())
     throw std::invalid_argument("winding_solid: one plane label per triangle expected");
   const Chain chain = prepare_chain(surface, weights, options.planes, stats);
-  stats.seconds_chain = seconds_since(clock);
+  stats.seconds_chain = clock.lap();
   Mesh result;
   if (!chain.soup.triangles.empty()) {
     const TriangleTree tree(chain.soup);
     const Pairs pairs = options.pairs ? known_pairs(chain, *options.pairs) : self_pairs(tree);
     stats.candidate_pairs = pairs.size();
-    stats.seconds_pairs = seconds_since(clock);
+    stats.seconds_pairs = clock.lap();
 
     IntersectOptions soup;
     soup.soup = true;
@@ -218,19 +214,18 @@ Mesh winding_solid(const Mesh& surface, const std::vector<int>& weights,
     stats.intersecting_pairs = x.intersecting_pairs;
     stats.triple_points = merge_soup_cuts(chain.soup, x);
     stats.cut_facets = x.cuts[0].size();
-    stats.seconds_segments = seconds_since(clock);
+    stats.seconds_segments = clock.lap();
 
     const Refined refined = retriangulate(chain.soup, 0, x);
     const std::vector<Member> members = members_of(chain.soup, refined, x);
-    stats.seconds_cuts = seconds_since(clock);
+    stats.seconds_cuts = clock.lap();
 
     const std::vector<std::int8_t> keep =
         select_by_winding(chain, tree, members, x, options.threshold, stats);
-    stats.seconds_winding = seconds_since(clock);
+    stats.seconds_winding = clock.lap();
 
-    result = assemble_kept(chain, x, members, keep, options.merge_coplanar,
-                           options.result_planes);
-    stats.seconds_assembly = seconds_since(clock);
+    result = assemble_kept(chain, x, members, keep, options.merge_coplanar, options.result_planes);
+    stats.seconds_assembly = clock.lap();
   }
   if (options.result_planes && result.empty()) options.result_planes->clear();
   if (stats_out) *stats_out = stats;

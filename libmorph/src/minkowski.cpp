@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Minkowski sums as unions of convex pieces (see minkowski.h for the decomposition).
 #include "morphex/minkowski.h"
+#include "morphex/stopwatch.h"
 
 #include <tbb/parallel_for.h>
 
@@ -18,10 +19,6 @@
 
 namespace morphex {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // conv(g + B) for a convex planar group g of facets and a convex B.
 Mesh facet_sum_convex(const Mesh& surface, const std::vector<VertexIndex>& group, const Mesh& b) {
@@ -153,10 +150,10 @@ bool convex_contains_origin(const Mesh& convex) {
 
 std::optional<std::vector<Mesh>> timed_convolution_pieces(const Mesh& surface, const Mesh& b,
                                                           const Point& c, MinkowskiStats* stats) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   auto pieces = convolution_pieces(surface, b, c);
   if (pieces && stats) {
-    stats->seconds_pieces += seconds_since(start);
+    stats->seconds_pieces += start.seconds();
     stats->pieces += pieces->size();
     for (const Mesh& piece : *pieces) stats->piece_triangles += piece.triangles.size();
   }
@@ -164,11 +161,11 @@ std::optional<std::vector<Mesh>> timed_convolution_pieces(const Mesh& surface, c
 }
 
 Mesh timed_union(std::vector<Mesh> solids, MinkowskiStats* stats) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   UnionStats union_stats;
   Mesh united = compute_union(std::move(solids), &union_stats);
   if (stats) {
-    stats->seconds_union += seconds_since(start);
+    stats->seconds_union += start.seconds();
     stats->binary_unions += union_stats.binary_unions;
   }
   return united;
@@ -200,10 +197,10 @@ Mesh sum_with_component(const Mesh& a, const Mesh& b, bool b_convex, MinkowskiSt
   // A + b0 for a point b0 of B; when B is convex and holds the origin, A itself.
   const bool origin_inside = b_convex && convex_contains_origin(b);
   Mesh moved = origin_inside ? a : translated(a, b.points.front() - CGAL::ORIGIN);
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   Mesh sum = compute_union({std::move(shell), std::move(moved)});
   if (stats) {
-    stats->seconds_union += seconds_since(start);
+    stats->seconds_union += start.seconds();
     ++stats->binary_unions;
   }
   return sum;
@@ -220,7 +217,7 @@ void require_valid(const Mesh& mesh, const char* which) {
 
 Mesh boundary_sum(const Mesh& surface, const Mesh& b, bool b_convex, MinkowskiStats* stats,
                   PieceUnion method) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   std::vector<Mesh> pieces, copies;  // convex pieces; translated copies of a non-convex B
   if (b_convex) {
     const std::vector<detail::FacetGroup> groups = detail::convex_facet_groups(surface);
@@ -242,13 +239,13 @@ Mesh boundary_sum(const Mesh& surface, const Mesh& b, bool b_convex, MinkowskiSt
       make_exact(copies[v]);
     });
   }
-  const double seconds_pieces = seconds_since(start);
+  const double seconds_pieces = start.seconds();
   std::size_t triangles = 0;
   for (const Mesh& p : pieces) triangles += p.triangles.size();
   for (const Mesh& p : copies) triangles += p.triangles.size();
   const std::size_t count = pieces.size() + copies.size();
 
-  const auto union_start = std::chrono::steady_clock::now();
+  const Stopwatch union_start;
   UnionStats union_stats;
   Mesh shell;
   if (method == PieceUnion::NAry) {
@@ -266,7 +263,7 @@ Mesh boundary_sum(const Mesh& surface, const Mesh& b, bool b_convex, MinkowskiSt
     stats->piece_triangles += triangles;
     stats->binary_unions += union_stats.binary_unions;
     stats->seconds_pieces += seconds_pieces;
-    stats->seconds_union += seconds_since(union_start);
+    stats->seconds_union += union_start.seconds();
   }
   return shell;
 }

@@ -13,13 +13,10 @@
 #include <set>
 
 #include "morphex/pipeline.h"
+#include "morphex/stopwatch.h"
 
 namespace morphex::pipeline {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 class Progress {
  public:
@@ -41,7 +38,7 @@ class Progress {
 };
 
 InputReport run_one(const Pipeline& pipeline, const std::string& input, Progress& progress) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   InputReport report;
   report.input = input;
   const std::size_t n = pipeline.stages.size();
@@ -62,7 +59,7 @@ InputReport run_one(const Pipeline& pipeline, const std::string& input, Progress
       const Stage& stage = pipeline.stages[s];
       StageContext context{stage, {}, nlohmann::json::object()};
       for (std::size_t i : stage.inputs) context.inputs.push_back(&*results[i]);
-      const auto stage_start = std::chrono::steady_clock::now();
+      const Stopwatch stage_start;
       try {
         results[s] = stage.info->run(context);
       } catch (const std::exception& e) {
@@ -74,7 +71,7 @@ InputReport run_one(const Pipeline& pipeline, const std::string& input, Progress
         return;
       }
       StageReport& r = stage_reports[s];
-      r.seconds = seconds_since(stage_start);
+      r.seconds = stage_start.seconds();
       r.index = s;
       r.type = stage.type;
       r.tag = stage.tag;
@@ -94,7 +91,7 @@ InputReport run_one(const Pipeline& pipeline, const std::string& input, Progress
   }
   for (std::size_t s = 0; s < n; ++s)
     if (done[s]) report.stages.push_back(std::move(stage_reports[s]));
-  report.seconds = seconds_since(start);
+  report.seconds = start.seconds();
   return report;
 }
 
@@ -160,7 +157,7 @@ RunReport run(const nlohmann::json& document, const std::string& name, const Run
                                 " (put ${stem} in the path)"});
   if (!problems.empty()) throw PipelineError(std::move(problems));
 
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   Progress progress(options.progress, pipelines.size() * pipelines[0].stages.size());
   RunReport report;
   report.inputs.resize(pipelines.size());
@@ -172,7 +169,7 @@ RunReport run(const nlohmann::json& document, const std::string& name, const Run
       options.on_input_done(report.inputs[i]);
     }
   });
-  report.seconds = seconds_since(start);
+  report.seconds = start.seconds();
   return report;
 }
 

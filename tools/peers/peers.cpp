@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "peers.h"
+#include "morphex/stopwatch.h"
 
 #include "nef.h"  // before minkowski_sum_3.h, which needs the Nef headers first
 
@@ -18,26 +19,22 @@ namespace {
 
 namespace PMP = CGAL::Polygon_mesh_processing;
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 }  // namespace
 
 PeerResult nef_boolean(const Mesh& a, const Mesh& b, BooleanOp op) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   const NefPolyhedron na = to_nef(a), nb = to_nef(b);
   const NefPolyhedron r = op == BooleanOp::Union          ? na + nb
                           : op == BooleanOp::Intersection ? na * nb
                                                           : na - nb;
-  const double seconds = seconds_since(start);
+  const double seconds = start.seconds();
   return {signed_volume(from_nef(r)), seconds};
 }
 
 std::optional<PeerResult> corefinement_boolean(const Mesh& a, const Mesh& b, BooleanOp op) {
   SurfaceMesh sa = to_surface_mesh(a), sb = to_surface_mesh(b), out;
   bool ok = false;
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   try {
     ok = op == BooleanOp::Union          ? PMP::corefine_and_compute_union(sa, sb, out)
          : op == BooleanOp::Intersection ? PMP::corefine_and_compute_intersection(sa, sb, out)
@@ -45,16 +42,16 @@ std::optional<PeerResult> corefinement_boolean(const Mesh& a, const Mesh& b, Boo
   } catch (const std::exception&) {
     ok = false;
   }
-  const double seconds = seconds_since(start);
+  const double seconds = start.seconds();
   if (!ok) return std::nullopt;
   return PeerResult{PMP::volume(out), seconds};
 }
 
 PeerResult nef_minkowski_sum(const Mesh& a, const Mesh& b) {
   NefPolyhedron na = to_nef(a), nb = to_nef(b);
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch start;
   const NefPolyhedron sum = CGAL::minkowski_sum_3(na, nb);
-  const double seconds = seconds_since(start);
+  const double seconds = start.seconds();
   return {signed_volume(from_nef(sum)), seconds};
 }
 
