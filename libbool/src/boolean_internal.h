@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "morphex/boolean.h"
+#include "morphex/union_find.h"
 #include "point_table.h"
-#include "union_find.h"
 
 namespace morphex::detail {
 

@@ -182,7 +182,7 @@ Mesh compute_union_of_convex(std::vector<Mesh> convex_solids, UnionStats* stats)
 
   // Patches of one piece: its uncut facets and sub-triangles joined without crossing a segment.
   const std::size_t nf = soup.num_triangles(), n = refined.triangles.size();
-  detail::UnionFind patches = detail::connect_patches(soup, 0, refined, x, &piece_of);
+  UnionFind patches = detail::connect_patches(soup, 0, refined, x, &piece_of);
   std::vector<std::uint8_t> cut(nf, 0);
   for (std::uint32_t f : refined.facets) cut[f] = 1;
   // A node and the triangle it stands for: an uncut facet or a sub-triangle.

@@ -13,17 +13,16 @@
 #include <sstream>
 
 #include "morphex/spatial.h"
+#include "morphex/union_find.h"
 #include "point_index.h"
 #include "point_table.h"
 #include "triangle_overlap.h"
-#include "union_find.h"
 
 namespace morphex {
 
 namespace {
 using detail::PointId;
 using detail::PointTable;
-using detail::UnionFind;
 
 using EdgeKey = std::uint64_t;
 EdgeKey key(VertexIndex a, VertexIndex b) {
@@ -338,8 +337,7 @@ MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
       r.self_intersections += f.count;
       if (f.count > 0 && (!r.first_self_intersection || f.first < *r.first_self_intersection))
         r.first_self_intersection = f.first;
-      r.self_intersecting_pairs.insert(r.self_intersecting_pairs.end(), f.all.begin(),
-                                       f.all.end());
+      r.self_intersecting_pairs.insert(r.self_intersecting_pairs.end(), f.all.begin(), f.all.end());
     }
     std::sort(r.self_intersecting_pairs.begin(), r.self_intersecting_pairs.end());
   }

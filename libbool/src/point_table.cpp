@@ -12,7 +12,7 @@
 
 #include "filtered.h"
 #include "fixed_integer.h"
-#include "union_find.h"
+#include "morphex/union_find.h"
 
 namespace morphex::detail {
 

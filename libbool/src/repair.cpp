@@ -10,16 +10,16 @@
 
 #include "morphex/check.h"
 #include "morphex/generators.h"
+#include "morphex/union_find.h"
 #include "morphex/winding.h"
 #include "point_index.h"
-#include "union_find.h"
 
 namespace morphex {
 namespace {
 
 // Faces joined through shared vertices.
 std::size_t component_count(const Mesh& m) {
-  detail::UnionFind sets(m.points.size());
+  UnionFind sets(m.points.size());
   for (const Triangle& t : m.triangles) {
     sets.join(t[0], t[1]);
     sets.join(t[0], t[2]);
@@ -56,9 +56,9 @@ Mesh merged(const Mesh& mesh, RepairReport& r, std::vector<std::uint32_t>& face_
   tbb::parallel_sort(keyed.begin(), keyed.end());
   std::vector<std::uint32_t> first(mesh.triangles.size());  // the first copy of each face
   for (std::size_t i = 0; i < keyed.size(); ++i)
-    first[keyed[i].second] =
-        i > 0 && keyed[i].first == keyed[i - 1].first ? first[keyed[i - 1].second]
-                                                      : keyed[i].second;
+    first[keyed[i].second] = i > 0 && keyed[i].first == keyed[i - 1].first
+                                 ? first[keyed[i - 1].second]
+                                 : keyed[i].second;
   face_of.assign(mesh.triangles.size(), 0);
   for (std::uint32_t f = 0; f < mesh.triangles.size(); ++f) {
     if (first[f] != f) {
@@ -160,8 +160,7 @@ RepairResult repair_mesh(const Mesh& mesh, const RepairOptions& options) {
   winding.pairs = &pairs;
   WindingStats stats;
   result.mesh = winding_solid(chain, {}, winding, &stats);
-  if (result.mesh.empty())
-    throw InputError("", "mesh bounds no region of positive winding number");
+  if (result.mesh.empty()) throw InputError("", "mesh bounds no region of positive winding number");
   r.degenerate_faces = stats.degenerate_faces;
   r.cancelled_faces = stats.cancelled_faces;
   r.intersecting_pairs = stats.intersecting_pairs;

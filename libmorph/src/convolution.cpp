@@ -34,7 +34,7 @@
 
 #include "convolution_internal.h"
 #include "morphex/structuring_element.h"
-#include "union_find.h"
+#include "morphex/union_find.h"
 
 namespace morphex::detail {
 namespace {
@@ -372,9 +372,8 @@ void vertex_pieces(const Mesh& surface, const Supports& s, const ConvexBody& bod
     const auto& around = facets_at[v];
     if (!around.empty() &&
         std::none_of(around.begin(), around.end(), [&](std::uint32_t f) { return s.whole[f]; }) &&
-        std::any_of(around.begin(), around.end(), [&](std::uint32_t f) {
-          return s.of_facet[f] != s.of_facet[around.front()];
-        }))
+        std::any_of(around.begin(), around.end(),
+                    [&](std::uint32_t f) { return s.of_facet[f] != s.of_facet[around.front()]; }))
       corners.push_back(v);
   }
   std::vector<Mesh> built(corners.size());
@@ -417,8 +416,7 @@ std::optional<std::vector<Mesh>> convolution_pieces(const Mesh& surface, const M
   const auto patches = same_support_patches(surface, edges, s.of_facet, s.whole);
   std::vector<std::vector<Mesh>> swept(patches.size());
   tbb::parallel_for(std::size_t(0), patches.size(), [&](std::size_t i) {
-    patch_pieces(surface, edges, patches[i], body.point(s.of_facet[patches[i][0]][0]), c,
-                 swept[i]);
+    patch_pieces(surface, edges, patches[i], body.point(s.of_facet[patches[i][0]][0]), c, swept[i]);
   });
   for (auto& list : swept)
     for (Mesh& m : list) pieces.push_back(std::move(m));

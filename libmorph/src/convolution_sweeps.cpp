@@ -6,7 +6,7 @@
 
 #include "convolution_internal.h"
 #include "morphex/check.h"
-#include "union_find.h"
+#include "morphex/union_find.h"
 
 namespace morphex::detail {
 
@@ -17,10 +17,8 @@ Point sum_point(const Point& p, const Point& q) {
 
 Mesh prism(const std::array<Point, 3>& p, const Triangle& ids, const Point& s, const Point& c) {
   Mesh m;
-  for (const Point& q : p)
-    m.points.push_back(sum_point(q, c));
-  for (const Point& q : p)
-    m.points.push_back(sum_point(q, s));
+  for (const Point& q : p) m.points.push_back(sum_point(q, c));
+  for (const Point& q : p) m.points.push_back(sum_point(q, s));
   m.triangles = {{0, 2, 1}, {3, 4, 5}};
   for (VertexIndex i = 0; i < 3; ++i) {
     const VertexIndex j = (i + 1) % 3;
@@ -124,9 +122,8 @@ Mesh sweep(const Mesh& surface, const std::vector<std::uint32_t>& patch, const P
 
 }  // namespace
 
-void patch_pieces(const Mesh& surface, const DirectedEdges& edges,
-                  std::vector<std::uint32_t> patch, const Point& s, const Point& c,
-                  std::vector<Mesh>& out) {
+void patch_pieces(const Mesh& surface, const DirectedEdges& edges, std::vector<std::uint32_t> patch,
+                  const Point& s, const Point& c, std::vector<Mesh>& out) {
   if (patch.size() == 1) {
     const Triangle& t = surface.triangles[patch[0]];
     const auto& p = surface.points;
@@ -161,7 +158,6 @@ void patch_pieces(const Mesh& surface, const DirectedEdges& edges,
   patch_pieces(surface, edges, {order.begin(), half}, s, c, out);
   patch_pieces(surface, edges, {half, order.end()}, s, c, out);
 }
-
 
 namespace {
 

@@ -15,7 +15,7 @@
 #include "morphex/generators.h"
 #include "morphex/morphology.h"
 #include "morphex/simplify.h"
-#include "union_find.h"
+#include "morphex/union_find.h"
 
 namespace morphex {
 namespace {
@@ -67,7 +67,7 @@ Moments moments_of(const Mesh& solid) {
 }
 
 std::size_t component_count(const Mesh& m) {
-  detail::UnionFind sets(m.points.size());
+  UnionFind sets(m.points.size());
   for (const Triangle& t : m.triangles) {
     sets.join(t[0], t[1]);
     sets.join(t[0], t[2]);
@@ -88,9 +88,9 @@ std::size_t component_count(const Mesh& m) {
 void append_placement(std::vector<double>& out, const Moments& part, const Moments& whole) {
   const Eigen::Vector3d c = whole.first / whole.volume;
   for (int k = 0; k < 3; ++k)
-    out.push_back(std::max(0.0, part.second[k] - 2 * c[k] * part.first[k] +
-                                    c[k] * c[k] * part.volume) /
-                  whole.volume);
+    out.push_back(
+        std::max(0.0, part.second[k] - 2 * c[k] * part.first[k] + c[k] * c[k] * part.volume) /
+        whole.volume);
   for (int k = 0; k < 3; ++k)
     out.push_back(std::abs(part.first[k] - c[k] * part.volume) / whole.volume);
 }
@@ -142,9 +142,9 @@ Mesh filtered_copy(const Mesh& solid, const DoubleMesh& dm, double scale,
 }
 
 // Every opening and closing is computed from the copy itself, not chained from the previous
-// radius (A - (r + s)B = (A - rB) - sB would be exact for the convex cube too): an erosion by a cube
-// has about three times the facets of a smooth input, and rational intersection points instead of
-// doubles, so each chained step costs four to five times a step from the copy (profiled on SHREC
+// radius (A - (r + s)B = (A - rB) - sB would be exact for the convex cube too): an erosion by a
+// cube has about three times the facets of a smooth input, and rational intersection points instead
+// of doubles, so each chained step costs four to five times a step from the copy (profiled on SHREC
 // 2007 meshes simplified to 1,200 facets: 0.8 s against 3.6-4.2 s per erosion).
 void filter_by_cubes(const Mesh& a, const DescriptorSettings& s, Descriptors& d) {
   const Moments whole = moments_of(a);
@@ -206,7 +206,8 @@ Descriptors describe_valid(const Mesh& solid, const DescriptorSettings& settings
   for (const Triangle& t : dm.triangles) {
     const auto &a = dm.points[t[0]], &b = dm.points[t[1]], &c = dm.points[t[2]];
     volume += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-               a[2] * (b[0] * c[1] - b[1] * c[0])) / 6;
+               a[2] * (b[0] * c[1] - b[1] * c[0])) /
+              6;
   }
   const auto start = std::chrono::steady_clock::now();
   Descriptors d;

@@ -15,7 +15,7 @@
 #include "morphex/check.h"
 #include "morphex/generators.h"
 #include "morphex/structuring_element.h"
-#include "union_find.h"
+#include "morphex/union_find.h"
 
 namespace morphex {
 namespace {

@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Disjoint sets over 0..n-1 with path halving: components, fans around vertices.
+// Disjoint sets over 0..n-1 with path halving: components, fans around vertices. Public because
+// libmorph's convolution and descriptors group pieces with it too.
 #pragma once
 
 #include <cstdint>
 #include <numeric>
 #include <vector>
 
-namespace morphex::detail {
+namespace morphex {
 
 struct UnionFind {
   std::vector<std::uint32_t> parent;
@@ -23,4 +24,4 @@ struct UnionFind {
   }
 };
 
-}  // namespace morphex::detail
+}  // namespace morphex
