@@ -31,19 +31,6 @@ void add_pipeline_options(CLI::App* cmd, PipelineArgs& args) {
                   "${stem}");
 }
 
-// name=value pairs; a malformed one is reported and makes the whole call fail.
-bool parse_variables(const std::vector<std::string>& sets, mp::Variables& out) {
-  for (const std::string& s : sets) {
-    const auto eq = s.find('=');
-    if (eq == std::string::npos || eq == 0) {
-      print_error("--set " + s + ": expected name=value");
-      return false;
-    }
-    out[s.substr(0, eq)] = s.substr(eq + 1);
-  }
-  return true;
-}
-
 void print_problems(const std::string& file, const mp::PipelineError& e) {
   for (const mp::Problem& p : e.problems())
     print_error(p.location.rfind(file, 0) == 0 ? p.text() : file + ": " + p.text());
@@ -72,7 +59,12 @@ Command add_run_command(CLI::App& app) {
   cmd->add_flag("--table", *table, "Print every stage's size, volume and time on stdout");
   return {cmd, [args, report_path, table]() -> int {
             mp::RunOptions options;
-            if (!parse_variables(args->sets, options.variables)) return kBadInput;
+            try {
+              options.variables = mp::parse_assignments(args->sets);
+            } catch (const mp::PipelineError& e) {
+              print_problems("", e);
+              return kBadInput;
+            }
             options.inputs = expand_inputs(args->inputs);
             options.progress = isatty(STDERR_FILENO) != 0;
             mp::RunReport report;
@@ -106,7 +98,12 @@ Command add_validate_command(CLI::App& app) {
   return {
       cmd, [args]() -> int {
         mp::Variables variables;
-        if (!parse_variables(args->sets, variables)) return kBadInput;
+        try {
+          variables = mp::parse_assignments(args->sets);
+        } catch (const mp::PipelineError& e) {
+          print_problems("", e);
+          return kBadInput;
+        }
         const auto inputs = expand_inputs(args->inputs);
         try {
           const nlohmann::json document = mp::load_document(args->file);

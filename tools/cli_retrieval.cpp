@@ -273,16 +273,14 @@ Command add_index_command(CLI::App& app) {
               return kBadInput;
             }
             mp::RunOptions options;
-            std::string sets;
-            for (const std::string& s : args->sets) {
-              const auto eq = s.find('=');
-              if (eq == std::string::npos) {
-                print_error("--set " + s + ": expected name=value");
-                return kBadInput;
-              }
-              options.variables[s.substr(0, eq)] = s.substr(eq + 1);
-              sets += s + ";";
+            try {
+              options.variables = mp::parse_assignments(args->sets);
+            } catch (const mp::PipelineError& e) {
+              for (const auto& p : e.problems()) print_error(p.text());
+              return kBadInput;
             }
+            std::string sets;
+            for (const std::string& s : args->sets) sets += s + ";";
             const std::string settings =
                 document.dump() + "|" + sets + "|descriptors " + descriptor_version();
             IndexDb db(args->db);

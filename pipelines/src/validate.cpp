@@ -189,6 +189,20 @@ nlohmann::json parse_document(const std::string& text, const std::string& name) 
   }
 }
 
+Variables parse_assignments(const std::vector<std::string>& assignments) {
+  Variables out;
+  std::vector<Problem> problems;
+  for (const std::string& a : assignments) {
+    const auto eq = a.find('=');
+    if (eq == std::string::npos || eq == 0 || a.find_first_of("${}") < eq)
+      problems.push_back({"--set " + a, "expected name=value"});
+    else
+      out[a.substr(0, eq)] = a.substr(eq + 1);
+  }
+  if (!problems.empty()) throw PipelineError(std::move(problems));
+  return out;
+}
+
 nlohmann::json load_document(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw PipelineError(std::vector<Problem>{{path, "cannot open the pipeline file"}});

@@ -20,6 +20,8 @@ morphex_cli_test(index_first 0 "indexed 3 meshes \\(0 already up to date, 0 fail
   index ${rdir}/coll2/bar-0.off ${rdir}/coll2/ell-0.off ${rdir}/coll2/tee-0.off
   --db ${rdir}/index.sqlite --pipeline ${quick})
 set_tests_properties(cli.index_first PROPERTIES DEPENDS cli.generate_more)
+morphex_cli_test(index_bad_set 2 "--set =1: expected name=value"
+  index ${rdir}/coll2/bar-0.off --db ${rdir}/never.sqlite --pipeline ${quick} --set =1)
 # resumable: the second run skips what the first committed and does the rest
 morphex_cli_test(index_resume 0 "indexed 9 meshes \\(3 already up to date, 0 failed\\)"
   index "${rdir}/coll2/*.off" --db ${rdir}/index.sqlite --pipeline ${quick})

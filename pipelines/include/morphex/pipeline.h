@@ -96,6 +96,10 @@ class PipelineError : public std::runtime_error {
 
 using Variables = std::map<std::string, std::string>;
 
+// Variables from `name=value` assignments (the CLI's --set), later ones winning. A malformed one
+// (no '=', or an empty or non-identifier name) throws PipelineError located at "--set <text>".
+Variables parse_assignments(const std::vector<std::string>& assignments);
+
 struct Stage {
   std::size_t index;                // position in the "pipeline" array
   std::string type, tag;            // tag defaults to "<type>#<index>"
