@@ -10,6 +10,7 @@
 #include "morphex/boolean.h"
 #include "morphex/check.h"
 #include "morphex/generators.h"
+#include "morphex/winding.h"
 
 using namespace morphex;
 
@@ -113,6 +114,25 @@ TEST(Boolean, CubesSharingAFaceUniteIntoOneBox) {
   // the shared face is gone: a 2x1x1 box needs no vertex inside the shared square
   EXPECT_EQ(check_mesh(unite).components, 1u);
   EXPECT_EQ(checked_volume(box_mesh(kUnit), box_mesh(b), BooleanOp::Intersection), FT(0));
+}
+
+TEST(Boolean, MergeCoplanarFacesOfAnUnmergedResult) {
+  // Without merging, the union of two cubes sharing a face keeps the triangles that the shared
+  // square cut into the side walls; merge_coplanar_faces then gives the 2x1x1 box the Boolean's
+  // own merging gives: 12 triangles on its 8 corners, same exact volume.
+  BooleanOptions unmerged;
+  unmerged.merge_coplanar = false;
+  const Mesh a = box_mesh(kUnit), b = box_mesh(shifted(kUnit, 1, 0, 0));
+  const BooleanResult raw = compute_boolean(a, b, BooleanOp::Union, unmerged);
+  ASSERT_TRUE(raw.ok()) << raw.message;
+  EXPECT_GT(raw.mesh.num_triangles(), 12u);
+  const Mesh merged = merge_coplanar_faces(raw.mesh);
+  const MeshReport report = check_mesh(merged);
+  EXPECT_TRUE(report.valid_solid()) << describe_problems(report);
+  EXPECT_EQ(report.volume, FT(2));
+  EXPECT_EQ(merged.num_triangles(), 12u);
+  EXPECT_EQ(merged.num_triangles(), compute_boolean(a, b, BooleanOp::Union).mesh.num_triangles());
+  EXPECT_EQ(merge_coplanar_faces(Mesh{}).num_triangles(), 0u);
 }
 
 TEST(Boolean, CubesSharingAnEdgeGiveASeparatedValidResult) {
@@ -386,7 +406,7 @@ TEST(Boolean, LazyAndEvaluatedOutputsAreTheSameSolid) {
   }
 }
 
-TEST(ManySolids, TreeUnionAndNaryUnionOfConvexSolidsAgreeExactly) {
+TEST(ManySolids, TreeUnionAndOneWindingArrangementAgreeExactly) {
   // Three boxes crossing pairwise (their faces meet at triple points), touching and coplanar
   // cubes, nested and disjoint ones, and crossing icospheres: both unions, same exact volume.
   std::vector<Mesh> solids = {
@@ -399,16 +419,19 @@ TEST(ManySolids, TreeUnionAndNaryUnionOfConvexSolidsAgreeExactly) {
       make_cube(FT(1), Point(-5, -5, -5)),
       make_icosphere(1, FT(1)),
       translated(make_icosphere(1, FT(1)), Vector(FT(1) / 3, FT(1) / 5, FT(1) / 7))};
-  UnionStats tree_stats, nary_stats;
+  UnionStats tree_stats;
   const Mesh by_tree = compute_union(solids, &tree_stats);
-  const Mesh by_nary = compute_union_of_convex(solids, &nary_stats);
-  const MeshReport tree_report = check_mesh(by_tree), nary_report = check_mesh(by_nary);
+  // The same union as one winding arrangement of all the boundaries (w >= 1).
+  Mesh chain;
+  for (const Mesh& s : solids) chain = concatenate(chain, s);
+  const Mesh by_arrangement = winding_solid(chain);
+  const MeshReport tree_report = check_mesh(by_tree),
+                   arrangement_report = check_mesh(by_arrangement);
   EXPECT_TRUE(tree_report.valid_solid()) << describe_problems(tree_report);
-  EXPECT_TRUE(nary_report.valid_solid()) << describe_problems(nary_report);
-  EXPECT_EQ(tree_report.volume, nary_report.volume);
-  EXPECT_EQ(tree_report.components, nary_report.components);
+  EXPECT_TRUE(arrangement_report.valid_solid()) << describe_problems(arrangement_report);
+  EXPECT_EQ(tree_report.volume, arrangement_report.volume);
+  EXPECT_EQ(tree_report.components, arrangement_report.components);
   EXPECT_GT(tree_stats.binary_unions, 0u);
-  EXPECT_GT(nary_stats.candidate_pairs, 0u);
   // an independent closed form for the disjoint parts: the two touching cubes and the far cube
   const Mesh far_part = compute_union({solids[3], solids[4], solids[5], solids[6]});
   EXPECT_EQ(signed_volume(far_part), FT(2) + FT(8));

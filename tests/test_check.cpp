@@ -8,8 +8,8 @@
 
 #include "morphex/check.h"
 #include "morphex/generators.h"
-#include "morphex/spatial.h"
 #include "peers.h"
+#include "spatial.h"
 
 using namespace morphex;
 

@@ -9,8 +9,8 @@
 #include "morphex/check.h"
 #include "morphex/generators.h"
 #include "morphex/repair.h"
-#include "morphex/spatial.h"
 #include "peers.h"
+#include "spatial.h"
 
 using namespace morphex;
 
@@ -188,8 +188,8 @@ TEST(Repair, RandomOverlapsAgreeWithNef) {
   for (int round = 0; round < 8; ++round) {
     const Mesh a = transformed(make_icosphere(1, 2),
                                quaternion_rotation(turn(random), turn(random), turn(random), 4));
-    const Mesh b = translated(make_cube(FT(3) / 2), Vector(FT(offset(random)) / 2,
-                                                           FT(offset(random)) / 2, FT(1) / 3));
+    const Mesh b = translated(make_cube(FT(3) / 2),
+                              Vector(FT(offset(random)) / 2, FT(offset(random)) / 2, FT(1) / 3));
     SCOPED_TRACE(round);
     const RepairResult r = repaired(concatenate(a, b));
     EXPECT_EQ(signed_volume(r.mesh), peers::nef_boolean(a, b, BooleanOp::Union).volume);

@@ -9,8 +9,8 @@
 // diagonal lies in [1, 2) (one SE size for every input, coordinates still doubles); --repair
 // makes inputs that are not valid solids valid first (morphex repair). --peer runs
 // minkowski_sum_3 on every dilation; --nary also times the dilation with
-// the pieces united by the n-ary union instead of the binary-union tree (the default); --chain N
-// dilates N times in a row and reports the first and the last step.
+// the pieces united by one winding arrangement instead of the binary-union tree (the default);
+// --chain N dilates N times in a row and reports the first and the last step.
 #include <sys/resource.h>
 #include <tbb/global_control.h>
 
@@ -165,7 +165,7 @@ int main(int argc, char** argv) {
       }
       if (nary && op == MorphologyOp::Dilate && se.convex) {
         start.restart();
-        Mesh shell = boundary_sum(a, se.mesh, true, nullptr, PieceUnion::NAry);
+        Mesh shell = boundary_sum(a, se.mesh, true, nullptr, PieceUnion::Arrangement);
         const Mesh by_nary = compute_union({std::move(shell), a});  // the SEs hold the origin
         const double nary_seconds = start.seconds();
         const bool agree = signed_volume(by_nary) == report.volume;

@@ -12,10 +12,10 @@
 #include <numeric>
 #include <sstream>
 
-#include "morphex/spatial.h"
 #include "morphex/union_find.h"
 #include "point_index.h"
 #include "point_table.h"
+#include "spatial.h"
 #include "triangle_overlap.h"
 
 namespace morphex {

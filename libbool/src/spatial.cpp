@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "morphex/spatial.h"
+#include "spatial.h"
 
 #include <CGAL/intersections.h>
 #include <tbb/blocked_range.h>

@@ -7,7 +7,7 @@
 #include <tbb/parallel_sort.h>
 
 #include "boolean_internal.h"
-#include "morphex/spatial.h"
+#include "spatial.h"
 
 namespace morphex::detail {
 

@@ -21,8 +21,8 @@
 
 #include "boolean_internal.h"
 #include "filtered.h"
-#include "morphex/spatial.h"
 #include "projection_traits.h"
+#include "spatial.h"
 
 namespace morphex::detail {
 

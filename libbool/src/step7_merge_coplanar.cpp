@@ -24,7 +24,7 @@
 #include "boolean_internal.h"
 #include "flat_map.h"
 #include "morphex/boolean.h"
-#include "morphex/spatial.h"
+#include "spatial.h"
 #include "table_traits.h"
 
 namespace morphex {
@@ -230,8 +230,8 @@ void merge_coplanar(const PointTable& table, IdMesh& surface,
         equation[a] = std::make_unique<PointTable::Plane>(table.exact_plane(pa[0], pa[1], pa[2]));
       return table.plane_side(*equation[a], q) == CGAL::ZERO;
     };
-    const bool same = std::all_of(pb.begin(), pb.end(), on_plane) &&
-                      table.normal_dot(pa, pb) == CGAL::POSITIVE;
+    const bool same =
+        std::all_of(pb.begin(), pb.end(), on_plane) && table.normal_dot(pa, pb) == CGAL::POSITIVE;
     same_plane_cache.emplace(key, same);
     return same;
   };

@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "morphex/boolean.h"
-#include "morphex/spatial.h"
+#include "spatial.h"
 
 namespace morphex {
 namespace {

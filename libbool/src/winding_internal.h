@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "boolean_internal.h"
-#include "morphex/spatial.h"
 #include "morphex/winding.h"
+#include "spatial.h"
 
 namespace morphex::detail {
 

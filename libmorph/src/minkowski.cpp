@@ -16,6 +16,7 @@
 #include "morphex/generators.h"
 #include "morphex/structuring_element.h"
 #include "morphex/union_find.h"
+#include "morphex/winding.h"
 
 namespace morphex {
 namespace {
@@ -248,14 +249,19 @@ Mesh boundary_sum(const Mesh& surface, const Mesh& b, bool b_convex, MinkowskiSt
   const Stopwatch union_start;
   UnionStats union_stats;
   Mesh shell;
-  if (method == PieceUnion::NAry) {
-    shell = compute_union_of_convex(std::move(pieces), &union_stats);
-    if (!copies.empty()) {
-      copies.push_back(std::move(shell));
-      shell = compute_union(std::move(copies), &union_stats);
+  for (Mesh& c : copies) pieces.push_back(std::move(c));
+  if (method == PieceUnion::Arrangement) {
+    // Every piece is a valid solid, so the sum of their boundaries is a closed chain whose
+    // winding number counts the pieces holding a point: their union is where it is >= 1.
+    Mesh chain;
+    for (const Mesh& p : pieces) {
+      const auto offset = VertexIndex(chain.points.size());
+      chain.points.insert(chain.points.end(), p.points.begin(), p.points.end());
+      for (const Triangle& t : p.triangles)
+        chain.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
     }
+    shell = winding_solid(chain);
   } else {
-    for (Mesh& c : copies) pieces.push_back(std::move(c));
     shell = compute_union(std::move(pieces), &union_stats);
   }
   if (stats) {

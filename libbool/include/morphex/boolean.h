@@ -83,22 +83,15 @@ Mesh merge_coplanar_faces(const Mesh& solid);
 struct UnionStats {
   std::size_t binary_unions = 0;    // compute_boolean calls made
   std::size_t disjoint_merges = 0;  // unions of operands with disjoint boxes, done by concatenation
-  std::size_t candidate_pairs = 0, patches = 0;  // compute_union_of_convex
 };
 
 // The union of many closed solids (they may overlap, touch or nest) as one valid solid.
 // The solids are sorted along a space-filling curve and united in a balanced binary tree, so each
 // binary union meets neighbouring pieces and intermediate results stay small; independent subtrees
 // run in parallel with TBB. The tree depends only on the input, so the result is identical for any
-// number of threads. Inputs are trusted to be valid solids (they are not re-checked).
+// number of threads. Inputs are trusted to be valid solids (they are not re-checked). The other
+// way to unite many solids at once is winding_solid on their concatenated boundaries
+// (morphex/winding.h): one arrangement of every piece, kept where the winding number is >= 1.
 Mesh compute_union(std::vector<Mesh> solids, UnionStats* stats = nullptr);
-
-// The union of convex closed solids in one pass: the seed's phases generalised to n solids. All
-// piece/piece triangle intersections are computed at once against the original pieces (so every
-// output vertex is an input vertex or one intersection construction), each cut facet is
-// re-triangulated once, and each patch is kept when it lies outside every other piece, decided by
-// exact orientation tests against that piece's planes (coplanar faces shared by several pieces are
-// kept once, from the lowest index). Precondition: every solid is convex and valid.
-Mesh compute_union_of_convex(std::vector<Mesh> convex_solids, UnionStats* stats = nullptr);
 
 }  // namespace morphex

@@ -28,11 +28,11 @@ struct MinkowskiStats {
 // A + B for closed solids. Throws std::invalid_argument if either is not a valid solid.
 Mesh minkowski_sum(const Mesh& a, const Mesh& b, MinkowskiStats* stats = nullptr);
 
-// How the convex pieces are united: the balanced tree of binary unions (compute_union, the
-// default: intermediate unions shed the overlap early) or one n-ary pass (compute_union_of_convex),
-// which bench_morph --nary measures: exact too, but several times slower on these heavily
-// overlapping pieces (every piece/piece pair is intersected and re-triangulated at once).
-enum class PieceUnion { BinaryTree, NAry };
+// How the pieces are united: the balanced tree of binary unions (compute_union, the default:
+// intermediate unions shed the overlap early) or one winding arrangement of all of them
+// (winding_solid on their concatenated boundaries), which bench_morph --nary measures: exact too,
+// but slower on these heavily overlapping pieces (every piece/piece pair is intersected at once).
+enum class PieceUnion { BinaryTree, Arrangement };
 
 // dA + B: the union of the sums of every facet of `surface` with the solid b (the "offset shell"
 // of the facet-hull formula; dilation and erosion by a non-convex B use it, and the tests check

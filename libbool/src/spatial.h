@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Spatial building blocks shared by the checks and the Boolean: a flat bounding-volume hierarchy
 // over triangle boxes, exact improper-contact test between two triangles, exact point-in-solid.
+// Private to libbool (the checks, the Boolean and the winding arrangement; tests use it white-box).
 #pragma once
 
 #include <CGAL/Bbox_3.h>
