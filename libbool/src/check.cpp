@@ -141,17 +141,10 @@ class TrianglePairs {
   detail::TriangleOverlap overlap_;
 };
 
-}  // namespace
-
-MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
-  MeshReport r;
-  r.vertices = mesh.num_vertices();
-  r.triangles = mesh.num_triangles();
-  const std::size_t nf = mesh.num_triangles(), nv = mesh.num_vertices();
-  for (const Point& p : mesh.points) r.bbox += p.bbox();
-  const PointTable table(mesh, mesh, true);
-
-  // Degenerate faces.
+// Degenerate faces: repeated corners, or collinear ones (every projection of the triangle flat).
+std::vector<std::uint8_t> find_degenerate_faces(const Mesh& mesh, const PointTable& table,
+                                                MeshReport& r) {
+  const std::size_t nf = mesh.num_triangles();
   std::vector<std::uint8_t> degenerate(nf, 0);
   detail::for_each_upward(nf, [&](std::size_t f) {
     const Triangle& t = mesh.triangles[f];
@@ -159,7 +152,6 @@ MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
       degenerate[f] = 1;
       return;
     }
-    // collinear corners: every projection of the triangle is flat
     degenerate[f] = table.orientation_2(0, t[0], t[1], t[2]) == CGAL::ZERO &&
                     table.orientation_2(1, t[0], t[1], t[2]) == CGAL::ZERO &&
                     table.orientation_2(2, t[0], t[1], t[2]) == CGAL::ZERO;
@@ -169,8 +161,15 @@ MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
       if (!r.first_degenerate_face) r.first_degenerate_face = f;
       ++r.degenerate_faces;
     }
+  return degenerate;
+}
 
-  // Edges by vertex index: sorted records (edge, face, direction), one run per edge.
+// For each manifold edge (two uses), its two faces, sorted by edge key.
+using ManifoldEdges = std::vector<std::pair<EdgeKey, std::array<std::uint32_t, 2>>>;
+
+// Edges by vertex index: sorted records (edge, face, direction), one run per edge. Counts border
+// and non-manifold edges and misoriented pairs, and joins the faces of every edge in `components`.
+ManifoldEdges check_edges(const Mesh& mesh, UnionFind& components, MeshReport& r) {
   struct EdgeRecord {
     EdgeKey edge;
     std::uint32_t face;
@@ -179,6 +178,7 @@ MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
       return edge != o.edge ? edge < o.edge : face < o.face;
     }
   };
+  const std::size_t nf = mesh.num_triangles();
   std::vector<EdgeRecord> records(3 * nf);
   tbb::parallel_for(std::uint32_t(0), std::uint32_t(nf), [&](std::uint32_t f) {
     for (int k = 0; k < 3; ++k) {
@@ -187,9 +187,7 @@ MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
     }
   });
   tbb::parallel_sort(records.begin(), records.end());
-  UnionFind components(nf);
-  // For each manifold edge (two uses), its two faces, found by binary search on the key.
-  std::vector<std::pair<EdgeKey, std::array<std::uint32_t, 2>>> manifold;
+  ManifoldEdges manifold;
   manifold.reserve(3 * nf / 2);
   for (std::size_t i = 0; i < records.size();) {
     std::size_t j = i + 1;
@@ -212,186 +210,217 @@ MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
     }
     i = j;
   }
-  records = {};
+  return manifold;
+}
 
-  // Non-manifold vertices: the faces around a vertex must form one fan through manifold edges.
-  {
-    std::vector<std::uint32_t> start(nv + 1, 0);
-    for (const Triangle& t : mesh.triangles)
-      for (VertexIndex v : t) ++start[v + 1];
-    std::partial_sum(start.begin(), start.end(), start.begin());
-    std::vector<std::uint32_t> faces_at(3 * nf), fill(start.begin(), start.end() - 1);
-    for (std::uint32_t f = 0; f < nf; ++f)
-      for (VertexIndex v : mesh.triangles[f]) faces_at[fill[v]++] = f;
-    auto mate = [&](VertexIndex a, VertexIndex b, std::uint32_t f) -> std::uint32_t {
-      const auto it =
-          std::lower_bound(manifold.begin(), manifold.end(), key(a, b),
-                           [](const auto& entry, EdgeKey k) { return entry.first < k; });
-      if (it == manifold.end() || it->first != key(a, b)) return UINT32_MAX;
-      return it->second[0] == f ? it->second[1] : it->second[0];
+// Non-manifold vertices: the faces around a vertex must form one fan through manifold edges.
+void check_vertex_fans(const Mesh& mesh, const ManifoldEdges& manifold, MeshReport& r) {
+  const std::size_t nf = mesh.num_triangles(), nv = mesh.num_vertices();
+  std::vector<std::uint32_t> start(nv + 1, 0);
+  for (const Triangle& t : mesh.triangles)
+    for (VertexIndex v : t) ++start[v + 1];
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<std::uint32_t> faces_at(3 * nf), fill(start.begin(), start.end() - 1);
+  for (std::uint32_t f = 0; f < nf; ++f)
+    for (VertexIndex v : mesh.triangles[f]) faces_at[fill[v]++] = f;
+  auto mate = [&](VertexIndex a, VertexIndex b, std::uint32_t f) -> std::uint32_t {
+    const auto it = std::lower_bound(manifold.begin(), manifold.end(), key(a, b),
+                                     [](const auto& entry, EdgeKey k) { return entry.first < k; });
+    if (it == manifold.end() || it->first != key(a, b)) return UINT32_MAX;
+    return it->second[0] == f ? it->second[1] : it->second[0];
+  };
+  std::vector<std::uint8_t> bad(nv, 0);
+  tbb::parallel_for(VertexIndex(0), VertexIndex(nv), [&](VertexIndex v) {
+    const std::uint32_t begin = start[v], end = start[v + 1], n = end - begin;
+    if (n < 2) return;
+    // Walk the fan from the first face across manifold edges at v; all faces must be reached.
+    std::vector<std::uint8_t> seen(n, 0);
+    std::vector<std::uint32_t> stack{0};
+    seen[0] = 1;
+    std::uint32_t reached = 1;
+    auto local = [&](std::uint32_t face) -> std::uint32_t {
+      for (std::uint32_t i = 0; i < n; ++i)
+        if (faces_at[begin + i] == face) return i;
+      return UINT32_MAX;
     };
-    std::vector<std::uint8_t> bad(nv, 0);
-    tbb::parallel_for(VertexIndex(0), VertexIndex(nv), [&](VertexIndex v) {
-      const std::uint32_t begin = start[v], end = start[v + 1], n = end - begin;
-      if (n < 2) return;
-      // Walk the fan from the first face across manifold edges at v; all faces must be reached.
-      std::vector<std::uint8_t> seen(n, 0);
-      std::vector<std::uint32_t> stack{0};
-      seen[0] = 1;
-      std::uint32_t reached = 1;
-      auto local = [&](std::uint32_t face) -> std::uint32_t {
-        for (std::uint32_t i = 0; i < n; ++i)
-          if (faces_at[begin + i] == face) return i;
-        return UINT32_MAX;
-      };
-      while (!stack.empty()) {
-        const std::uint32_t f = faces_at[begin + stack.back()];
-        stack.pop_back();
-        const Triangle& t = mesh.triangles[f];
-        for (int k = 0; k < 3; ++k) {
-          if (t[k] != v) continue;
-          for (const VertexIndex w : {t[(k + 1) % 3], t[(k + 2) % 3]}) {
-            const std::uint32_t g = mate(v, w, f);
-            if (g == UINT32_MAX) continue;
-            const std::uint32_t i = local(g);
-            if (i != UINT32_MAX && !seen[i]) {
-              seen[i] = 1;
-              ++reached;
-              stack.push_back(i);
-            }
+    while (!stack.empty()) {
+      const Triangle& t = mesh.triangles[faces_at[begin + stack.back()]];
+      const std::uint32_t f = faces_at[begin + stack.back()];
+      stack.pop_back();
+      for (int k = 0; k < 3; ++k) {
+        if (t[k] != v) continue;
+        for (const VertexIndex w : {t[(k + 1) % 3], t[(k + 2) % 3]}) {
+          const std::uint32_t g = mate(v, w, f);
+          if (g == UINT32_MAX) continue;
+          const std::uint32_t i = local(g);
+          if (i != UINT32_MAX && !seen[i]) {
+            seen[i] = 1;
+            ++reached;
+            stack.push_back(i);
           }
         }
       }
-      bad[v] = reached < n;
-    });
-    for (VertexIndex v = 0; v < nv; ++v)
-      if (bad[v]) {
-        ++r.non_manifold_vertices;
-        if (!r.first_non_manifold_vertex) r.first_non_manifold_vertex = v;
+    }
+    bad[v] = reached < n;
+  });
+  for (VertexIndex v = 0; v < nv; ++v)
+    if (bad[v]) {
+      ++r.non_manifold_vertices;
+      if (!r.first_non_manifold_vertex) r.first_non_manifold_vertex = v;
+    }
+}
+
+// Each face's component, numbered 0.. in face order; sets r.components.
+std::vector<std::uint32_t> number_components(UnionFind& components, std::size_t nf, MeshReport& r) {
+  std::vector<std::uint32_t> component_of(nf), index(nf, UINT32_MAX);
+  std::uint32_t count = 0;
+  for (std::uint32_t f = 0; f < nf; ++f) {
+    std::uint32_t& c = index[components.find(f)];
+    if (c == UINT32_MAX) c = count++;
+    component_of[f] = c;
+  }
+  r.components = count;
+  return component_of;
+}
+
+// The genus summed over shells, from chi = V - E + F per shell (a vertex of a manifold surface
+// is in one shell); -1 when the surface is not a closed 2-manifold.
+long total_genus(const Mesh& mesh, const std::vector<std::uint32_t>& component_of,
+                 const MeshReport& r) {
+  if (!r.closed() || r.non_manifold_edges != 0 || r.non_manifold_vertices != 0) return -1;
+  std::vector<long> vertices(r.components, 0), faces(r.components, 0);
+  std::vector<std::uint8_t> counted(mesh.num_vertices(), 0);
+  for (std::uint32_t f = 0; f < mesh.num_triangles(); ++f) {
+    ++faces[component_of[f]];
+    for (VertexIndex v : mesh.triangles[f])
+      if (!counted[v]) {
+        counted[v] = 1;
+        ++vertices[component_of[f]];
       }
   }
+  long genus = 0;
+  for (std::size_t c = 0; c < r.components; ++c)
+    genus += (2 - (vertices[c] - faces[c] * 3 / 2 + faces[c])) / 2;
+  return genus;
+}
 
-  // Components and, per component, the Euler characteristic.
-  std::vector<std::uint32_t> component_of(nf);
+// Self-intersections: the tree against itself; each pair once (i < j), tested exactly.
+void find_self_intersections(const Mesh& mesh, const PointTable& table,
+                             const std::vector<std::uint8_t>& degenerate,
+                             const CheckOptions& options, MeshReport& r) {
+  // Vertices by position: coincident ones (separated features) are one position.
+  std::vector<PointId> position(mesh.num_vertices());
   {
-    std::vector<std::uint32_t> index(nf, UINT32_MAX);
-    std::uint32_t count = 0;
-    for (std::uint32_t f = 0; f < nf; ++f) {
-      std::uint32_t& c = index[components.find(f)];
-      if (c == UINT32_MAX) c = count++;
-      component_of[f] = c;
-    }
-    r.components = count;
+    detail::PositionIndex index;
+    for (VertexIndex v = 0; v < mesh.num_vertices(); ++v)
+      position[v] = index.find_or_insert(mesh.points[v], v);
   }
-  if (options.volume) r.volume = signed_volume(mesh);
-  const bool manifold_surface =
-      r.closed() && r.non_manifold_edges == 0 && r.non_manifold_vertices == 0;
-  if (manifold_surface) {
-    // chi = V - E + F per shell; a vertex of a manifold surface is in one shell.
-    std::vector<long> vertices(r.components, 0), faces(r.components, 0);
-    std::vector<std::uint8_t> counted(nv, 0);
-    for (std::uint32_t f = 0; f < nf; ++f) {
-      ++faces[component_of[f]];
-      for (VertexIndex v : mesh.triangles[f])
-        if (!counted[v]) {
-          counted[v] = 1;
-          ++vertices[component_of[f]];
-        }
-    }
-    long genus = 0;
-    for (std::size_t c = 0; c < r.components; ++c)
-      genus += (2 - (vertices[c] - faces[c] * 3 / 2 + faces[c])) / 2;
-    r.genus = genus;
-  } else {
-    r.genus = -1;
+  const TriangleTree tree(mesh);
+  const TrianglePairs test(table, position);
+  // Per task: how many pairs meet improperly, and the first of them (smallest (i, j)).
+  struct Found {
+    std::size_t count = 0;
+    std::pair<std::uint32_t, std::uint32_t> first{UINT32_MAX, UINT32_MAX};
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> all;  // when listed
+  };
+  std::vector<Found> found(tree.self_pair_tasks());
+  tree.for_each_self_pair<detail::UpwardRounding>(
+      [&](std::size_t task, std::uint32_t i, std::uint32_t j) {
+        if (degenerate[i] || degenerate[j]) return;
+        if (!test.improper(mesh.triangles[i], mesh.triangles[j])) return;
+        Found& f = found[task];
+        ++f.count;
+        const auto pair = std::make_pair(std::min(i, j), std::max(i, j));
+        f.first = std::min(f.first, pair);
+        if (options.list_self_intersections) f.all.push_back(pair);
+      });
+  for (const Found& f : found) {
+    r.self_intersections += f.count;
+    if (f.count > 0 && (!r.first_self_intersection || f.first < *r.first_self_intersection))
+      r.first_self_intersection = f.first;
+    r.self_intersecting_pairs.insert(r.self_intersecting_pairs.end(), f.all.begin(), f.all.end());
   }
+  std::sort(r.self_intersecting_pairs.begin(), r.self_intersecting_pairs.end());
+}
 
-  // Self-intersections: the tree against itself; each pair once (i < j), tested exactly.
-  if (options.self_intersections && nf > 1) {
-    // Vertices by position: coincident ones (separated features) are one position.
-    std::vector<PointId> position(nv);
-    {
-      detail::PositionIndex index;
-      for (VertexIndex v = 0; v < nv; ++v) position[v] = index.find_or_insert(mesh.points[v], v);
+// The mesh's shells as separate meshes, by component.
+std::vector<Mesh> split_shells(const Mesh& mesh, const std::vector<std::uint32_t>& component_of,
+                               std::size_t count) {
+  std::vector<Mesh> shells(count);
+  std::vector<VertexIndex> local(mesh.num_vertices(), UINT32_MAX);
+  std::vector<std::uint32_t> owner(mesh.num_vertices(), UINT32_MAX);
+  for (std::uint32_t f = 0; f < mesh.num_triangles(); ++f) {
+    Mesh& shell = shells[component_of[f]];
+    Triangle t;
+    for (int k = 0; k < 3; ++k) {
+      const VertexIndex v = mesh.triangles[f][k];
+      if (owner[v] != component_of[f]) {
+        owner[v] = component_of[f];
+        local[v] = VertexIndex(shell.points.size());
+        shell.points.push_back(mesh.points[v]);
+      }
+      t[k] = local[v];
     }
-    const TriangleTree tree(mesh);
-    const TrianglePairs test(table, position);
-    // Per task: how many pairs meet improperly, and the first of them (smallest (i, j)).
-    struct Found {
-      std::size_t count = 0;
-      std::pair<std::uint32_t, std::uint32_t> first{UINT32_MAX, UINT32_MAX};
-      std::vector<std::pair<std::uint32_t, std::uint32_t>> all;  // when listed
-    };
-    std::vector<Found> found(tree.self_pair_tasks());
-    tree.for_each_self_pair<detail::UpwardRounding>(
-        [&](std::size_t task, std::uint32_t i, std::uint32_t j) {
-          if (degenerate[i] || degenerate[j]) return;
-          if (!test.improper(mesh.triangles[i], mesh.triangles[j])) return;
-          Found& f = found[task];
-          ++f.count;
-          const auto pair = std::make_pair(std::min(i, j), std::max(i, j));
-          f.first = std::min(f.first, pair);
-          if (options.list_self_intersections) f.all.push_back(pair);
-        });
-    for (const Found& f : found) {
-      r.self_intersections += f.count;
-      if (f.count > 0 && (!r.first_self_intersection || f.first < *r.first_self_intersection))
-        r.first_self_intersection = f.first;
-      r.self_intersecting_pairs.insert(r.self_intersecting_pairs.end(), f.all.begin(), f.all.end());
-    }
-    std::sort(r.self_intersecting_pairs.begin(), r.self_intersecting_pairs.end());
+    shell.triangles.push_back(t);
   }
+  return shells;
+}
 
-  // Outward: a shell nested in an even number of others bounds material (positive volume), in an
-  // odd number a cavity (negative). Only meaningful for closed, consistently oriented meshes.
+// Outward: a shell nested in an even number of others bounds material (positive volume), in an
+// odd number a cavity (negative). Only meaningful for closed, consistently oriented meshes.
+bool is_outward(const Mesh& mesh, const std::vector<std::uint32_t>& component_of,
+                const CheckOptions& options, const MeshReport& r) {
+  if (mesh.num_triangles() == 0) return true;
   const auto volume_sign = [&](const Mesh& m) {
     return options.volume && &m == &mesh ? CGAL::sign(r.volume) : signed_volume_sign(m);
   };
-  if (r.closed() && r.consistently_oriented && r.self_intersections == 0 &&
-      r.degenerate_faces == 0 && r.components > 1) {
-    std::vector<Mesh> shells(r.components);
-    {
-      std::vector<VertexIndex> local(nv, UINT32_MAX);
-      std::vector<std::uint32_t> owner(nv, UINT32_MAX);
-      for (std::uint32_t f = 0; f < nf; ++f) {
-        Mesh& shell = shells[component_of[f]];
-        Triangle t;
-        for (int k = 0; k < 3; ++k) {
-          const VertexIndex v = mesh.triangles[f][k];
-          if (owner[v] != component_of[f]) {
-            owner[v] = component_of[f];
-            local[v] = VertexIndex(shell.points.size());
-            shell.points.push_back(mesh.points[v]);
-          }
-          t[k] = local[v];
-        }
-        shell.triangles.push_back(t);
-      }
-    }
-    std::vector<TriangleTree> trees;
-    trees.reserve(shells.size());
-    for (const Mesh& s : shells) trees.emplace_back(s);
-    for (std::size_t c = 0; c < shells.size(); ++c) {
-      int depth = 0;
-      for (std::size_t o = 0; o < shells.size(); ++o) {
-        if (o == c) continue;
-        // a vertex of shell c that is not on shell o (touching shells share positions)
-        for (const Point& p : shells[c].points) {
-          try {
-            depth += winding_number(shells[o], trees[o], p) != 0;
-            break;
-          } catch (const std::domain_error&) {
-            continue;
-          }
+  if (!r.closed() || !r.consistently_oriented) return false;
+  if (r.self_intersections != 0 || r.degenerate_faces != 0 || r.components <= 1)
+    return volume_sign(mesh) == CGAL::POSITIVE;
+  const std::vector<Mesh> shells = split_shells(mesh, component_of, r.components);
+  std::vector<TriangleTree> trees;
+  trees.reserve(shells.size());
+  for (const Mesh& s : shells) trees.emplace_back(s);
+  bool outward = true;
+  for (std::size_t c = 0; c < shells.size(); ++c) {
+    int depth = 0;
+    for (std::size_t o = 0; o < shells.size(); ++o) {
+      if (o == c) continue;
+      // a vertex of shell c that is not on shell o (touching shells share positions)
+      for (const Point& p : shells[c].points) {
+        try {
+          depth += winding_number(shells[o], trees[o], p) != 0;
+          break;
+        } catch (const std::domain_error&) {
+          continue;
         }
       }
-      if (volume_sign(shells[c]) != (depth % 2 == 0 ? CGAL::POSITIVE : CGAL::NEGATIVE))
-        r.outward = false;
     }
-  } else {
-    r.outward = r.closed() && r.consistently_oriented && volume_sign(mesh) == CGAL::POSITIVE;
+    if (volume_sign(shells[c]) != (depth % 2 == 0 ? CGAL::POSITIVE : CGAL::NEGATIVE))
+      outward = false;
   }
-  if (nf == 0) r.outward = true;
+  return outward;
+}
+
+}  // namespace
+
+MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
+  MeshReport r;
+  r.vertices = mesh.num_vertices();
+  r.triangles = mesh.num_triangles();
+  for (const Point& p : mesh.points) r.bbox += p.bbox();
+  const PointTable table(mesh, mesh, true);
+  const std::vector<std::uint8_t> degenerate = find_degenerate_faces(mesh, table, r);
+  UnionFind components(mesh.num_triangles());
+  const ManifoldEdges manifold = check_edges(mesh, components, r);
+  check_vertex_fans(mesh, manifold, r);
+  const std::vector<std::uint32_t> component_of =
+      number_components(components, mesh.num_triangles(), r);
+  if (options.volume) r.volume = signed_volume(mesh);
+  r.genus = total_genus(mesh, component_of, r);
+  if (options.self_intersections && mesh.num_triangles() > 1)
+    find_self_intersections(mesh, table, degenerate, options, r);
+  r.outward = is_outward(mesh, component_of, options, r);
   return r;
 }
 
