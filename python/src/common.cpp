@@ -1,0 +1,99 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "common.h"
+
+#include <cmath>
+
+#include "morphex/check.h"
+
+namespace morphex::python {
+namespace {
+
+// module.name, leaked on purpose: a static py::object would be released after the interpreter is
+// finalised, at process exit.
+py::handle imported(const char* module, const char* name) {
+  return py::object(py::module_::import(module).attr(name)).release();
+}
+
+}  // namespace
+
+std::string mesh_prefix(const PyMesh& m, const std::string& role) {
+  if (!m.source.empty()) return m.source + ": ";
+  return role.empty() ? std::string() : role + ": ";
+}
+
+void require_valid_solid(const PyMesh& m, const std::string& role) {
+  const MeshReport report = check_mesh(m.mesh, kValidityOnly);
+  if (!report.valid_solid())
+    throw InvalidSolidError(mesh_prefix(m, role) + describe_problems(report));
+}
+
+FT to_exact(const py::handle& value) {
+  // bool is an int in Python, but a coordinate given as True is a mistake.
+  if (py::isinstance<py::bool_>(value))
+    throw py::type_error("expected a number, got " + std::string(py::repr(value)));
+  if (py::isinstance<py::str>(value)) return parse_exact_number(value.cast<std::string>());
+  static const py::handle rational = imported("numbers", "Rational");
+  static const py::handle real = imported("numbers", "Real");
+  if (py::isinstance(value, rational)) {
+    // int, Fraction, numpy integers: numerator and denominator through their decimal text, so
+    // that integers of any size stay exact.
+    const std::string num = py::str(value.attr("numerator"));
+    const std::string den = py::str(value.attr("denominator"));
+    return parse_exact_number(den == "1" ? num : num + "/" + den);
+  }
+  if (py::isinstance(value, real)) {
+    const double d = py::float_(py::reinterpret_borrow<py::object>(value));
+    if (!std::isfinite(d))
+      throw std::invalid_argument("expected a finite number, got " + std::string(py::repr(value)));
+    return FT(d);
+  }
+  throw py::type_error("expected a number (int, float, Fraction or text such as '1/3'), got " +
+                       std::string(py::repr(value)));
+}
+
+Point to_exact_point(const py::handle& xyz, const char* what) {
+  const py::sequence s = py::reinterpret_borrow<py::sequence>(xyz);
+  if (!py::isinstance<py::sequence>(xyz) || py::isinstance<py::str>(xyz) || py::len(s) != 3)
+    throw std::invalid_argument(std::string(what) + ": expected three coordinates, got " +
+                                std::string(py::repr(xyz)));
+  return Point(to_exact(s[0]), to_exact(s[1]), to_exact(s[2]));
+}
+
+py::object to_fraction(const FT& value) {
+  static const py::handle fraction = imported("fractions", "Fraction");
+  return fraction(to_rational_string(value));
+}
+
+std::string to_path(const py::handle& path) {
+  static const py::handle fspath = imported("os", "fspath");
+  const py::object p = fspath(path);
+  if (!py::isinstance<py::str>(p))
+    throw py::type_error("expected a path as str or os.PathLike, got " + std::string(py::repr(p)));
+  return p.cast<std::string>();
+}
+
+ThreadLimit::ThreadLimit(const std::optional<int>& threads) {
+  if (!threads) return;
+  if (*threads < 1)
+    throw std::invalid_argument("threads: expected a positive number, got " +
+                                std::to_string(*threads));
+  control_.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(*threads));
+}
+
+py::array_t<double> to_numpy(const std::vector<double>& values) {
+  py::array_t<double> out(values.size());
+  std::copy(values.begin(), values.end(), out.mutable_data());
+  return out;
+}
+
+nlohmann::json to_json(const py::handle& value) {
+  static const py::handle dumps = imported("json", "dumps");
+  return nlohmann::json::parse(dumps(value).cast<std::string>());
+}
+
+py::object from_json(const nlohmann::json& value) {
+  static const py::handle loads = imported("json", "loads");
+  return loads(value.dump());
+}
+
+}  // namespace morphex::python

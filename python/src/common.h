@@ -1,0 +1,80 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// What the binding files share: the Python-side mesh, exact numbers, errors, threads and JSON.
+#pragma once
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <tbb/global_control.h>
+
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "morphex/mesh.h"
+
+namespace morphex::python {
+
+namespace py = pybind11;
+
+// A mesh as Python sees it: the exact mesh and, when it was read from a file, that file's path, so
+// that errors name the file as the command line does ("cube.off: mesh is not closed: ...").
+struct PyMesh {
+  Mesh mesh;
+  std::string source;
+};
+
+// Raised as morphex.InvalidSolid (a ValueError): an operand is not a valid closed solid.
+class InvalidSolidError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+// Throws InvalidSolidError when `m` is not a valid solid. The message starts with the mesh's file,
+// else with `role` (the parameter name, "se", "b"...) when it is not empty.
+void require_valid_solid(const PyMesh& m, const std::string& role);
+// "<file or role>: " or "" when neither is known.
+std::string mesh_prefix(const PyMesh& m, const std::string& role);
+
+// Python number (int, Fraction or any numbers.Rational, float, or text "1/3", "0.25") -> exact.
+// Floats are taken exactly (every double is a dyadic rational), text as parse_exact_number reads
+// it.
+FT to_exact(const py::handle& value);
+Point to_exact_point(const py::handle& xyz, const char* what);
+// The exact value as a fractions.Fraction.
+py::object to_fraction(const FT& value);
+
+// A path argument: str or os.PathLike.
+std::string to_path(const py::handle& path);
+
+// Limits TBB's worker threads while it lives (threads=None: no limit). TBB applies the smallest
+// limit in force, so concurrent calls from several Python threads share the strictest one.
+class ThreadLimit {
+ public:
+  explicit ThreadLimit(const std::optional<int>& threads);
+
+ private:
+  std::optional<tbb::global_control> control_;
+};
+
+// A numpy float64 array holding a copy of `values`.
+py::array_t<double> to_numpy(const std::vector<double>& values);
+
+// Python object <-> JSON, through the json module (the documents and reports are small).
+nlohmann::json to_json(const py::handle& value);
+py::object from_json(const nlohmann::json& value);
+
+// Registration of each part of the module (one file each).
+void register_mesh(py::module_& m);
+void register_operations(py::module_& m);
+void register_retrieval(py::module_& m);
+void register_index(py::module_& m);
+
+// The text of the `threads` keyword's documentation, shared by every long operation.
+inline constexpr const char* kThreadsDoc =
+    "threads: maximum number of worker threads (None: all cores).";
+
+}  // namespace morphex::python

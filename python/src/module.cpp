@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The Python module `morphex`: exact Booleans and mathematical morphology on triangle meshes.
+#include "common.h"
+#include "morphex/io.h"
+#include "morphex/pipeline.h"
+#include "morphex/structuring_element.h"
+
+namespace morphex::python {
+namespace {
+
+// The command line's exit code 2 ("bad input") becomes ValueError, with the same message.
+void translate_errors(std::exception_ptr error) {
+  try {
+    if (error) std::rethrow_exception(error);
+  } catch (const InputError& e) {
+    PyErr_SetString(PyExc_ValueError, e.what());
+  } catch (const pipeline::PipelineError& e) {
+    PyErr_SetString(PyExc_ValueError, e.what());
+  }
+  // std::invalid_argument (StructuringElementError among them) is a ValueError in pybind11
+  // already; anything else keeps pybind11's mapping (RuntimeError, MemoryError...).
+}
+
+}  // namespace
+}  // namespace morphex::python
+
+PYBIND11_MODULE(morphex, m) {
+  using namespace morphex::python;
+  m.doc() = R"doc(Exact Booleans and mathematical morphology on 3D triangle meshes (morphex).
+
+Meshes have exact rational coordinates: numpy arrays in and out are rounded only where asked
+(Mesh.vertices), volumes are fractions.Fraction. Errors are the command line's: ValueError for
+bad input (naming the file and the problem), morphex.InvalidSolid (a ValueError) for an operand
+that is not a valid closed solid. Long operations release the GIL and take threads=.)doc";
+  m.attr("__version__") = MORPHEX_VERSION;
+  // Registered first so that it is tried last: InvalidSolidError is a std::invalid_argument.
+  py::register_exception_translator(&translate_errors);
+  py::register_exception<InvalidSolidError>(m, "InvalidSolid", PyExc_ValueError);
+  register_mesh(m);
+  register_operations(m);
+  register_retrieval(m);
+  register_index(m);
+}
