@@ -3,14 +3,19 @@
 // the documented rotation behaviour of the granulometry, the procedural collection.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "morphex/boolean.h"
 #include "morphex/check.h"
 #include "morphex/collection.h"
 #include "morphex/descriptors.h"
 #include "morphex/generators.h"
+#include "morphex/index.h"
+#include "morphex/io.h"
 #include "morphex/retrieval.h"
 #include "morphex/simplify.h"
 
@@ -88,9 +93,9 @@ TEST(Descriptors, ScaledCopyHasTheSameGranulometry) {
 // An asymmetric solid (three distinct principal moments, non-zero skew on the first two axes)
 // under an exact similarity: scale 5/2, a rational rotation, a rational shift.
 TEST(Descriptors, InvariantUnderExactScaleRotationAndTranslation) {
-  const Mesh a = compute_boolean(l_shape(), make_box(Point(FT(3) / 2, 0, 0), Point(2, 1, 1)),
-                                 BooleanOp::Union)
-                     .mesh;
+  const Mesh a =
+      compute_boolean(l_shape(), make_box(Point(FT(3) / 2, 0, 0), Point(2, 1, 1)), BooleanOp::Union)
+          .mesh;
   const Transformation similarity = Transformation(CGAL::TRANSLATION, Vector(FT(7) / 3, -1, 2)) *
                                     Transformation(CGAL::SCALING, FT(5) / 2) *
                                     quaternion_rotation(3, 1, -2, 5);
@@ -165,7 +170,8 @@ TEST(Simplify, CopyIsAValidSolidWithinTheBudgetAndCloseInVolume) {
   EXPECT_LE(copy.triangles.size(), 510u);
   EXPECT_EQ(report.output_facets, copy.triangles.size());
   EXPECT_TRUE(check_mesh(copy).valid_solid());
-  const double v = CGAL::to_double(signed_volume(copy)), v0 = CGAL::to_double(signed_volume(sphere));
+  const double v = CGAL::to_double(signed_volume(copy)),
+               v0 = CGAL::to_double(signed_volume(sphere));
   EXPECT_NEAR(v / v0, 1.0, 0.02);
   // Small enough already: the input comes back unchanged.
   const Mesh same = simplified_solid(to_double(sphere), 10000, &report);
@@ -191,4 +197,69 @@ TEST(Collection, EveryShapeIsAValidSolidWithItsLabel) {
   EXPECT_EQ(to_cla(meshes).rfind("PSB 1\n6 12\n", 0), 0u);
   // deterministic for a seed
   EXPECT_EQ(signed_volume(make_collection(1, 7)[0].mesh), signed_volume(meshes[0].mesh));
+}
+
+// The index library end to end: a small labelled collection indexed through a quick descriptor
+// pipeline, resumed, queried by name and by file, evaluated against its labels.
+TEST(Index, IndexResumeQueryAndEvaluate) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("morphex-index-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const auto meshes = make_collection(2, 5);
+  std::map<std::string, std::string> labels;
+  std::vector<IndexItem> items;
+  WriteOptions exact;
+  exact.exact = true;
+  for (const LabelledMesh& m : meshes) {
+    const std::string path = (dir / (m.name + ".off")).string();
+    write_mesh(m.mesh, path, exact);
+    items.push_back(index_item(path));
+    labels[m.name] = m.label;
+  }
+  items.push_back(index_item((dir / "missing.off").string()));
+  const nlohmann::json quick = nlohmann::json::parse(
+      R"({"pipeline": [{"type": "read", "path": "${input}"},
+          {"type": "describe", "scales": 2, "closings": false, "d2_samples": 256}]})");
+  const IndexPipeline pipeline = make_index_pipeline(&quick, "quick", {}, true);
+  IndexDb db((dir / "index.sqlite").string());
+  std::size_t calls = 0;
+  const IndexSummary first =
+      index_meshes(db, pipeline, items,
+                   [&](const IndexItem&, const std::string&, const IndexProgress&) { ++calls; });
+  EXPECT_EQ(first.indexed, meshes.size());
+  ASSERT_EQ(first.errors.size(), 1u);
+  EXPECT_EQ(first.errors[0].first, items.back().path);
+  EXPECT_EQ(calls, meshes.size() + 1);
+  // a re-run skips what is up to date; another pipeline re-describes
+  EXPECT_EQ(index_meshes(db, pipeline, items).skipped, meshes.size());
+
+  const std::string& probe = meshes[0].name;
+  const auto by_name = query_index(db, probe, 3, "d2", Metric::L1);
+  ASSERT_EQ(by_name.size(), 3u);
+  EXPECT_TRUE(std::none_of(by_name.begin(), by_name.end(),
+                           [&](const Neighbour& n) { return n.name == probe; }));
+  EXPECT_LE(by_name[0].distance, by_name[1].distance);
+  // the same mesh as a file is described again and finds itself at distance 0
+  const auto by_file = query_index(db, items[0].file, 1, "d2", Metric::L1);
+  ASSERT_EQ(by_file.size(), 1u);
+  EXPECT_EQ(by_file[0].name, probe);
+  EXPECT_EQ(by_file[0].distance, 0.0);
+  EXPECT_THROW(query_index(db, (dir / "nosuch.off").string(), 1, "d2", Metric::L1), InputError);
+
+  labels.erase(meshes[1].name);
+  const IndexEvaluation e = evaluate_index(db, labels, Metric::L1);
+  EXPECT_EQ(e.models, meshes.size() - 1);
+  EXPECT_EQ(e.unlabelled, 1u);
+  ASSERT_FALSE(e.scores.empty());
+  for (const auto& [kind, s] : e.scores) {
+    EXPECT_EQ(s.queries, meshes.size() - 2) << kind;  // the unlabelled one's partner is alone
+    EXPECT_GE(s.nearest_neighbor, 0.0);
+    EXPECT_LE(s.nearest_neighbor, 1.0);
+  }
+  // a pipeline without a describe stage is refused before any work
+  const nlohmann::json no_describe =
+      nlohmann::json::parse(R"({"pipeline": [{"type": "read", "path": "${input}"}]})");
+  EXPECT_THROW(make_index_pipeline(&no_describe, "bad", {}, false), pipeline::PipelineError);
+  fs::remove_all(dir);
 }

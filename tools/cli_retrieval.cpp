@@ -9,9 +9,9 @@
 #include <sstream>
 
 #include "cli_common.h"
-#include "index_db.h"
 #include "morphex/collection.h"
 #include "morphex/descriptors.h"
+#include "morphex/index.h"
 #include "morphex/io.h"
 #include "morphex/pipeline.h"
 #include "morphex/retrieval.h"
@@ -22,53 +22,6 @@ namespace {
 
 namespace mp = morphex::pipeline;
 namespace fs = std::filesystem;
-
-const char* kDefaultPipeline =
-    R"({"pipeline": [{"type": "read", "path": "${input}"}, {"type": "describe"}]})";
-
-// The document with a repair stage after every read: the repair takes the read's tag (the read
-// gets "<tag>.as-read"), so that every stage that took the read's mesh takes the repaired one.
-nlohmann::json with_repairs(const nlohmann::json& document) {
-  nlohmann::json out = document;
-  nlohmann::json& stages = out.is_array() ? out : out["pipeline"];
-  nlohmann::json rewritten = nlohmann::json::array();
-  for (const nlohmann::json& stage : stages) {
-    if (!stage.is_object() || stage.value("type", "") != "read") {
-      rewritten.push_back(stage);
-      continue;
-    }
-    nlohmann::json read = stage, repair = {{"type", "repair"}};
-    if (stage.contains("tag") && stage["tag"].is_string()) {
-      const std::string tag = stage["tag"].get<std::string>();
-      read["tag"] = tag + ".as-read";
-      repair["tag"] = tag;
-      repair["inputs"] = read["tag"];
-    }
-    rewritten.push_back(read);
-    rewritten.push_back(repair);
-  }
-  stages = rewritten;
-  return out;
-}
-
-// What the repair stage of a finished input changed, as JSON text (empty when nothing).
-std::string repair_of(const mp::InputReport& input) {
-  for (const mp::StageReport& s : input.stages)
-    if (s.type == "repair" && s.extra.contains("repair") &&
-        s.extra["repair"].value("changed", false))
-      return s.extra["repair"].dump();
-  return "";
-}
-
-// The descriptors of the last describe stage of a finished input, by kind.
-std::map<std::string, std::vector<double>> descriptors_of(const mp::InputReport& input) {
-  std::map<std::string, std::vector<double>> out;
-  for (const mp::StageReport& s : input.stages)
-    if (s.type == "describe")
-      for (const auto& [kind, v] : s.extra["descriptors"].items())
-        out[kind] = v.get<std::vector<double>>();
-  return out;
-}
 
 nlohmann::json descriptors_json(const Descriptors& d) {
   nlohmann::json j = {{"scale_length", d.scale_length},
@@ -258,99 +211,45 @@ Command add_index_command(CLI::App& app) {
                   "(default: read, then describe with default settings)");
   cmd->add_option("--set", args->sets, "Pipeline variable name=value (repeatable)");
   return {cmd, [args]() -> int {
-            nlohmann::json document;
+            IndexPipeline pipeline;
             try {
-              document = args->pipeline.empty() ? mp::parse_document(kDefaultPipeline, "default")
-                                                : mp::load_document(args->pipeline);
-              if (args->repair) document = with_repairs(document);
-              const auto p = mp::validate(document, args->pipeline, {}, {"input", "stem"});
-              if (std::none_of(p.stages.begin(), p.stages.end(),
-                               [](const mp::Stage& s) { return s.type == "describe"; }))
-                throw mp::PipelineError(std::vector<mp::Problem>{
-                    {"pipeline", "an index pipeline needs a describe stage"}});
+              std::optional<nlohmann::json> document;
+              if (!args->pipeline.empty()) document = mp::load_document(args->pipeline);
+              pipeline = make_index_pipeline(document ? &*document : nullptr, args->pipeline,
+                                             mp::parse_assignments(args->sets), args->repair);
             } catch (const mp::PipelineError& e) {
-              for (const auto& p : e.problems()) print_error(args->pipeline + ": " + p.text());
+              for (const auto& p : e.problems())
+                print_error(p.location.rfind("--set", 0) == 0 || args->pipeline.empty()
+                                ? p.text()
+                                : args->pipeline + ": " + p.text());
               return kBadInput;
             }
-            mp::RunOptions options;
-            try {
-              options.variables = mp::parse_assignments(args->sets);
-            } catch (const mp::PipelineError& e) {
-              for (const auto& p : e.problems()) print_error(p.text());
-              return kBadInput;
-            }
-            std::string sets;
-            for (const std::string& s : args->sets) sets += s + ";";
-            const std::string settings =
-                document.dump() + "|" + sets + "|descriptors " + descriptor_version();
+            std::vector<IndexItem> items;
+            for (const std::string& input : expand_inputs(args->inputs))
+              items.push_back(index_item(input));
             IndexDb db(args->db);
-            db.set_meta("pipeline", document.dump());
-            db.set_meta("sets", nlohmann::json(options.variables).dump());
-
-            const Stopwatch start;
-            std::size_t skipped = 0, failed = 0, done = 0, indexed = 0;
-            std::map<std::string, std::string> hashes;
-            for (const std::string& input : expand_inputs(args->inputs)) {
-              std::string hash;
-              try {
-                hash = content_hash(input);
-              } catch (const std::exception& e) {
-                ++failed;
-                print_error(input + ": cannot read the file");
-                db.store({0,
-                          fs::path(input).stem().string(),
-                          input,
-                          "",
-                          settings,
-                          "failed",
-                          "cannot read the file",
-                          {}},
-                         0, "", 0);
-                continue;
-              }
-              if (db.up_to_date(input, hash, settings)) {
-                ++skipped;
-                continue;
-              }
-              hashes[input] = hash;
-              options.inputs.push_back(input);
+            std::optional<ProgressBar> bar;
+            IndexSummary summary;
+            try {
+              summary = index_meshes(db, pipeline, items,
+                                     [&](const IndexItem& item, const std::string& error,
+                                         const IndexProgress& progress) {
+                                       if (!error.empty()) print_error(item.path + ": " + error);
+                                       if (progress.total == 0) return;  // before the run starts
+                                       if (!bar) bar.emplace(progress.total);
+                                       bar->update(progress.done, progress.failed);
+                                     });
+            } catch (const mp::PipelineError& e) {
+              for (const auto& p : e.problems()) print_error(pipeline.name + ": " + p.text());
+              return kBadInput;
             }
-            ProgressBar bar(options.inputs.size());
-            options.on_input_done = [&](const mp::InputReport& r) {
-              IndexedMesh m;
-              m.name = fs::path(r.input).stem().string();
-              m.path = r.input;
-              m.hash = hashes[r.input];
-              m.settings = settings;
-              m.status = r.ok ? "ok" : "failed";
-              m.error = r.error;
-              if (r.ok) m.descriptors = descriptors_of(r);
-              m.repair = repair_of(r);
-              const std::size_t faces = r.stages.empty() ? 0 : r.stages.front().faces;
-              const std::string volume = r.stages.empty() ? "" : r.stages.front().volume;
-              db.store(m, faces, volume, r.seconds);
-              ++done;
-              if (r.ok) ++indexed;
-              if (!r.ok) {
-                ++failed;
-                print_error(r.input + ": " + r.error);
-              }
-              bar.update(done, failed);
-            };
-            if (!options.inputs.empty()) {
-              try {
-                mp::run(document, args->pipeline, options);
-              } catch (const mp::PipelineError& e) {
-                for (const auto& p : e.problems()) print_error(args->pipeline + ": " + p.text());
-                return kBadInput;
-              }
-            }
-            const double seconds = start.seconds();
-            std::cout << args->db << ": indexed " << indexed << " meshes (" << skipped
-                      << " already up to date, " << failed << " failed) in " << std::setprecision(3)
-                      << seconds << " s";
+            const std::size_t failed = summary.errors.size();
+            const std::size_t done = summary.indexed + failed;
+            std::cout << args->db << ": indexed " << summary.indexed << " meshes ("
+                      << summary.skipped << " already up to date, " << failed << " failed) in "
+                      << std::setprecision(3) << summary.seconds << " s";
             if (done > 0)
-              std::cout << ", " << std::setprecision(3) << 60.0 * double(done) / seconds
+              std::cout << ", " << std::setprecision(3) << 60.0 * double(done) / summary.seconds
                         << " meshes/min";
             std::cout << '\n';
             return failed == 0 ? kSuccess : kFailed;
@@ -376,63 +275,33 @@ Command add_query_command(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::IsMember({"l1", "l2", "chi2"}));
   cmd->add_flag("--json", args->json, "One JSON object on stdout");
-  return {cmd, [args]() -> int {
-            IndexDb db(args->db);
-            const std::vector<IndexedMesh> meshes = db.load();
-            std::vector<double> query;
-            long long exclude = -1;
-            const auto by_id = std::find_if(
-                meshes.begin(), meshes.end(),
-                [&](const IndexedMesh& m) { return m.name == args->mesh || m.path == args->mesh; });
-            if (!fs::exists(args->mesh) && by_id != meshes.end()) {
-              if (!by_id->descriptors.count(args->descriptor)) {
-                print_error(args->db + ": " + by_id->name + " has no '" + args->descriptor +
-                            "' descriptor (indexed by another version of morphex: run morphex "
-                            "index again)");
-                return kBadInput;
-              }
-              query = by_id->descriptors.at(args->descriptor);
-              exclude = by_id->id;
-            } else {
-              mp::RunOptions options;
-              options.inputs = {args->mesh};
-              const auto sets = db.meta("sets");
-              if (sets) options.variables = nlohmann::json::parse(*sets).get<mp::Variables>();
-              const std::string pipeline = db.meta("pipeline").value_or(kDefaultPipeline);
-              const mp::RunReport r = mp::run(nlohmann::json::parse(pipeline), args->db, options);
-              if (!r.ok()) {
-                print_error(args->mesh + ": " + r.inputs.front().error);
-                return kBadInput;
-              }
-              query = descriptors_of(r.inputs.front()).at(args->descriptor);
-            }
-            std::vector<std::pair<double, const IndexedMesh*>> ranked;
-            for (const IndexedMesh& m : meshes)
-              if (m.id != exclude && m.descriptors.count(args->descriptor))
-                ranked.emplace_back(
-                    distance(query, m.descriptors.at(args->descriptor), parse_metric(args->metric)),
-                    &m);
-            std::sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) {
-              return a.first != b.first ? a.first < b.first : a.second->name < b.second->name;
-            });
-            ranked.resize(std::min(ranked.size(), args->k));
-            nlohmann::json j = {{"query", args->mesh},
-                                {"descriptor", args->descriptor},
-                                {"distance", args->metric},
-                                {"neighbours", nlohmann::json::array()}};
-            for (const auto& [d, m] : ranked)
-              j["neighbours"].push_back({{"name", m->name}, {"path", m->path}, {"distance", d}});
-            if (args->json) {
-              std::cout << j.dump() << std::endl;
-            } else {
-              for (std::size_t i = 0; i < ranked.size(); ++i)
-                std::cout << std::setw(3) << i + 1 << "  " << std::left << std::setw(24)
-                          << ranked[i].second->name << std::right << std::setw(12)
-                          << std::setprecision(5) << ranked[i].first << "  "
-                          << ranked[i].second->path << '\n';
-            }
-            return kSuccess;
-          }};
+  return {
+      cmd, [args]() -> int {
+        IndexDb db(args->db);
+        std::vector<Neighbour> ranked;
+        try {
+          ranked =
+              query_index(db, args->mesh, args->k, args->descriptor, parse_metric(args->metric));
+        } catch (const InputError& e) {
+          print_error(e.what());
+          return kBadInput;
+        }
+        nlohmann::json j = {{"query", args->mesh},
+                            {"descriptor", args->descriptor},
+                            {"distance", args->metric},
+                            {"neighbours", nlohmann::json::array()}};
+        for (const Neighbour& n : ranked)
+          j["neighbours"].push_back({{"name", n.name}, {"path", n.path}, {"distance", n.distance}});
+        if (args->json) {
+          std::cout << j.dump() << std::endl;
+          return kSuccess;
+        }
+        for (std::size_t i = 0; i < ranked.size(); ++i)
+          std::cout << std::setw(3) << i + 1 << "  " << std::left << std::setw(24) << ranked[i].name
+                    << std::right << std::setw(12) << std::setprecision(5) << ranked[i].distance
+                    << "  " << ranked[i].path << '\n';
+        return kSuccess;
+      }};
 }
 
 Command add_evaluate_command(CLI::App& app) {
@@ -458,39 +327,17 @@ Command add_evaluate_command(CLI::App& app) {
               return kBadInput;
             }
             IndexDb db(args->db);
-            std::vector<IndexedMesh> meshes;
-            std::size_t unlabelled = 0;
-            for (IndexedMesh& m : db.load())
-              if (labels.count(m.name))
-                meshes.push_back(std::move(m));
-              else
-                ++unlabelled;
-            std::vector<std::string> names, classes;
-            for (const IndexedMesh& m : meshes) {
-              names.push_back(m.name);
-              classes.push_back(labels[m.name]);
-            }
-            const Metric metric = parse_metric(args->metric);
-            nlohmann::json j = {{"models", meshes.size()},
+            const IndexEvaluation e = evaluate_index(db, labels, parse_metric(args->metric));
+            nlohmann::json j = {{"models", e.models},
                                 {"metric", args->metric},
-                                {"unlabelled", unlabelled},
+                                {"unlabelled", e.unlabelled},
                                 {"descriptors", nlohmann::json::object()}};
             if (!args->json)
               std::cout << std::left << std::setw(18) << "descriptor" << std::right << std::setw(18)
                         << "Nearest Neighbor" << std::setw(12) << "First Tier" << std::setw(13)
                         << "Second Tier" << std::setw(11) << "E-measure" << std::setw(8) << "DCG"
                         << '\n';
-            for (const std::string& kind : descriptor_kinds()) {
-              if (std::any_of(meshes.begin(), meshes.end(),
-                              [&](const IndexedMesh& m) { return !m.descriptors.count(kind); }))
-                continue;
-              std::vector<std::vector<double>> distance(meshes.size(),
-                                                        std::vector<double>(meshes.size()));
-              for (std::size_t a = 0; a < meshes.size(); ++a)
-                for (std::size_t b = 0; b < meshes.size(); ++b)
-                  distance[a][b] = morphex::distance(meshes[a].descriptors.at(kind),
-                                                     meshes[b].descriptors.at(kind), metric);
-              const RetrievalScores s = evaluate_retrieval(names, classes, distance);
+            for (const auto& [kind, s] : e.scores) {
               j["descriptors"][kind] = {{"nearest_neighbor", s.nearest_neighbor},
                                         {"first_tier", s.first_tier},
                                         {"second_tier", s.second_tier},
@@ -507,10 +354,10 @@ Command add_evaluate_command(CLI::App& app) {
             if (args->json)
               std::cout << j.dump() << std::endl;
             else
-              std::cout << meshes.size() << " labelled models"
-                        << (unlabelled ? ", " + std::to_string(unlabelled) +
-                                             " indexed models without a label skipped"
-                                       : "")
+              std::cout << e.models << " labelled models"
+                        << (e.unlabelled ? ", " + std::to_string(e.unlabelled) +
+                                               " indexed models without a label skipped"
+                                         : "")
                         << '\n';
             return kSuccess;
           }};

@@ -1,11 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// morphex.Index: the SQLite retrieval index of `morphex index`, `query` and `evaluate`, in the same
-// file format, so that an index built from Python can be queried by the command line and back.
-//
-// The index logic lives in tools/cli_retrieval.cpp next to its command-line parsing; until it
-// moves into a library, what this file needs of it is mirrored here: the default descriptor
-// pipeline, with_repairs, the settings key of an indexed mesh, descriptors_of, repair_of and the
-// ranking of a query.
+// morphex.Index: the retrieval index of libretrieval (morphex/index.h), as `morphex index`,
+// `query` and `evaluate` use it, so that an index built from Python can be queried by the command
+// line and back. What is Python's own: meshes given as Mesh objects (written to a temporary exact
+// OFF file, since pipelines read files) and the conversion of arguments and results.
 #include <stdlib.h>
 
 #include <algorithm>
@@ -13,8 +10,8 @@
 #include <memory>
 
 #include "common.h"
-#include "index_db.h"
 #include "morphex/descriptors.h"
+#include "morphex/index.h"
 #include "morphex/io.h"
 #include "morphex/pipeline.h"
 #include "morphex/retrieval.h"
@@ -24,50 +21,6 @@ namespace {
 
 namespace mp = morphex::pipeline;
 namespace fs = std::filesystem;
-
-const char* kDefaultPipeline =
-    R"({"pipeline": [{"type": "read", "path": "${input}"}, {"type": "describe"}]})";
-
-// As tools/cli_retrieval.cpp: a repair stage after every read, taking the read's tag.
-nlohmann::json with_repairs(const nlohmann::json& document) {
-  nlohmann::json out = document;
-  nlohmann::json& stages = out.is_array() ? out : out["pipeline"];
-  nlohmann::json rewritten = nlohmann::json::array();
-  for (const nlohmann::json& stage : stages) {
-    if (!stage.is_object() || stage.value("type", "") != "read") {
-      rewritten.push_back(stage);
-      continue;
-    }
-    nlohmann::json read = stage, repair = {{"type", "repair"}};
-    if (stage.contains("tag") && stage["tag"].is_string()) {
-      const std::string tag = stage["tag"].get<std::string>();
-      read["tag"] = tag + ".as-read";
-      repair["tag"] = tag;
-      repair["inputs"] = read["tag"];
-    }
-    rewritten.push_back(read);
-    rewritten.push_back(repair);
-  }
-  stages = rewritten;
-  return out;
-}
-
-std::string repair_of(const mp::InputReport& input) {
-  for (const mp::StageReport& s : input.stages)
-    if (s.type == "repair" && s.extra.contains("repair") &&
-        s.extra["repair"].value("changed", false))
-      return s.extra["repair"].dump();
-  return "";
-}
-
-std::map<std::string, std::vector<double>> descriptors_of(const mp::InputReport& input) {
-  std::map<std::string, std::vector<double>> out;
-  for (const mp::StageReport& s : input.stages)
-    if (s.type == "describe")
-      for (const auto& [kind, v] : s.extra["descriptors"].items())
-        out[kind] = v.get<std::vector<double>>();
-  return out;
-}
 
 // A temporary directory for meshes given as Mesh objects (the pipelines read files), removed with
 // everything in it.
@@ -98,11 +51,6 @@ class TemporaryDirectory {
   fs::path path_;
 };
 
-// One mesh to index: the file the pipeline reads, and the path and name the index records.
-struct Item {
-  std::string file, path, name;
-};
-
 std::string pipeline_problems(const std::string& name, const mp::PipelineError& e) {
   std::string message;
   for (const mp::Problem& p : e.problems())
@@ -113,7 +61,7 @@ std::string pipeline_problems(const std::string& name, const mp::PipelineError& 
 class Index {
  public:
   explicit Index(const py::object& path) : path_(to_path(path)) {
-    db_ = std::make_unique<cli::IndexDb>(path_);
+    db_ = std::make_unique<IndexDb>(path_);
   }
 
   py::dict add(const py::object& items, const std::optional<std::string>& name,
@@ -123,56 +71,51 @@ class Index {
                  const std::string& metric, const std::optional<int>& threads);
   py::dict evaluate(const py::object& labels, const std::string& metric);
 
-  std::vector<cli::IndexedMesh> load(bool only_ok = true) { return db().load(only_ok); }
+  std::vector<IndexedMesh> load(bool only_ok = true) { return db().load(only_ok); }
   const std::string& path() const { return path_; }
   void close() { db_.reset(); }
 
  private:
-  cli::IndexDb& db() {
+  IndexDb& db() {
     if (!db_) throw std::invalid_argument(path_ + ": the index is closed");
     return *db_;
   }
-  std::pair<nlohmann::json, std::string> document(const py::object& pipeline, bool repair);
-  std::vector<Item> items(const py::object& items, const std::optional<std::string>& name,
-                          const TemporaryDirectory& temp);
+  IndexPipeline pipeline(const py::object& pipeline, const mp::Variables& variables, bool repair);
+  std::vector<IndexItem> items(const py::object& items, const std::optional<std::string>& name,
+                               const TemporaryDirectory& temp);
 
   std::string path_;
-  std::unique_ptr<cli::IndexDb> db_;
+  std::unique_ptr<IndexDb> db_;
 };
 
 // The descriptor pipeline (default, dict, JSON text or file), with repairs, validated.
-std::pair<nlohmann::json, std::string> Index::document(const py::object& pipeline, bool repair) {
+IndexPipeline Index::pipeline(const py::object& pipeline, const mp::Variables& variables,
+                              bool repair) {
   std::string name = "<pipeline>";
-  nlohmann::json doc;
-  if (pipeline.is_none()) {
-    doc = mp::parse_document(kDefaultPipeline, "default");
-    name = "default";
-  } else if (py::isinstance<py::dict>(pipeline) || py::isinstance<py::list>(pipeline)) {
-    doc = to_json(pipeline);
-  } else if (py::isinstance<py::str>(pipeline) &&
-             pipeline.cast<std::string>().find_first_of("{[") == 0) {
-    doc = mp::parse_document(pipeline.cast<std::string>(), name);
-  } else {
-    name = to_path(pipeline);
-    doc = mp::load_document(name);
-  }
-  if (repair) doc = with_repairs(doc);
+  std::optional<nlohmann::json> doc;
   try {
-    const mp::Pipeline p = mp::validate(doc, name, {}, {"input", "stem"});
-    if (std::none_of(p.stages.begin(), p.stages.end(),
-                     [](const mp::Stage& s) { return s.type == "describe"; }))
-      throw mp::PipelineError(
-          std::vector<mp::Problem>{{"pipeline", "an index pipeline needs a describe stage"}});
+    if (pipeline.is_none()) {
+      name = "default";
+    } else if (py::isinstance<py::dict>(pipeline) || py::isinstance<py::list>(pipeline)) {
+      doc = to_json(pipeline);
+    } else if (py::isinstance<py::str>(pipeline) &&
+               pipeline.cast<std::string>().find_first_of("{[") == 0) {
+      doc = mp::parse_document(pipeline.cast<std::string>(), name);
+    } else {
+      name = to_path(pipeline);
+      doc = mp::load_document(name);
+    }
+    return make_index_pipeline(doc ? &*doc : nullptr, name, variables, repair);
   } catch (const mp::PipelineError& e) {
     throw std::invalid_argument(pipeline_problems(name, e));
   }
-  return {doc, name};
 }
 
 // Paths and Mesh objects (one, or an iterable of them). A Mesh is written to `temp` and recorded
 // as "mesh:<name>": its name is `name`, else the stem of the file it was read from.
-std::vector<Item> Index::items(const py::object& objects, const std::optional<std::string>& name,
-                               const TemporaryDirectory& temp) {
+std::vector<IndexItem> Index::items(const py::object& objects,
+                                    const std::optional<std::string>& name,
+                                    const TemporaryDirectory& temp) {
   const bool single = py::isinstance<PyMesh>(objects) || py::isinstance<py::str>(objects) ||
                       py::hasattr(objects, "__fspath__");
   if (name && !single) throw std::invalid_argument("name: only for a single mesh or path");
@@ -181,7 +124,7 @@ std::vector<Item> Index::items(const py::object& objects, const std::optional<st
     list.push_back(objects);
   else
     for (const py::handle& h : objects) list.push_back(h);
-  std::vector<Item> out;
+  std::vector<IndexItem> out;
   for (const py::handle& h : list) {
     if (py::isinstance<PyMesh>(h)) {
       const PyMesh& m = h.cast<const PyMesh&>();
@@ -197,75 +140,27 @@ std::vector<Item> Index::items(const py::object& objects, const std::optional<st
 }
 
 py::dict Index::add(const py::object& objects, const std::optional<std::string>& name,
-                    const py::object& pipeline, const std::map<std::string, std::string>& variables,
-                    bool repair, const std::optional<int>& threads) {
-  auto [doc, doc_name] = document(pipeline, repair);
+                    const py::object& pipeline_arg,
+                    const std::map<std::string, std::string>& variables, bool repair,
+                    const std::optional<int>& threads) {
+  const IndexPipeline pipeline = this->pipeline(pipeline_arg, variables, repair);
   TemporaryDirectory temp;
-  const std::vector<Item> list = items(objects, name, temp);
-  mp::RunOptions options;
-  options.variables = variables;
-  std::string sets;
-  for (const auto& [k, v] : variables) sets += k + "=" + v + ";";
-  // The same key as `morphex index`: a mesh is up to date for this pipeline and these variables.
-  const std::string settings = doc.dump() + "|" + sets + "|descriptors " + descriptor_version();
-  std::size_t skipped = 0, indexed = 0;
-  std::map<std::string, std::string> errors;
+  const std::vector<IndexItem> list = items(objects, name, temp);
+  IndexSummary summary;
   {
     py::gil_scoped_release release;
     ThreadLimit limit(threads);
-    cli::IndexDb& db = this->db();
-    db.set_meta("pipeline", doc.dump());
-    db.set_meta("sets", nlohmann::json(options.variables).dump());
-    std::map<std::string, std::pair<const Item*, std::string>> by_file;  // file -> item, hash
-    for (const Item& item : list) {
-      std::string hash;
-      try {
-        hash = cli::content_hash(item.file);
-      } catch (const std::exception&) {
-        errors[item.path] = "cannot read the file";
-        db.store({0, item.name, item.path, "", settings, "failed", "cannot read the file", {}}, 0,
-                 "", 0);
-        continue;
-      }
-      if (db.up_to_date(item.path, hash, settings)) {
-        ++skipped;
-        continue;
-      }
-      by_file[item.file] = {&item, hash};
-      options.inputs.push_back(item.file);
-    }
-    options.on_input_done = [&](const mp::InputReport& r) {
-      const auto& [item, hash] = by_file.at(r.input);
-      cli::IndexedMesh m;
-      m.name = item->name;
-      m.path = item->path;
-      m.hash = hash;
-      m.settings = settings;
-      m.status = r.ok ? "ok" : "failed";
-      m.error = r.error;
-      if (r.ok) m.descriptors = descriptors_of(r);
-      m.repair = repair_of(r);
-      const std::size_t faces = r.stages.empty() ? 0 : r.stages.front().faces;
-      const std::string volume = r.stages.empty() ? "" : r.stages.front().volume;
-      db.store(m, faces, volume, r.seconds);
-      if (r.ok)
-        ++indexed;
-      else
-        errors[item->path] = r.error;
-    };
-    if (!options.inputs.empty()) {
-      try {
-        mp::run(doc, doc_name, options);
-      } catch (const mp::PipelineError& e) {
-        throw std::invalid_argument(pipeline_problems(doc_name, e));
-      }
+    try {
+      summary = index_meshes(db(), pipeline, list);
+    } catch (const mp::PipelineError& e) {
+      throw std::invalid_argument(pipeline_problems(pipeline.name, e));
     }
   }
   py::dict out;
-  out["indexed"] = indexed;
-  out["skipped"] = skipped;
-  out["failed"] = errors.size();
-  out["errors"] = errors;
+  out["indexed"] = summary.indexed;
+  out["skipped"] = summary.skipped;
+  out["failed"] = summary.errors.size();
+  out["errors"] = std::map<std::string, std::string>(summary.errors.begin(), summary.errors.end());
   return out;
 }
 
@@ -292,43 +187,21 @@ py::list Index::query(const py::object& target, std::size_t k, const std::string
   } else {
     file = label = to_path(target);
   }
-  std::vector<std::pair<double, std::string>> ranked;
+  std::vector<Neighbour> ranked;
   {
     py::gil_scoped_release release;
     ThreadLimit limit(threads);
-    cli::IndexDb& db = this->db();
-    const std::vector<cli::IndexedMesh> meshes = db.load();
-    std::vector<double> query;
-    long long exclude = -1;
-    const auto stored = std::find_if(meshes.begin(), meshes.end(), [&](const cli::IndexedMesh& m) {
-      return m.name == file || m.path == file;
-    });
-    if (!is_mesh && !fs::exists(file) && stored != meshes.end()) {
-      if (!stored->descriptors.count(descriptor))
-        throw std::invalid_argument(path_ + ": " + stored->name + " has no '" + descriptor +
-                                    "' descriptor (indexed by another version of morphex: index "
-                                    "it again)");
-      query = stored->descriptors.at(descriptor);
-      exclude = stored->id;
-    } else {
-      mp::RunOptions options;
-      options.inputs = {file};
-      if (const auto sets = db.meta("sets"))
-        options.variables = nlohmann::json::parse(*sets).get<mp::Variables>();
-      const std::string pipeline = db.meta("pipeline").value_or(kDefaultPipeline);
-      const mp::RunReport r = mp::run(nlohmann::json::parse(pipeline), path_, options);
-      if (!r.ok()) throw std::invalid_argument(label + ": " + r.inputs.front().error);
-      query = descriptors_of(r.inputs.front()).at(descriptor);
+    try {
+      ranked = query_index(db(), file, k, descriptor, metric, !is_mesh);
+    } catch (const InputError& e) {
+      if (!is_mesh) throw;
+      // A Mesh is described from a temporary file: name the mesh, not the file.
+      const std::string what = e.what();
+      throw InputError(label, what.substr(e.where().empty() ? 0 : e.where().size() + 2));
     }
-    for (const cli::IndexedMesh& m : meshes)
-      if (m.id != exclude && m.descriptors.count(descriptor))
-        ranked.emplace_back(distance(query, m.descriptors.at(descriptor), metric), m.name);
   }
-  // Nearest first, ties by name (as `morphex query`).
-  std::sort(ranked.begin(), ranked.end());
-  ranked.resize(std::min(ranked.size(), k));
   py::list out;
-  for (const auto& [d, name] : ranked) out.append(py::make_tuple(name, d));
+  for (const Neighbour& n : ranked) out.append(py::make_tuple(n.name, n.distance));
   return out;
 }
 
@@ -339,30 +212,12 @@ py::dict Index::evaluate(const py::object& labels_arg, const std::string& metric
           ? labels_arg.cast<std::map<std::string, std::string>>()
           : read_cla(to_path(labels_arg));  // InputError names the file and line
   py::dict out;
-  std::map<std::string, RetrievalScores> scores;
+  IndexEvaluation evaluation;
   {
     py::gil_scoped_release release;
-    std::vector<cli::IndexedMesh> meshes;
-    for (cli::IndexedMesh& m : db().load())
-      if (labels.count(m.name)) meshes.push_back(std::move(m));
-    std::vector<std::string> names, classes;
-    for (const cli::IndexedMesh& m : meshes) {
-      names.push_back(m.name);
-      classes.push_back(labels[m.name]);
-    }
-    for (const std::string& kind : descriptor_kinds()) {
-      if (std::any_of(meshes.begin(), meshes.end(),
-                      [&](const cli::IndexedMesh& m) { return !m.descriptors.count(kind); }))
-        continue;
-      std::vector<std::vector<double>> d(meshes.size(), std::vector<double>(meshes.size()));
-      for (std::size_t a = 0; a < meshes.size(); ++a)
-        for (std::size_t b = 0; b < meshes.size(); ++b)
-          d[a][b] =
-              distance(meshes[a].descriptors.at(kind), meshes[b].descriptors.at(kind), metric);
-      scores[kind] = evaluate_retrieval(names, classes, d);
-    }
+    evaluation = evaluate_index(db(), labels, metric);
   }
-  for (const auto& [kind, s] : scores) {
+  for (const auto& [kind, s] : evaluation.scores) {
     py::dict j;
     j["nearest_neighbor"] = s.nearest_neighbor;
     j["first_tier"] = s.first_tier;
@@ -376,7 +231,7 @@ py::dict Index::evaluate(const py::object& labels_arg, const std::string& metric
 }
 
 py::dict stored_descriptors(Index& index, const std::string& name) {
-  for (const cli::IndexedMesh& m : index.load())
+  for (const IndexedMesh& m : index.load())
     if (m.name == name || m.path == name) {
       py::dict out;
       for (const auto& [kind, v] : m.descriptors) out[kind.c_str()] = to_numpy(v);
@@ -423,7 +278,7 @@ others. Returns {kind: {'nearest_neighbor', 'first_tier', 'second_tier', 'e_meas
           "names",
           [](Index& index) {
             std::vector<std::string> names;
-            for (const cli::IndexedMesh& m : index.load()) names.push_back(m.name);
+            for (const IndexedMesh& m : index.load()) names.push_back(m.name);
             return names;
           },
           "Names of the meshes indexed successfully, sorted.")
@@ -431,7 +286,7 @@ others. Returns {kind: {'nearest_neighbor', 'first_tier', 'second_tier', 'e_meas
           "failed",
           [](Index& index) {
             std::map<std::string, std::string> out;
-            for (const cli::IndexedMesh& m : index.load(false))
+            for (const IndexedMesh& m : index.load(false))
               if (m.status != "ok") out[m.path] = m.error;
             return out;
           },
@@ -442,7 +297,7 @@ others. Returns {kind: {'nearest_neighbor', 'first_tier', 'second_tier', 'e_meas
       .def("__contains__",
            [](Index& index, const std::string& name) {
              const auto all = index.load();
-             return std::any_of(all.begin(), all.end(), [&](const cli::IndexedMesh& m) {
+             return std::any_of(all.begin(), all.end(), [&](const IndexedMesh& m) {
                return m.name == name || m.path == name;
              });
            })

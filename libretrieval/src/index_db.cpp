@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "index_db.h"
+#include "morphex/index_db.h"
 
+#include <sqlite3.h>
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
 
-namespace morphex::cli {
+namespace morphex {
 namespace {
 
 // A prepared statement that finalises itself.
@@ -186,4 +187,4 @@ std::string content_hash(const std::string& path) {
   return text;
 }
 
-}  // namespace morphex::cli
+}  // namespace morphex

@@ -8,14 +8,14 @@
 // Every mesh is committed in its own transaction, so a run killed midway keeps what it committed.
 #pragma once
 
-#include <sqlite3.h>
-
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
-namespace morphex::cli {
+struct sqlite3;  // SQLite's connection, used through pointers only
+
+namespace morphex {
 
 struct IndexedMesh {
   long long id = 0;
@@ -37,6 +37,7 @@ class IndexDb {
   bool up_to_date(const std::string& path, const std::string& hash, const std::string& settings);
   void store(const IndexedMesh& mesh, std::size_t faces, const std::string& volume, double seconds);
   std::vector<IndexedMesh> load(bool only_ok = true);
+  const std::string& path() const { return path_; }
 
  private:
   void exec(const std::string& sql);
@@ -47,4 +48,4 @@ class IndexDb {
 // 64-bit FNV-1a of the file's bytes, as 16 hex digits.
 std::string content_hash(const std::string& path);
 
-}  // namespace morphex::cli
+}  // namespace morphex

@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// A retrieval index of a mesh collection: meshes described by a descriptor pipeline (JSON, the
+// pipelines engine) into an IndexDb (morphex/index_db.h), queried for nearest neighbours and
+// evaluated against class labels. `morphex index`, `query` and `evaluate` and the Python
+// morphex.Index are thin layers over these functions.
+//
+// Errors: a bad pipeline throws pipeline::PipelineError (every problem with its location) before
+// any mesh is described; a mesh that cannot be described is recorded as failed and reported to
+// the callback, and the others go on; a query that cannot be answered throws InputError naming
+// the mesh or the index.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "morphex/descriptors.h"
+#include "morphex/index_db.h"
+#include "morphex/pipeline.h"
+#include "morphex/retrieval.h"
+
+namespace morphex {
+
+// The default descriptor pipeline: read ${input}, then describe with default settings.
+extern const char* const kDefaultIndexPipeline;
+
+// A validated descriptor pipeline with its variables, as an index runs it.
+struct IndexPipeline {
+  nlohmann::json document;        // repair stages inserted when asked
+  std::string name;               // the file name (or "default"), for messages
+  pipeline::Variables variables;  // bound on every run (--set)
+  // What a mesh's stored descriptors are valid for: this pipeline, these variables and this
+  // version of the descriptors. A mesh indexed under other settings is described again.
+  std::string settings() const;
+};
+
+// `document` (nullptr: kDefaultIndexPipeline) validated with ${input} and ${stem} deferred; it
+// must have a describe stage. With `repair`, a repair stage follows every read and takes the
+// read's tag, so that what read the mesh reads the repaired one. Throws pipeline::PipelineError.
+IndexPipeline make_index_pipeline(const nlohmann::json* document, const std::string& name,
+                                  pipeline::Variables variables, bool repair);
+
+// One mesh to index: the file the pipeline reads, and the path and name the index records (the
+// same for files; bindings that index in-memory meshes record another path).
+struct IndexItem {
+  std::string file, path, name;
+};
+IndexItem index_item(const std::string& file);  // path = file, name = its stem
+
+// After each mesh described (or refused): how far the run is, and the mesh's error ("" if ok).
+struct IndexProgress {
+  std::size_t done = 0, total = 0, failed = 0;
+};
+using IndexCallback =
+    std::function<void(const IndexItem& item, const std::string& error, const IndexProgress&)>;
+
+struct IndexSummary {
+  std::size_t indexed = 0, skipped = 0;                     // skipped: already up to date
+  std::vector<std::pair<std::string, std::string>> errors;  // (recorded path, message)
+  double seconds = 0;
+};
+
+// Describes every item not already up to date (same content hash and settings) and commits each
+// as soon as it finishes, so that an interrupted run keeps what it committed and a re-run resumes.
+// The pipeline and its variables are stored in the index for queries. `on_mesh` is called from
+// one thread at a time.
+IndexSummary index_meshes(IndexDb& db, const IndexPipeline& pipeline,
+                          const std::vector<IndexItem>& items, const IndexCallback& on_mesh = {});
+
+struct Neighbour {
+  std::string name, path;
+  double distance = 0;
+};
+
+// The k indexed meshes nearest to `target` by descriptor `kind` under `metric`, nearest first (ties
+// by name). `target` is a mesh file, described by the index's own pipeline, or (when no such file
+// exists and `by_name`) the name or recorded path of an indexed mesh, whose stored vector is used
+// and which is not ranked. Throws InputError.
+std::vector<Neighbour> query_index(IndexDb& db, const std::string& target, std::size_t k,
+                                   const std::string& kind, Metric metric, bool by_name = true);
+
+struct IndexEvaluation {
+  std::size_t models = 0, unlabelled = 0;  // indexed meshes with and without a label
+  // Per descriptor kind stored for every labelled mesh, in descriptor_kinds() order.
+  std::vector<std::pair<std::string, RetrievalScores>> scores;
+};
+
+// Every labelled indexed mesh queried against the others (labels: model name -> class).
+IndexEvaluation evaluate_index(IndexDb& db, const std::map<std::string, std::string>& labels,
+                               Metric metric);
+
+}  // namespace morphex

@@ -1,0 +1,228 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Indexing a collection through a descriptor pipeline, nearest-neighbour queries and evaluation.
+#include "morphex/index.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "morphex/stopwatch.h"
+
+namespace morphex {
+
+namespace mp = morphex::pipeline;
+namespace fs = std::filesystem;
+
+const char* const kDefaultIndexPipeline =
+    R"({"pipeline": [{"type": "read", "path": "${input}"}, {"type": "describe"}]})";
+
+namespace {
+
+// The document with a repair stage after every read: the repair takes the read's tag (the read
+// gets "<tag>.as-read"), so that every stage that took the read's mesh takes the repaired one.
+nlohmann::json with_repairs(const nlohmann::json& document) {
+  nlohmann::json out = document;
+  nlohmann::json& stages = out.is_array() ? out : out["pipeline"];
+  nlohmann::json rewritten = nlohmann::json::array();
+  for (const nlohmann::json& stage : stages) {
+    if (!stage.is_object() || stage.value("type", "") != "read") {
+      rewritten.push_back(stage);
+      continue;
+    }
+    nlohmann::json read = stage, repair = {{"type", "repair"}};
+    if (stage.contains("tag") && stage["tag"].is_string()) {
+      const std::string tag = stage["tag"].get<std::string>();
+      read["tag"] = tag + ".as-read";
+      repair["tag"] = tag;
+      repair["inputs"] = read["tag"];
+    }
+    rewritten.push_back(read);
+    rewritten.push_back(repair);
+  }
+  stages = rewritten;
+  return out;
+}
+
+// What the repair stage of a finished input changed, as JSON text (empty when nothing).
+std::string repair_of(const mp::InputReport& input) {
+  for (const mp::StageReport& s : input.stages)
+    if (s.type == "repair" && s.extra.contains("repair") &&
+        s.extra["repair"].value("changed", false))
+      return s.extra["repair"].dump();
+  return "";
+}
+
+// The descriptors of the last describe stage of a finished input, by kind.
+std::map<std::string, std::vector<double>> descriptors_of(const mp::InputReport& input) {
+  std::map<std::string, std::vector<double>> out;
+  for (const mp::StageReport& s : input.stages)
+    if (s.type == "describe")
+      for (const auto& [kind, v] : s.extra["descriptors"].items())
+        out[kind] = v.get<std::vector<double>>();
+  return out;
+}
+
+IndexedMesh record(const IndexItem& item, const std::string& hash, const std::string& settings) {
+  IndexedMesh m;
+  m.name = item.name;
+  m.path = item.path;
+  m.hash = hash;
+  m.settings = settings;
+  return m;
+}
+
+}  // namespace
+
+std::string IndexPipeline::settings() const {
+  std::string sets;
+  for (const auto& [name, value] : variables) sets += name + "=" + value + ";";
+  return document.dump() + "|" + sets + "|descriptors " + descriptor_version();
+}
+
+IndexPipeline make_index_pipeline(const nlohmann::json* document, const std::string& name,
+                                  mp::Variables variables, bool repair) {
+  IndexPipeline out;
+  out.name = document ? name : "default";
+  out.document = document ? *document : mp::parse_document(kDefaultIndexPipeline, "default");
+  if (repair) out.document = with_repairs(out.document);
+  out.variables = std::move(variables);
+  const mp::Pipeline p = mp::validate(out.document, out.name, out.variables, {"input", "stem"});
+  if (std::none_of(p.stages.begin(), p.stages.end(),
+                   [](const mp::Stage& s) { return s.type == "describe"; }))
+    throw mp::PipelineError(
+        std::vector<mp::Problem>{{"pipeline", "an index pipeline needs a describe stage"}});
+  return out;
+}
+
+IndexItem index_item(const std::string& file) {
+  return {file, file, fs::path(file).stem().string()};
+}
+
+IndexSummary index_meshes(IndexDb& db, const IndexPipeline& pipeline,
+                          const std::vector<IndexItem>& items, const IndexCallback& on_mesh) {
+  const Stopwatch clock;
+  const std::string settings = pipeline.settings();
+  db.set_meta("pipeline", pipeline.document.dump());
+  db.set_meta("sets", nlohmann::json(pipeline.variables).dump());
+  IndexSummary summary;
+  IndexProgress progress;
+  auto fail = [&](const IndexItem& item, const std::string& error) {
+    summary.errors.emplace_back(item.path, error);
+    ++progress.failed;
+    if (on_mesh) on_mesh(item, error, progress);
+  };
+
+  // Unreadable files fail at once; meshes up to date are skipped.
+  mp::RunOptions options;
+  options.variables = pipeline.variables;
+  std::map<std::string, std::pair<const IndexItem*, std::string>> pending;  // file -> item, hash
+  for (const IndexItem& item : items) {
+    std::string hash;
+    try {
+      hash = content_hash(item.file);
+    } catch (const std::exception&) {
+      IndexedMesh m = record(item, "", settings);
+      m.status = "failed";
+      m.error = "cannot read the file";
+      db.store(m, 0, "", 0);
+      fail(item, m.error);
+      continue;
+    }
+    if (db.up_to_date(item.path, hash, settings)) {
+      ++summary.skipped;
+      continue;
+    }
+    pending[item.file] = {&item, hash};
+    options.inputs.push_back(item.file);
+  }
+  progress.total = options.inputs.size();
+
+  // Each mesh is committed as soon as its pipeline finishes.
+  options.on_input_done = [&](const mp::InputReport& r) {
+    const auto& [item, hash] = pending.at(r.input);
+    IndexedMesh m = record(*item, hash, settings);
+    m.status = r.ok ? "ok" : "failed";
+    m.error = r.error;
+    if (r.ok) m.descriptors = descriptors_of(r);
+    m.repair = repair_of(r);
+    const std::size_t faces = r.stages.empty() ? 0 : r.stages.front().faces;
+    const std::string volume = r.stages.empty() ? "" : r.stages.front().volume;
+    db.store(m, faces, volume, r.seconds);
+    ++progress.done;
+    if (!r.ok) return fail(*item, r.error);
+    ++summary.indexed;
+    if (on_mesh) on_mesh(*item, "", progress);
+  };
+  if (!options.inputs.empty()) mp::run(pipeline.document, pipeline.name, options);
+  summary.seconds = clock.seconds();
+  return summary;
+}
+
+std::vector<Neighbour> query_index(IndexDb& db, const std::string& target, std::size_t k,
+                                   const std::string& kind, Metric metric, bool by_name) {
+  const std::vector<IndexedMesh> meshes = db.load();
+  std::vector<double> query;
+  long long exclude = -1;
+  const auto stored = std::find_if(meshes.begin(), meshes.end(), [&](const IndexedMesh& m) {
+    return m.name == target || m.path == target;
+  });
+  if (by_name && !fs::exists(target) && stored != meshes.end()) {
+    if (!stored->descriptors.count(kind))
+      throw InputError(db.path(), stored->name + " has no '" + kind +
+                                      "' descriptor (indexed by another version of morphex: "
+                                      "index it again)");
+    query = stored->descriptors.at(kind);
+    exclude = stored->id;
+  } else {
+    // Described as the index's meshes were: its pipeline and variables.
+    mp::RunOptions options;
+    options.inputs = {target};
+    if (const auto sets = db.meta("sets"))
+      options.variables = nlohmann::json::parse(*sets).get<mp::Variables>();
+    const std::string pipeline = db.meta("pipeline").value_or(kDefaultIndexPipeline);
+    const mp::RunReport r = mp::run(nlohmann::json::parse(pipeline), db.path(), options);
+    if (!r.ok()) throw InputError(target, r.inputs.front().error);
+    const auto descriptors = descriptors_of(r.inputs.front());
+    if (!descriptors.count(kind))
+      throw InputError(target, "the index's pipeline gives no '" + kind + "' descriptor");
+    query = descriptors.at(kind);
+  }
+  std::vector<Neighbour> ranked;
+  for (const IndexedMesh& m : meshes)
+    if (m.id != exclude && m.descriptors.count(kind))
+      ranked.push_back({m.name, m.path, distance(query, m.descriptors.at(kind), metric)});
+  std::sort(ranked.begin(), ranked.end(), [](const Neighbour& a, const Neighbour& b) {
+    return a.distance != b.distance ? a.distance < b.distance : a.name < b.name;
+  });
+  ranked.resize(std::min(ranked.size(), k));
+  return ranked;
+}
+
+IndexEvaluation evaluate_index(IndexDb& db, const std::map<std::string, std::string>& labels,
+                               Metric metric) {
+  IndexEvaluation out;
+  std::vector<IndexedMesh> meshes;
+  for (IndexedMesh& m : db.load())
+    if (labels.count(m.name))
+      meshes.push_back(std::move(m));
+    else
+      ++out.unlabelled;
+  out.models = meshes.size();
+  std::vector<std::string> names, classes;
+  for (const IndexedMesh& m : meshes) {
+    names.push_back(m.name);
+    classes.push_back(labels.at(m.name));
+  }
+  for (const std::string& kind : descriptor_kinds()) {
+    if (std::any_of(meshes.begin(), meshes.end(),
+                    [&](const IndexedMesh& m) { return !m.descriptors.count(kind); }))
+      continue;
+    std::vector<std::vector<double>> d(meshes.size(), std::vector<double>(meshes.size()));
+    for (std::size_t a = 0; a < meshes.size(); ++a)
+      for (std::size_t b = 0; b < meshes.size(); ++b)
+        d[a][b] = distance(meshes[a].descriptors.at(kind), meshes[b].descriptors.at(kind), metric);
+    out.scores.emplace_back(kind, evaluate_retrieval(names, classes, d));
+  }
+  return out;
+}
+
+}  // namespace morphex
