@@ -7,7 +7,10 @@
 
 #include "morphex/generators.h"
 #include "morphex/io.h"
+#include "morphex/descriptors.h"
+#include "morphex/minkowski.h"
 #include "morphex/pipeline.h"
+#include "morphex/structuring_element.h"
 
 using namespace morphex;
 namespace mp = morphex::pipeline;
@@ -282,4 +285,41 @@ TEST(Pipeline, ExamplesAreValid) {
                                  {}, {"input", "stem"}))
         << entry.path();
   }
+}
+
+// One error model for every library (morphex/error.h): each bad input is a morphex::Error whose
+// what() is "<where>: <problem>", and its kind tells an invalid solid from other bad input.
+TEST(ErrorModel, EveryLibraryThrowsAMorphexErrorWithWhereAndProblem) {
+  try {  // libbool: a file that cannot be read
+    read_mesh("/nonexistent/dir/mesh.off");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "/nonexistent/dir/mesh.off");
+    EXPECT_EQ(std::string(e.what()), e.where() + ": " + e.problem());
+  }
+  Mesh open = make_cube(FT(1));
+  open.triangles.pop_back();
+  try {  // libmorph: an operand that is not a valid solid
+    minkowski_sum(open, make_cube(FT(1)));
+    ADD_FAILURE() << "no error";
+  } catch (const InvalidSolid& e) {
+    EXPECT_NE(std::string(e.what()).find("first operand is not a valid solid"), std::string::npos);
+    const Error& base = e;  // and an InputError, an Error, a std::invalid_argument
+    EXPECT_EQ(std::string(base.what()), e.what());
+  }
+  try {  // libmorph: a bad structuring element, with the parameter at fault
+    parse_structuring_element("ball:r=-1");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.where(), "ball: r");
+    EXPECT_NE(e.problem().find("positive"), std::string::npos);
+  }
+  try {  // pipelines: every problem, the first one's location as where()
+    mp::validate(nlohmann::json::parse(R"({"pipeline": [{"type": "nosuch"}]})"), "p.json", {});
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.where(), "pipeline[0].type");
+    EXPECT_FALSE(e.problem().empty());
+  }
+  EXPECT_THROW(parse_metric("cosine"), InputError);
 }

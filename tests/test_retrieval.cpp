@@ -157,7 +157,7 @@ TEST(Descriptors, MetricsOnAHandCheckedPair) {
   EXPECT_DOUBLE_EQ(distance(a, b, Metric::L2), std::sqrt(5.0));
   EXPECT_DOUBLE_EQ(distance(a, b, Metric::ChiSquare), 1.0 / 1 + 4.0 / 6);  // the 0/0 term omitted
   EXPECT_EQ(parse_metric("chi2"), Metric::ChiSquare);
-  EXPECT_THROW(parse_metric("cosine"), std::invalid_argument);
+  EXPECT_THROW(parse_metric("cosine"), InputError);
   EXPECT_THROW(distance(a, {1, 2}, Metric::L1), std::invalid_argument);
 }
 
@@ -182,7 +182,7 @@ TEST(Simplify, CopyIsAValidSolidWithinTheBudgetAndCloseInVolume) {
 TEST(Descriptors, InvalidInputIsRefused) {
   Mesh open = make_cube(FT(1));
   open.triangles.pop_back();
-  EXPECT_THROW(describe(open), std::invalid_argument);
+  EXPECT_THROW(describe(open), InvalidSolid);
 }
 
 TEST(Collection, EveryShapeIsAValidSolidWithItsLabel) {

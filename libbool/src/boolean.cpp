@@ -15,8 +15,8 @@ BooleanOp parse_boolean_op(const std::string& name) {
   if (name == "union") return BooleanOp::Union;
   if (name == "intersection") return BooleanOp::Intersection;
   if (name == "difference") return BooleanOp::Difference;
-  throw std::invalid_argument("unknown Boolean operation '" + name +
-                              "' (expected union, intersection or difference)");
+  throw InputError(
+      "", "unknown Boolean operation '" + name + "' (expected union, intersection or difference)");
 }
 
 const char* to_string(BooleanOp op) {

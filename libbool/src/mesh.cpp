@@ -65,7 +65,7 @@ std::string to_rational_string(const FT& value) {
 }
 
 FT parse_exact_number(std::string_view text) {
-  if (text.empty()) throw std::invalid_argument("empty number");
+  if (text.empty()) throw InputError("", "empty number");
   const std::string_view digits = text[0] == '+' ? text.substr(1) : text;  // GMP rejects '+'
   auto malformed = [&] {
     std::string shown(text.substr(0, 40));
@@ -100,7 +100,7 @@ FT parse_exact_number(std::string_view text) {
   }
   if (!std::isfinite(d)) {
     std::string shown(text.substr(0, 40));
-    throw std::invalid_argument("non-finite number '" + shown + "'");
+    throw InputError("", "non-finite number '" + shown + "'");
   }
   return FT(d);
 }

@@ -99,8 +99,7 @@ Pairs known_pairs(const Chain& chain,
   pairs.reserve(of_input.size());
   for (const auto& [i, j] : of_input) {
     if (i >= chain.face_of.size() || j >= chain.face_of.size())
-      throw std::invalid_argument(
-          "winding_solid: a listed pair names a triangle that is not there");
+      throw InputError("", "winding_solid: a listed pair names a triangle that is not there");
     const std::uint32_t a = chain.face_of[i], b = chain.face_of[j];
     if (a != Chain::kNoFace && b != Chain::kNoFace && a != b)
       pairs.emplace_back(std::min(a, b), std::max(a, b));
@@ -193,11 +192,11 @@ Mesh winding_solid(const Mesh& surface, const std::vector<int>& weights,
                    const WindingOptions& options, WindingStats* stats_out) {
   using namespace detail;
   if (!weights.empty() && weights.size() != surface.triangles.size())
-    throw std::invalid_argument("winding_solid: one weight per triangle expected");
+    throw InputError("", "winding_solid: one weight per triangle expected");
   WindingStats stats;
   Stopwatch clock;
   if (options.planes && options.planes->size() != surface.triangles.size())
-    throw std::invalid_argument("winding_solid: one plane label per triangle expected");
+    throw InputError("", "winding_solid: one plane label per triangle expected");
   const Chain chain = prepare_chain(surface, weights, options.planes, stats);
   stats.seconds_chain = clock.lap();
   Mesh result;

@@ -84,7 +84,8 @@ LabelledSolid segment_sweep(const LabelledSolid& in, int axis, const FT& half_le
   std::vector<std::int8_t> side(nf);
   tbb::parallel_for(std::size_t(0), nf, [&](std::size_t f) {
     const Triangle& t = a.triangles[f];
-    const CGAL::Sign s = normal_component_sign(a.points[t[0]], a.points[t[1]], a.points[t[2]], axis);
+    const CGAL::Sign s =
+        normal_component_sign(a.points[t[0]], a.points[t[1]], a.points[t[2]], axis);
     side[f] = std::int8_t(erode ? -s : s);  // +1 up, -1 down, 0 parallel
   });
   std::vector<std::uint8_t> around(nv, 0);  // bit 0: an up facet at the vertex, bit 1: a down one

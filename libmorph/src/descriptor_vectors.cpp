@@ -71,16 +71,16 @@ std::vector<double> descriptor_vector(const Descriptors& d, const std::string& k
     return v;
   }
   if (kind == "d2") return d.d2;
-  throw std::invalid_argument("unknown descriptor '" + kind +
-                              "' (expected combined, morphology, granulometry, pattern_spectrum, "
-                              "spatial or d2)");
+  throw InputError("", "unknown descriptor '" + kind +
+                           "' (expected combined, morphology, granulometry, pattern_spectrum, "
+                           "spatial or d2)");
 }
 
 Metric parse_metric(const std::string& name) {
   if (name == "l1") return Metric::L1;
   if (name == "l2") return Metric::L2;
   if (name == "chi2") return Metric::ChiSquare;
-  throw std::invalid_argument("unknown metric '" + name + "' (expected l1, l2 or chi2)");
+  throw InputError("", "unknown metric '" + name + "' (expected l1, l2 or chi2)");
 }
 
 const char* to_string(Metric metric) {
@@ -97,7 +97,7 @@ const char* to_string(Metric metric) {
 
 double distance(const std::vector<double>& a, const std::vector<double>& b, Metric metric) {
   if (a.size() != b.size())
-    throw std::invalid_argument("descriptors of different lengths: computed with other settings");
+    throw InputError("", "descriptors of different lengths: computed with other settings");
   double sum = 0;
   for (std::size_t i = 0; i < a.size(); ++i) {
     const double diff = a[i] - b[i];

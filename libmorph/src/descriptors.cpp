@@ -187,20 +187,18 @@ std::string DescriptorSettings::to_string() const {
 
 Descriptors describe(const Mesh& solid, const DescriptorSettings& settings) {
   const MeshReport report = check_mesh(solid, kValidityOnly);
-  if (!report.valid_solid())
-    throw std::invalid_argument("cannot describe: " + describe_problems(report));
+  if (!report.valid_solid()) throw InvalidSolid("cannot describe", describe_problems(report));
   return describe_valid(solid, settings);
 }
 
 Descriptors describe_valid(const Mesh& solid, const DescriptorSettings& settings) {
   if (settings.scales < 1 || !(settings.open_from > 0 && settings.open_from <= settings.open_to) ||
       !(settings.close_from > 0 && settings.close_from <= settings.close_to))
-    throw std::invalid_argument(
-        "cannot describe: scales must be at least 1 and radii positive and growing");
+    throw InputError("cannot describe", "scales must be at least 1 and radii positive and growing");
   // The volume only sets the scale (the descriptor is computed in double precision around the
   // exact filtering): its sign exactly, its value in double precision.
   if (signed_volume_sign(solid) != CGAL::POSITIVE)
-    throw std::invalid_argument("cannot describe: the mesh has no volume");
+    throw InvalidSolid("cannot describe", "the mesh has no volume");
   const DoubleMesh dm = to_double(solid);
   double volume = 0;
   for (const Triangle& t : dm.triangles) {

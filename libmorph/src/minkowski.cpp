@@ -210,8 +210,8 @@ Mesh sum_with_component(const Mesh& a, const Mesh& b, bool b_convex, MinkowskiSt
 void require_valid(const Mesh& mesh, const char* which) {
   const MeshReport report = check_mesh(mesh, kValidityOnly);
   if (!report.valid_solid())
-    throw std::invalid_argument(std::string(which) +
-                                " is not a valid solid: " + describe_problems(report));
+    throw InvalidSolid("",
+                       std::string(which) + " is not a valid solid: " + describe_problems(report));
 }
 
 }  // namespace detail

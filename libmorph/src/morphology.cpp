@@ -17,8 +17,8 @@ MorphologyOp parse_morphology_op(const std::string& name) {
   if (name == "erode") return MorphologyOp::Erode;
   if (name == "open") return MorphologyOp::Open;
   if (name == "close") return MorphologyOp::Close;
-  throw std::invalid_argument("unknown morphological operation '" + name +
-                              "' (expected dilate, erode, open or close)");
+  throw InputError(
+      "", "unknown morphological operation '" + name + "' (expected dilate, erode, open or close)");
 }
 
 const char* to_string(MorphologyOp op) {

@@ -11,8 +11,8 @@
 
 #include <cmath>
 #include <optional>
-#include <unordered_map>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "morphex/check.h"
 #include "morphex/winding.h"
@@ -34,7 +34,7 @@ SurfaceMesh to_surface_mesh(const DoubleMesh& m) {
   for (const auto& p : m.points) v.push_back(sm.add_vertex(Epick::Point_3(p[0], p[1], p[2])));
   for (const Triangle& t : m.triangles)
     if (sm.add_face(v[t[0]], v[t[1]], v[t[2]]) == SurfaceMesh::null_face())
-      throw std::invalid_argument("simplify: the surface is not an oriented 2-manifold");
+      throw InvalidSolid("simplify", "the surface is not an oriented 2-manifold");
   return sm;
 }
 
@@ -87,7 +87,8 @@ std::optional<DoubleMesh> clustered_solid(const DoubleMesh& mesh, std::size_t ta
   for (std::size_t v = 0; v < mesh.points.size(); ++v) {
     std::uint64_t key = 0;
     for (double c : mesh.points[v])
-      key = (key << 21) | (std::uint64_t(std::int64_t(std::floor(c / cell)) + (1 << 20)) & 0x1fffff);
+      key =
+          (key << 21) | (std::uint64_t(std::int64_t(std::floor(c / cell)) + (1 << 20)) & 0x1fffff);
     const auto [it, added] = index.emplace(key, VertexIndex(sum.size()));
     if (added) sum.push_back({0, 0, 0, 0});
     auto& s = sum[it->second];
@@ -133,8 +134,8 @@ Mesh simplified_solid(const DoubleMesh& mesh, std::size_t max_facets, SimplifyRe
     }
   }
   // A closed triangle mesh has 3/2 edges per facet; the collapse counts edges.
-  for (std::size_t budget = std::max<std::size_t>(max_facets, 8);
-       budget < source->triangles.size(); budget *= 2) {
+  for (std::size_t budget = std::max<std::size_t>(max_facets, 8); budget < source->triangles.size();
+       budget *= 2) {
     ++r.attempts;
     SurfaceMesh sm = to_surface_mesh(*source);
     SMS::Count_stop_predicate<SurfaceMesh> stop(budget * 3 / 2);
@@ -162,7 +163,7 @@ Mesh simplified_solid(const DoubleMesh& mesh, std::size_t max_facets, SimplifyRe
     result = from_double(on_grid(mesh, grid));
     if (grid > 0 && !positive_valid_solid(result)) result = from_double(mesh);
     if (!positive_valid_solid(result))
-      throw std::invalid_argument("simplify: the input is not a valid solid with positive volume");
+      throw InvalidSolid("simplify", "the input is not a valid solid with positive volume");
   }
   r.output_facets = result.triangles.size();
   if (report) *report = r;

@@ -59,7 +59,7 @@ class Shapes {
       return unite({box(0, 0, 0, w, 3 * d, d), box(0, d, d, w, 3 * d, 2 * d),
                     box(0, 2 * d, 2 * d, w, 3 * d, 3 * d)});
     }
-    throw std::invalid_argument("unknown shape family '" + name + "'");
+    throw InputError("", "unknown shape family '" + name + "'");
   }
 
   // A random rotation, exactly orthogonal (a rational quaternion), a scale and a shift.

@@ -95,7 +95,7 @@ DescriptorSettings descriptor_settings(const nlohmann::json& options) {
   s.d2_bins = options.at("d2_bins").get<int>();
   s.seed = options.at("seed").get<std::uint64_t>();
   if (s.open_from > s.open_to || s.close_from > s.close_to)
-    throw std::invalid_argument("describe: open_from/close_from must not exceed open_to/close_to");
+    throw InputError("describe", "open_from/close_from must not exceed open_to/close_to");
   return s;
 }
 
@@ -140,7 +140,7 @@ Mesh boolean_stage(StageContext& c, BooleanOp op) {
   BooleanOptions options;
   options.validate_inputs = false;  // stage outputs and read meshes are valid solids already
   BooleanResult r = compute_boolean(*c.inputs[0], *c.inputs[1], op, options);
-  if (!r.ok()) throw std::runtime_error(r.message);
+  if (!r.ok()) throw InvalidSolid("", r.message);
   return std::move(r.mesh);
 }
 
@@ -169,8 +169,9 @@ std::vector<OptionInfo> describe_options() {
     return o;
   };
   return {integer("scales", d.scales, 1, 64, "number of opening (and closing) radii"),
-          number("open_from", d.open_from, "smallest opening cube half side, in units of the "
-                                           "thickness T = 3 volume / area"),
+          number("open_from", d.open_from,
+                 "smallest opening cube half side, in units of the "
+                 "thickness T = 3 volume / area"),
           number("open_to", d.open_to, "largest opening cube half side, in units of T"),
           number("close_from", d.close_from,
                  "smallest closing cube half side, in units of L = cbrt(volume)"),
@@ -197,8 +198,8 @@ void add_builtin_stages(StageRegistry& r) {
            if (c.stage.unchecked) return mesh;
            const MeshReport report = check_mesh(mesh, kValidityOnly);
            if (!report.valid_solid())
-             throw InputError(path, describe_problems(report) +
-                                        " (a repair stage after the read repairs it)");
+             throw InputError(
+                 path, describe_problems(report) + " (a repair stage after the read repairs it)");
            return mesh;
          }});
   r.add({"repair",
@@ -307,9 +308,7 @@ void add_builtin_stages(StageRegistry& r) {
   r.add({"describe",
          "multi-scale granulometry and anti-granulometry by exact openings and closings with "
          "cubes, where their residues lie, and the D2 baseline; passes the mesh on",
-         1,
-         describe_options(),
-         [](StageContext& c) {
+         1, describe_options(), [](StageContext& c) {
            const DescriptorSettings settings = detail::descriptor_settings(c.stage.options);
            // Stage outputs are valid solids (read checks, repair and every operation make them).
            const Descriptors d = describe_valid(*c.inputs[0], settings);
@@ -334,7 +333,7 @@ void add_builtin_stages(StageRegistry& r) {
            c.extra["genus"] = report.genus;
            c.extra["components"] = report.components;
            if (c.option("require_valid").get<bool>() && !report.valid_solid())
-             throw std::runtime_error(describe_problems(report));
+             throw InvalidSolid("", describe_problems(report));
            return *c.inputs[0];
          }});
 }

@@ -148,7 +148,9 @@ void check_option(const OptionInfo& option, const nlohmann::json& value,
 }  // namespace
 
 PipelineError::PipelineError(std::vector<Problem> problems)
-    : std::runtime_error(join(problems)), problems_(std::move(problems)) {}
+    : Error(problems.empty() ? "" : problems[0].location,
+            problems.empty() ? "" : problems[0].message, join(problems)),
+      problems_(std::move(problems)) {}
 
 nlohmann::json parse_document(const std::string& text, const std::string& name) {
   // "file:line:column" of a byte offset (1-based, as nlohmann reports it).

@@ -24,7 +24,7 @@ std::string mesh_prefix(const PyMesh& m, const std::string& role) {
 void require_valid_solid(const PyMesh& m, const std::string& role) {
   const MeshReport report = check_mesh(m.mesh, kValidityOnly);
   if (!report.valid_solid())
-    throw InvalidSolidError(mesh_prefix(m, role) + describe_problems(report));
+    throw InvalidSolid("", mesh_prefix(m, role) + describe_problems(report));
 }
 
 FT to_exact(const py::handle& value) {

@@ -27,14 +27,9 @@ struct PyMesh {
   std::string source;
 };
 
-// Raised as morphex.InvalidSolid (a ValueError): an operand is not a valid closed solid.
-class InvalidSolidError : public std::invalid_argument {
- public:
-  using std::invalid_argument::invalid_argument;
-};
-
-// Throws InvalidSolidError when `m` is not a valid solid. The message starts with the mesh's file,
-// else with `role` (the parameter name, "se", "b"...) when it is not empty.
+// Throws morphex::InvalidSolid (raised as morphex.InvalidSolid, a ValueError) when `m` is not a
+// valid solid. The message starts with the mesh's file, else with `role` (the parameter name, "se",
+// "b"...) when it is not empty.
 void require_valid_solid(const PyMesh& m, const std::string& role);
 // "<file or role>: " or "" when neither is known.
 std::string mesh_prefix(const PyMesh& m, const std::string& role);

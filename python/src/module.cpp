@@ -12,13 +12,11 @@ namespace {
 void translate_errors(std::exception_ptr error) {
   try {
     if (error) std::rethrow_exception(error);
-  } catch (const InputError& e) {
-    PyErr_SetString(PyExc_ValueError, e.what());
-  } catch (const pipeline::PipelineError& e) {
+  } catch (const Error& e) {
     PyErr_SetString(PyExc_ValueError, e.what());
   }
-  // std::invalid_argument (StructuringElementError among them) is a ValueError in pybind11
-  // already; anything else keeps pybind11's mapping (RuntimeError, MemoryError...).
+  // Every morphex::Error (morphex/error.h) is a ValueError; anything else keeps pybind11's
+  // mapping (std::invalid_argument: ValueError, std::runtime_error: RuntimeError...).
 }
 
 }  // namespace
@@ -33,9 +31,9 @@ Meshes have exact rational coordinates: numpy arrays in and out are rounded only
 bad input (naming the file and the problem), morphex.InvalidSolid (a ValueError) for an operand
 that is not a valid closed solid. Long operations release the GIL and take threads=.)doc";
   m.attr("__version__") = MORPHEX_VERSION;
-  // Registered first so that it is tried last: InvalidSolidError is a std::invalid_argument.
+  // Registered first so that it is tried last: InvalidSolid is a morphex::Error.
   py::register_exception_translator(&translate_errors);
-  py::register_exception<InvalidSolidError>(m, "InvalidSolid", PyExc_ValueError);
+  py::register_exception<morphex::InvalidSolid>(m, "InvalidSolid", PyExc_ValueError);
   register_mesh(m);
   register_operations(m);
   register_retrieval(m);

@@ -23,7 +23,7 @@ PyMesh boolean(const PyMesh& a, const PyMesh& b, BooleanOp op, bool merge_coplan
   if (!r.ok()) {
     // As `morphex bool`: "FILE: first operand is not a valid solid: ..." (no file: no prefix).
     const PyMesh& bad = r.status == BooleanStatus::InvalidInputA ? a : b;
-    throw InvalidSolidError(mesh_prefix(bad, "") + r.message);
+    throw InvalidSolid("", mesh_prefix(bad, "") + r.message);
   }
   return {std::move(r.mesh), ""};
 }

@@ -19,6 +19,8 @@
 #include <string_view>
 #include <vector>
 
+#include "morphex/error.h"
+
 namespace morphex {
 
 using Kernel = CGAL::Epeck;
@@ -70,18 +72,5 @@ FT parse_exact_number(std::string_view text);
 FT signed_volume(const Mesh& mesh);
 // Its sign, exact: an interval sum decides unless the volume is (nearly) zero, then the exact sum.
 CGAL::Sign signed_volume_sign(const Mesh& mesh);
-
-// Error thrown for unusable input. `where` names the file; the message says the problem and the
-// position (line, vertex, face, JSON path).
-class InputError : public std::runtime_error {
- public:
-  InputError(std::string where, const std::string& problem)
-      : std::runtime_error(where.empty() ? problem : where + ": " + problem),
-        where_(std::move(where)) {}
-  const std::string& where() const { return where_; }
-
- private:
-  std::string where_;
-};
 
 }  // namespace morphex

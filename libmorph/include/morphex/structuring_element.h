@@ -25,20 +25,17 @@ struct StructuringElement {
 
 using SeParameters = std::vector<std::pair<std::string, std::string>>;  // key, value text
 
-// A bad structuring element: what() reads "ball: r: expected a positive number, got -1"; key()
-// is the parameter at fault ("shape" for the shape itself) and problem() the rest, so callers can
-// point at their own location (a JSON path, a command-line option).
-class StructuringElementError : public std::invalid_argument {
+// A bad structuring element (a morphex::Error, morphex/error.h): what() reads "ball: r: expected
+// a positive number, got -1"; key() is the parameter at fault ("shape" for the shape itself) and
+// problem() the rest, so callers can point at their own location (a JSON path, an option).
+class StructuringElementError : public Error {
  public:
   StructuringElementError(const std::string& shape, std::string key, std::string problem)
-      : std::invalid_argument(shape.empty() ? problem : shape + ": " + key + ": " + problem),
-        key_(std::move(key)),
-        problem_(std::move(problem)) {}
+      : Error(shape.empty() ? "" : shape + ": " + key, std::move(problem)), key_(std::move(key)) {}
   const std::string& key() const { return key_; }
-  const std::string& problem() const { return problem_; }
 
  private:
-  std::string key_, problem_;
+  std::string key_;
 };
 
 // Builds a structuring element; throws StructuringElementError.
