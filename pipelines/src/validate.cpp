@@ -213,127 +213,130 @@ nlohmann::json load_document(const std::string& path) {
   return parse_document(buffer.str(), path);
 }
 
-Pipeline validate(const nlohmann::json& document, const std::string& name,
-                  const Variables& variables, const std::vector<std::string>& deferred,
-                  const StageRegistry& registry) {
-  std::vector<Problem> problems;
-  Pipeline pipeline;
-  pipeline.name = name;
-  pipeline.document = document;
-  nlohmann::json stages_json;
-  Variables bound = variables;  // --set wins over the document's defaults
-  if (document.is_array()) {
-    stages_json = document;
-  } else if (document.is_object() && document.contains("pipeline")) {
-    stages_json = document["pipeline"];
-    for (const auto& [key, value] : document.items()) {
-      if (key == "variables") {
-        if (!value.is_object()) {
-          problems.push_back({key, "expected an object of default values, got " + value.dump()});
-          continue;
-        }
-        for (const auto& [name, default_value] : value.items()) {
-          if (default_value.is_string())
-            bound.emplace(name, default_value.get<std::string>());
-          else if (default_value.is_number())
-            bound.emplace(name, default_value.dump());
-          else
-            problems.push_back({"variables." + name,
-                                "expected a string or a number, got " + default_value.dump()});
-        }
-      } else if (key != "pipeline" && key != "description") {
-        problems.push_back({key,
-                            "unknown top-level key (expected \"pipeline\", and optionally "
-                            "\"description\" and \"variables\")"});
+namespace {
+
+// The stages array, and the variables bound: --set first, then the document's defaults.
+nlohmann::json stages_and_variables(const nlohmann::json& document, Variables& bound,
+                                    std::vector<Problem>& problems) {
+  if (document.is_array()) return document;
+  if (!document.is_object() || !document.contains("pipeline")) return nullptr;
+  for (const auto& [key, value] : document.items()) {
+    if (key == "variables") {
+      if (!value.is_object()) {
+        problems.push_back({key, "expected an object of default values, got " + value.dump()});
+        continue;
       }
+      for (const auto& [name, default_value] : value.items()) {
+        if (default_value.is_string())
+          bound.emplace(name, default_value.get<std::string>());
+        else if (default_value.is_number())
+          bound.emplace(name, default_value.dump());
+        else
+          problems.push_back(
+              {"variables." + name, "expected a string or a number, got " + default_value.dump()});
+      }
+    } else if (key != "pipeline" && key != "description") {
+      problems.push_back({key,
+                          "unknown top-level key (expected \"pipeline\", and optionally "
+                          "\"description\" and \"variables\")"});
     }
   }
-  if (!stages_json.is_array() || stages_json.empty())
-    throw PipelineError(std::vector<Problem>{{"pipeline", "expected a non-empty array of stages"}});
+  return document["pipeline"];
+}
 
-  std::map<std::string, std::size_t> tag_index;
-  std::vector<std::vector<std::string>> input_tags(stages_json.size());
-  for (std::size_t i = 0; i < stages_json.size(); ++i) {
-    const std::string here = at("pipeline", i);
-    Stage stage;
-    stage.index = i;
-    nlohmann::json raw = stages_json[i];
-    if (!raw.is_object()) {
-      problems.push_back({here, "expected a stage object with a \"type\""});
-      pipeline.stages.push_back(stage);
+// The stage's options checked against its registered ones, defaults filled in.
+void check_options(Stage& stage, const nlohmann::json& raw, const std::string& here,
+                   std::vector<Problem>& problems) {
+  const std::vector<OptionInfo>& options = stage.info->options;
+  for (const auto& item : raw.items()) {
+    const std::string& key = item.key();
+    if (key == "type" || key == "tag" || key == "inputs") continue;
+    const auto option = std::find_if(options.begin(), options.end(),
+                                     [&](const OptionInfo& o) { return o.name == key; });
+    if (option == options.end()) {
+      std::string known;
+      for (const auto& o : options) known += (known.empty() ? "" : ", ") + o.name;
+      problems.push_back(
+          {at(here, key), "unknown option for '" + stage.type + "' (" +
+                              (known.empty() ? "it takes no options" : "known: " + known) + ")"});
       continue;
     }
-    substitute(raw, here, bound, deferred, problems);
-    if (!raw.contains("type") || !raw["type"].is_string()) {
-      problems.push_back({at(here, "type"), "missing (a stage type such as \"read\")"});
-    } else {
-      stage.type = raw["type"].get<std::string>();
-      stage.info = registry.find(stage.type);
-      if (!stage.info)
-        problems.push_back({at(here, "type"), "unknown stage '" + stage.type + "' (did you mean '" +
-                                                  registry.closest(stage.type) + "'?)"});
-    }
-    stage.tag = stage.type + "#" + std::to_string(i);
-    if (raw.contains("tag")) {
-      if (!raw["tag"].is_string() || raw["tag"].get<std::string>().empty()) {
-        problems.push_back(
-            {at(here, "tag"), "expected a non-empty string, got " + raw["tag"].dump()});
-      } else {
-        stage.tag = raw["tag"].get<std::string>();
-        const auto [it, inserted] = tag_index.emplace(stage.tag, i);
-        if (!inserted)
-          problems.push_back({at(here, "tag"), "duplicate tag '" + stage.tag + "' (first used by " +
-                                                   at("pipeline", it->second) + ")"});
-      }
-    }
-    if (raw.contains("inputs")) {
-      const auto& inputs = raw["inputs"];
-      if (inputs.is_string())
-        input_tags[i].push_back(inputs.get<std::string>());
-      else if (inputs.is_array() && std::all_of(inputs.begin(), inputs.end(),
-                                                [](const auto& t) { return t.is_string(); }))
-        for (const auto& t : inputs) input_tags[i].push_back(t.get<std::string>());
-      else
-        problems.push_back(
-            {at(here, "inputs"), "expected a tag or an array of tags, got " + inputs.dump()});
-    }
-    if (stage.info) {
-      for (const auto& item : raw.items()) {
-        const std::string& key = item.key();
-        const nlohmann::json& value = item.value();
-        if (key == "type" || key == "tag" || key == "inputs") continue;
-        const auto option = std::find_if(stage.info->options.begin(), stage.info->options.end(),
-                                         [&](const OptionInfo& o) { return o.name == key; });
-        if (option == stage.info->options.end()) {
-          std::string known;
-          for (const auto& o : stage.info->options) known += (known.empty() ? "" : ", ") + o.name;
-          problems.push_back(
-              {at(here, key), "unknown option for '" + stage.type + "' (" +
-                                  (known.empty() ? "it takes no options" : "known: " + known) +
-                                  ")"});
-          continue;
-        }
-        check_option(*option, value, at(here, key), problems);
-        stage.options[key] = value;
-      }
-      for (const OptionInfo& option : stage.info->options) {
-        if (stage.options.contains(option.name)) continue;
-        if (option.default_value)
-          stage.options[option.name] = *option.default_value;
-        else
-          problems.push_back({at(here, option.name), "missing (required by '" + stage.type + "')"});
-      }
-    }
-    pipeline.stages.push_back(std::move(stage));
+    check_option(*option, item.value(), at(here, key), problems);
+    stage.options[key] = item.value();
   }
+  for (const OptionInfo& option : options) {
+    if (stage.options.contains(option.name)) continue;
+    if (option.default_value)
+      stage.options[option.name] = *option.default_value;
+    else
+      problems.push_back({at(here, option.name), "missing (required by '" + stage.type + "')"});
+  }
+}
 
-  // Inputs: explicit tags, or the previous stage for one-input stages.
+// What the stages' "inputs" name, by tag, as the raw document gives them.
+struct StageGraph {
+  std::map<std::string, std::size_t> tag_index;
+  std::vector<std::vector<std::string>> input_tags;
+};
+
+// One stage of the array: type, tag, input tags and options (variables substituted).
+Stage parse_stage(nlohmann::json raw, std::size_t i, const Variables& bound,
+                  const std::vector<std::string>& deferred, const StageRegistry& registry,
+                  StageGraph& graph, std::vector<Problem>& problems) {
+  const std::string here = at("pipeline", i);
+  Stage stage;
+  stage.index = i;
+  if (!raw.is_object()) {
+    problems.push_back({here, "expected a stage object with a \"type\""});
+    return stage;
+  }
+  substitute(raw, here, bound, deferred, problems);
+  if (!raw.contains("type") || !raw["type"].is_string()) {
+    problems.push_back({at(here, "type"), "missing (a stage type such as \"read\")"});
+  } else {
+    stage.type = raw["type"].get<std::string>();
+    stage.info = registry.find(stage.type);
+    if (!stage.info)
+      problems.push_back({at(here, "type"), "unknown stage '" + stage.type + "' (did you mean '" +
+                                                registry.closest(stage.type) + "'?)"});
+  }
+  stage.tag = stage.type + "#" + std::to_string(i);
+  if (raw.contains("tag")) {
+    if (!raw["tag"].is_string() || raw["tag"].get<std::string>().empty()) {
+      problems.push_back(
+          {at(here, "tag"), "expected a non-empty string, got " + raw["tag"].dump()});
+    } else {
+      stage.tag = raw["tag"].get<std::string>();
+      const auto [it, inserted] = graph.tag_index.emplace(stage.tag, i);
+      if (!inserted)
+        problems.push_back({at(here, "tag"), "duplicate tag '" + stage.tag + "' (first used by " +
+                                                 at("pipeline", it->second) + ")"});
+    }
+  }
+  if (raw.contains("inputs")) {
+    const auto& inputs = raw["inputs"];
+    if (inputs.is_string())
+      graph.input_tags[i].push_back(inputs.get<std::string>());
+    else if (inputs.is_array() &&
+             std::all_of(inputs.begin(), inputs.end(), [](const auto& t) { return t.is_string(); }))
+      for (const auto& t : inputs) graph.input_tags[i].push_back(t.get<std::string>());
+    else
+      problems.push_back(
+          {at(here, "inputs"), "expected a tag or an array of tags, got " + inputs.dump()});
+  }
+  if (stage.info) check_options(stage, raw, here, problems);
+  return stage;
+}
+
+// Inputs: explicit tags, or the previous stage for one-input stages.
+void resolve_inputs(Pipeline& pipeline, const StageGraph& graph, std::vector<Problem>& problems) {
   for (std::size_t i = 0; i < pipeline.stages.size(); ++i) {
     Stage& stage = pipeline.stages[i];
     if (!stage.info) continue;
     const std::string here = at("pipeline", i);
+    const std::vector<std::string>& tags = graph.input_tags[i];
     const int wanted = stage.info->inputs;
-    if (input_tags[i].empty()) {
+    if (tags.empty()) {
       if (wanted == 1 && i > 0)
         stage.inputs.push_back(i - 1);
       else if (wanted > 0)
@@ -343,23 +346,24 @@ Pipeline validate(const nlohmann::json& document, const std::string& name,
                                      : "'" + stage.type + "' needs \"inputs\" with 2 tags"});
       continue;
     }
-    if (int(input_tags[i].size()) != wanted) {
-      problems.push_back({at(here, "inputs"), "'" + stage.type + "' takes " +
-                                                  std::to_string(wanted) + " input" +
-                                                  (wanted == 1 ? "" : "s") + ", got " +
-                                                  std::to_string(input_tags[i].size())});
+    if (int(tags.size()) != wanted) {
+      problems.push_back({at(here, "inputs"),
+                          "'" + stage.type + "' takes " + std::to_string(wanted) + " input" +
+                              (wanted == 1 ? "" : "s") + ", got " + std::to_string(tags.size())});
       continue;
     }
-    for (std::size_t k = 0; k < input_tags[i].size(); ++k) {
-      const auto it = tag_index.find(input_tags[i][k]);
-      if (it == tag_index.end())
-        problems.push_back({at(at(here, "inputs"), k), "unknown tag '" + input_tags[i][k] + "'"});
+    for (std::size_t k = 0; k < tags.size(); ++k) {
+      const auto it = graph.tag_index.find(tags[k]);
+      if (it == graph.tag_index.end())
+        problems.push_back({at(at(here, "inputs"), k), "unknown tag '" + tags[k] + "'"});
       else
         stage.inputs.push_back(it->second);
     }
   }
+}
 
-  // A topological order; a cycle is reported with its tags.
+// A topological order of the stage graph (depth first); a cycle is reported with its tags.
+void order_stages(Pipeline& pipeline, std::vector<Problem>& problems) {
   std::vector<int> state(pipeline.stages.size(), 0);  // 0 new, 1 on the path, 2 done
   std::vector<std::size_t> path;
   bool cyclic = false;
@@ -382,8 +386,10 @@ Pipeline validate(const nlohmann::json& document, const std::string& name,
     pipeline.order.push_back(s);
   };
   for (std::size_t s = 0; s < pipeline.stages.size(); ++s) visit(s);
+}
 
-  // A read feeding only repair stages passes its mesh on unchecked.
+// A read feeding only repair stages passes its mesh on unchecked.
+void mark_unchecked_reads(Pipeline& pipeline) {
   for (Stage& r : pipeline.stages) {
     if (r.type != "read") continue;
     bool consumed = false, only_repairs = true;
@@ -394,8 +400,10 @@ Pipeline validate(const nlohmann::json& document, const std::string& name,
       }
     r.unchecked = consumed && only_repairs;
   }
+}
 
-  // No write may replace a file that a read stage (or a mesh SE) takes as input.
+// No write may replace a file that a read stage takes as input.
+void check_overwrites(const Pipeline& pipeline, std::vector<Problem>& problems) {
   for (const Stage& w : pipeline.stages) {
     if (w.type != "write" || !w.options.contains("path")) continue;
     const std::string out = w.options["path"].get<std::string>();
@@ -406,6 +414,30 @@ Pipeline validate(const nlohmann::json& document, const std::string& name,
             {at(at("pipeline", w.index), "path"),
              "would overwrite the input read by " + at("pipeline", r.index) + " (" + out + ")"});
   }
+}
+
+}  // namespace
+
+Pipeline validate(const nlohmann::json& document, const std::string& name,
+                  const Variables& variables, const std::vector<std::string>& deferred,
+                  const StageRegistry& registry) {
+  std::vector<Problem> problems;
+  Pipeline pipeline;
+  pipeline.name = name;
+  pipeline.document = document;
+  Variables bound = variables;  // --set wins over the document's defaults
+  const nlohmann::json stages = stages_and_variables(document, bound, problems);
+  if (!stages.is_array() || stages.empty())
+    throw PipelineError(std::vector<Problem>{{"pipeline", "expected a non-empty array of stages"}});
+  StageGraph graph;
+  graph.input_tags.resize(stages.size());
+  for (std::size_t i = 0; i < stages.size(); ++i)
+    pipeline.stages.push_back(
+        parse_stage(stages[i], i, bound, deferred, registry, graph, problems));
+  resolve_inputs(pipeline, graph, problems);
+  order_stages(pipeline, problems);
+  mark_unchecked_reads(pipeline);
+  check_overwrites(pipeline, problems);
   if (!problems.empty()) throw PipelineError(std::move(problems));
   return pipeline;
 }
