@@ -323,3 +323,17 @@ TEST(ErrorModel, EveryLibraryThrowsAMorphexErrorWithWhereAndProblem) {
   }
   EXPECT_THROW(parse_metric("cosine"), InputError);
 }
+
+// Typed options: validation builds a stage's structuring element once and the stage uses it.
+TEST(Validate, StructuringElementsAreBuiltOnceByValidation) {
+  const mp::Pipeline p = mp::validate(
+      nlohmann::json::parse(R"({"pipeline": [{"type": "read", "path": "a.off"},
+                                {"type": "dilate", "se": {"shape": "cube", "r": "1/4"}}]})"),
+      "p.json", {});
+  ASSERT_EQ(p.stages.size(), 2u);
+  EXPECT_TRUE(p.stages[0].elements.empty());
+  ASSERT_EQ(p.stages[1].elements.count("se"), 1u);
+  const StructuringElement& se = *p.stages[1].elements.at("se");
+  EXPECT_EQ(se.shape, "cube");
+  EXPECT_EQ(signed_volume(se.mesh), FT(1) / 8);  // a cube of half side 1/4
+}

@@ -145,7 +145,7 @@ Mesh boolean_stage(StageContext& c, BooleanOp op) {
 }
 
 Mesh morphology_stage(StageContext& c, MorphologyOp op) {
-  const StructuringElement se = detail::structuring_element(c.option("se"));
+  const StructuringElement& se = c.element("se");  // built once, by validation
   MorphologyStats stats;
   Mesh result = apply_morphology(op, *c.inputs[0], se, &stats);
   c.extra["se"] = se.spec;

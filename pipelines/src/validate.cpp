@@ -65,10 +65,15 @@ void substitute(nlohmann::json& value, const std::string& location, const Variab
   }
 }
 
-void check_option(const OptionInfo& option, const nlohmann::json& value,
-                  const std::string& location, std::vector<Problem>& problems) {
+// Checks one option's value against its type. A structuring element is built here (returned, so
+// that the stage does not build it again); other types return nullptr.
+std::shared_ptr<const StructuringElement> check_option(const OptionInfo& option,
+                                                       const nlohmann::json& value,
+                                                       const std::string& location,
+                                                       std::vector<Problem>& problems) {
   auto expected = [&](const std::string& what) {
     problems.push_back({location, "expected " + what + ", got " + value.dump()});
+    return nullptr;
   };
   switch (option.type) {
     case OptionType::String:
@@ -82,17 +87,17 @@ void check_option(const OptionInfo& option, const nlohmann::json& value,
         for (const auto& c : option.choices) list += (list.empty() ? "" : ", ") + c;
         return expected("one of " + list);
       }
-      return;
+      return nullptr;
     case OptionType::Bool:
       if (!value.is_boolean()) expected("true or false");
-      return;
+      return nullptr;
     case OptionType::Integer:
       if (!value.is_number_integer()) return expected("an integer");
       if ((option.min && value.get<double>() < *option.min) ||
           (option.max && value.get<double>() > *option.max))
         expected("an integer from " + std::to_string(long(*option.min)) + " to " +
                  std::to_string(long(*option.max)));
-      return;
+      return nullptr;
     case OptionType::Number: {
       FT x;
       try {
@@ -100,8 +105,8 @@ void check_option(const OptionInfo& option, const nlohmann::json& value,
       } catch (const std::exception&) {
         return expected(option.positive ? "a positive number" : "a number");
       }
-      if (option.positive && x <= 0) expected("a positive number");
-      return;
+      if (option.positive && x <= 0) return expected("a positive number");
+      return nullptr;
     }
     case OptionType::NumberList: {
       if (!value.is_array() || value.empty()) return expected("a non-empty array of numbers");
@@ -119,7 +124,7 @@ void check_option(const OptionInfo& option, const nlohmann::json& value,
           problems.push_back({at(location, i), "expected a number, got " + value[i].dump()});
         }
       }
-      return;
+      return nullptr;
     }
     case OptionType::Vector3:
       if (!value.is_array() || value.size() != 3) return expected("an array of 3 numbers");
@@ -130,10 +135,10 @@ void check_option(const OptionInfo& option, const nlohmann::json& value,
           problems.push_back({at(location, i), "expected a number, got " + value[i].dump()});
         }
       }
-      return;
+      return nullptr;
     case OptionType::StructuringElement:
       try {
-        detail::structuring_element(value);
+        return std::make_shared<const StructuringElement>(detail::structuring_element(value));
       } catch (const StructuringElementError& e) {
         problems.push_back(
             {value.is_object() && !e.key().empty() ? at(location, e.key()) : location,
@@ -141,8 +146,9 @@ void check_option(const OptionInfo& option, const nlohmann::json& value,
       } catch (const std::exception& e) {  // an unreadable mesh:path=FILE
         problems.push_back({value.is_object() ? at(location, "path") : location, e.what()});
       }
-      return;
+      return nullptr;
   }
+  return nullptr;
 }
 
 }  // namespace
@@ -261,14 +267,18 @@ void check_options(Stage& stage, const nlohmann::json& raw, const std::string& h
                               (known.empty() ? "it takes no options" : "known: " + known) + ")"});
       continue;
     }
-    check_option(*option, item.value(), at(here, key), problems);
+    if (auto element = check_option(*option, item.value(), at(here, key), problems))
+      stage.elements[key] = std::move(element);
     stage.options[key] = item.value();
   }
   for (const OptionInfo& option : options) {
     if (stage.options.contains(option.name)) continue;
-    if (option.default_value)
+    if (option.default_value) {
       stage.options[option.name] = *option.default_value;
-    else
+      if (option.type == OptionType::StructuringElement)
+        stage.elements[option.name] =
+            check_option(option, *option.default_value, at(here, option.name), problems);
+    } else
       problems.push_back({at(here, option.name), "missing (required by '" + stage.type + "')"});
   }
 }

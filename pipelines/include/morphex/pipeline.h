@@ -17,6 +17,7 @@
 
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -24,6 +25,7 @@
 
 #include "morphex/mesh.h"
 #include "morphex/repair.h"
+#include "morphex/structuring_element.h"
 
 namespace morphex::pipeline {
 
@@ -110,6 +112,8 @@ struct Stage {
   // A read whose mesh goes only to repair stages: passed on as read, not refused when it is not
   // a valid solid (the repair says what it cannot repair).
   bool unchecked = false;
+  // Structuring-element options, built once by validation (a mesh SE reads its file then).
+  std::map<std::string, std::shared_ptr<const StructuringElement>> elements;
 };
 
 struct Pipeline {
@@ -182,6 +186,9 @@ struct StageContext {
   std::vector<const Mesh*> inputs;
   nlohmann::json extra;  // facts for the report
   const nlohmann::json& option(const std::string& name) const { return stage.options.at(name); }
+  const StructuringElement& element(const std::string& name) const {
+    return *stage.elements.at(name);
+  }
 };
 
 }  // namespace morphex::pipeline
