@@ -189,19 +189,25 @@ std::vector<Case> generated_cases(int max_level, const std::string& demo_dir) {
   return cases;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+// The command line's settings, with their defaults.
+struct Options {
   BooleanOp op = BooleanOp::Union;
   int max_level = 5;
   std::size_t nef_max_faces = 3000;
   std::string json_path, only, a_path, b_path;
   bool phases = false, peers_too = true;
   std::size_t threads = 0;  // 0: all cores
-  const char* home = std::getenv("HOME");
-  std::string demo_dir = std::string(home ? home : ".") + "/.cache/morphex/cgal-demo";
+  std::string demo_dir;
   double degrees = 0;
-  Vector offset(0, 0, 0);
+  Vector offset = Vector(0, 0, 0);
+};
+
+// The command line (see the top of this file), or nullopt after reporting an unknown argument.
+// An option missing its value throws, ending the run.
+std::optional<Options> parse_arguments(int argc, char** argv) {
+  Options o;
+  const char* home = std::getenv("HOME");
+  o.demo_dir = std::string(home ? home : ".") + "/.cache/morphex/cgal-demo";
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto next = [&]() -> std::string {
@@ -209,199 +215,262 @@ int main(int argc, char** argv) {
       return argv[++i];
     };
     if (arg == "--op")
-      op = parse_boolean_op(next());
+      o.op = parse_boolean_op(next());
     else if (arg == "--max-level")
-      max_level = std::stoi(next());
+      o.max_level = std::stoi(next());
     else if (arg == "--nef-max-faces")
-      nef_max_faces = std::stoul(next());
+      o.nef_max_faces = std::stoul(next());
     else if (arg == "--json")
-      json_path = next();
+      o.json_path = next();
     else if (arg == "--demo-dir")
-      demo_dir = next();
+      o.demo_dir = next();
     else if (arg == "--only")
-      only = next();
+      o.only = next();
     else if (arg == "--phases")
-      phases = true;
+      o.phases = true;
     else if (arg == "--no-peers")
-      peers_too = false;
+      o.peers_too = false;
     else if (arg == "--threads")
-      threads = std::stoul(next());
+      o.threads = std::stoul(next());
     else if (arg == "--rotate")
-      degrees = std::stod(next());
+      o.degrees = std::stod(next());
     else if (arg == "--translate") {
       const double x = std::stod(next()), y = std::stod(next()), z = std::stod(next());
-      offset = Vector(x, y, z);
-    } else if (arg.rfind("--", 0) != 0 && a_path.empty())
-      a_path = arg;
-    else if (arg.rfind("--", 0) != 0 && b_path.empty())
-      b_path = arg;
+      o.offset = Vector(x, y, z);
+    } else if (arg.rfind("--", 0) != 0 && o.a_path.empty())
+      o.a_path = arg;
+    else if (arg.rfind("--", 0) != 0 && o.b_path.empty())
+      o.b_path = arg;
     else {
       std::cerr << "bench_bool: unknown argument " << arg << "\n";
-      return 2;
+      return std::nullopt;
     }
   }
-  std::vector<Case> cases;
-  if (!a_path.empty()) {
-    if (b_path.empty()) b_path = a_path;
-    Mesh b = read_mesh(b_path);
-    if (degrees != 0) b = transformed(b, rational_rotation(degrees));
-    b = translated(b, offset);
-    make_exact(b);
-    cases.push_back({a_path + " vs " + b_path, read_mesh(a_path), b});
-  } else {
-    cases = generated_cases(max_level, demo_dir);
-  }
+  return o;
+}
 
-  // Limits morphex's TBB phases; CGAL's corefinement and Nef run sequentially anyway.
-  std::optional<tbb::global_control> thread_limit;
-  if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, threads);
-  nlohmann::json rows = nlohmann::json::array();
-  bool all_agree = true;
+// The cases to run: the pair of files given (B moved as asked, A against itself without B), or
+// the generated cases.
+std::vector<Case> make_cases(const Options& o) {
+  if (o.a_path.empty()) return generated_cases(o.max_level, o.demo_dir);
+  const std::string b_path = o.b_path.empty() ? o.a_path : o.b_path;
+  Mesh b = read_mesh(b_path);
+  if (o.degrees != 0) b = transformed(b, rational_rotation(o.degrees));
+  b = translated(b, o.offset);
+  make_exact(b);
+  std::vector<Case> cases;
+  cases.push_back({o.a_path + " vs " + b_path, read_mesh(o.a_path), b});
+  return cases;
+}
+
+// Each child first runs its engine once on two small crossing cubes, untimed: one-time costs
+// (thread pool start, first allocations) are not part of the time per operation that a chain of
+// Booleans sees.
+struct Warmup {
+  Mesh a, b;
+};
+
+using Result = std::optional<std::pair<double, FT>>;
+
+// A forked child shares the parent's pages until it writes them, and copying a point handle
+// writes its reference count. Each child makes its inputs its own before any clock starts, as a
+// process that read them would have them (corefinement's input conversion does it anyway).
+void own_inputs(const Case& c) {
+  const Mesh a = c.a, b = c.b;
+}
+
+// morphex's phase times and counts, as the child sends them back in its note.
+std::string phase_note(const PhaseSeconds& p, const BooleanStats& s) {
+  std::ostringstream note;
+  note << p.pairs << ' ' << p.segments << ' ' << p.retriangulate << ' ' << p.classify << ' '
+       << p.assemble << " pairs " << s.candidate_pairs << " intersecting " << s.intersecting_pairs
+       << " cut " << s.cut_facets_a << "+" << s.cut_facets_b << " points " << s.intersection_points
+       << " patches " << s.patches << " (ray cast " << s.patches_by_ray_cast << ")";
+  return note.str();
+}
+
+// The operation is timed on inputs taken as valid, as corefinement takes them; the validity
+// check that compute_boolean runs by default is timed on its own (run_check).
+Run run_morphex(const Case& c, BooleanOp op, const Warmup& warm) {
+  return in_child([&]() -> Result {
+    BooleanOptions trusted;
+    trusted.validate_inputs = false;
+    compute_boolean(warm.a, warm.b, op, trusted);
+    own_inputs(c);
+    BooleanResult r;
+    std::vector<std::pair<double, PhaseSeconds>> runs;
+    const double seconds = median_seconds([&] {
+      r = BooleanResult{};  // the previous run's result is freed off the clock, as the peers'
+      const Stopwatch start;
+      r = compute_boolean(c.a, c.b, op, trusted);
+      runs.emplace_back(start.seconds(), r.stats.seconds);
+      return runs.back().first;
+    });
+    if (!r.ok()) return std::nullopt;
+    // Phases are measured in the timed runs themselves (the median one): a parent that ran TBB
+    // would hand its children a thread pool whose workers were not forked with them.
+    std::sort(runs.begin(), runs.end(),
+              [](const auto& x, const auto& y) { return x.first < y.first; });
+    child_note = phase_note(runs[runs.size() / 2].second, r.stats);
+    return std::make_pair(seconds, signed_volume(r.mesh));
+  });
+}
+
+// morphex's validity check of both inputs (fails when either is not a valid solid).
+Run run_check(const Case& c, const Warmup& warm) {
+  return in_child([&]() -> Result {
+    check_mesh(warm.a, kValidityOnly);
+    own_inputs(c);
+    bool valid = false;
+    const double seconds = median_seconds([&] {
+      const Stopwatch start;
+      valid = check_mesh(c.a, kValidityOnly).valid_solid() &&
+              check_mesh(c.b, kValidityOnly).valid_solid();
+      return start.seconds();
+    });
+    if (!valid) return std::nullopt;
+    return std::make_pair(seconds, FT(0));
+  });
+}
+
+// CGAL's corefinement; without peers the child still runs, and reports nothing.
+Run run_corefinement(const Case& c, BooleanOp op, bool peers_too, const Warmup& warm) {
+  return in_child([&]() -> Result {
+    if (!peers_too) return std::nullopt;
+    peers::corefinement_boolean(warm.a, warm.b, op);
+    own_inputs(c);
+    std::optional<peers::PeerResult> r;
+    const double seconds = median_seconds([&] {
+      r = peers::corefinement_boolean(c.a, c.b, op);
+      return r ? r->seconds : 0.0;
+    });
+    if (r) return std::make_pair(seconds, r->volume);
+    return std::nullopt;
+  });
+}
+
+// CGAL's Nef polyhedra, timed with the conversions in.
+Run run_nef(const Case& c, BooleanOp op, const Warmup& warm) {
+  return in_child([&]() -> Result {
+    peers::nef_boolean(warm.a, warm.b, op);
+    own_inputs(c);
+    peers::PeerResult r;
+    const double seconds = median_seconds([&] {
+      r = peers::nef_boolean(c.a, c.b, op);  // conversions in
+      return r.seconds;
+    });
+    return std::make_pair(seconds, r.volume);
+  });
+}
+
+// One case's run of each engine (a run that did not happen has ok false, and prints "-").
+struct Runs {
+  Run ours, check, coref, nef;
+};
+
+// All engines on one case, each in its own child. Nef, far slower than the others, runs only on
+// cases of at most --nef-max-faces input faces (and only with the peers).
+Runs run_case(const Case& c, const Options& o, std::size_t faces, const Warmup& warm) {
+  Runs runs;
+  runs.ours = run_morphex(c, o.op, warm);
+  runs.check = run_check(c, warm);
+  runs.coref = run_corefinement(c, o.op, o.peers_too, warm);
+  if (o.peers_too && faces <= o.nef_max_faces) runs.nef = run_nef(c, o.op, warm);
+  return runs;
+}
+
+// The last column of a row: failures and whether the exact volumes agree.
+std::string volume_agreement(const Runs& r, bool peers_too) {
+  std::string out = r.ours.ok ? "" : "morphex FAILED";
+  if (!r.check.ok) out += "INVALID INPUT ";
+  if (r.ours.ok && r.coref.ok)
+    out += r.ours.volume == r.coref.volume ? "=coref " : "DIFFER(coref) ";
+  if (r.ours.ok && r.nef.ok) out += r.ours.volume == r.nef.volume ? "=Nef" : "DIFFER(Nef)";
+  if (!r.coref.ok && peers_too) out += " (coref failed)";
+  return out;
+}
+
+// Whether a case passed: morphex and the check succeeded, and every peer that succeeded computed
+// the same exact volume.
+bool agrees(const Runs& r) {
+  return r.ours.ok && r.check.ok && (!r.coref.ok || r.ours.volume == r.coref.volume) &&
+         (!r.nef.ok || r.ours.volume == r.nef.volume);
+}
+
+// The table's column titles; the widths match print_row's.
+void print_header() {
   std::cout << std::left << std::setw(36) << "case" << std::right << std::setw(9) << "faces"
             << std::setw(10) << "morphex" << std::setw(9) << "check" << std::setw(10) << "coref"
             << std::setw(9) << "ratio" << std::setw(10) << "Nef" << std::setw(9) << "ratio"
             << std::setw(12) << "tri/s" << std::setw(14) << "MiB m/c/N"
             << "  volumes\n";
-  // Each child first runs its engine once on two small crossing cubes, untimed: one-time costs
-  // (thread pool start, first allocations) are not part of the time per operation that a chain of
-  // Booleans sees.
-  const Mesh warm_a = make_box(Point(0, 0, 0), Point(1, 1, 1));
-  const Mesh warm_b = make_box(Point(FT(1) / 3, FT(1) / 5, FT(1) / 7), Point(2, 2, 2));
-  for (const Case& c : cases) {
-    if (!only.empty() && c.name.find(only) == std::string::npos) continue;
-    const std::size_t faces = c.a.num_triangles() + c.b.num_triangles();
-    // A forked child shares the parent's pages until it writes them, and copying a point handle
-    // writes its reference count. Each child makes its inputs its own before any clock starts, as
-    // a process that read them would have them (corefinement's input conversion does it anyway).
-    const auto own_inputs = [&c] { const Mesh a = c.a, b = c.b; };
-    using Result = std::optional<std::pair<double, FT>>;
-    // The operation is timed on inputs taken as valid, as corefinement takes them; the validity
-    // check that compute_boolean runs by default is timed on its own (the "check" column).
-    const Run ours = in_child([&]() -> Result {
-      BooleanOptions trusted;
-      trusted.validate_inputs = false;
-      compute_boolean(warm_a, warm_b, op, trusted);
-      own_inputs();
-      BooleanResult r;
-      std::vector<std::pair<double, PhaseSeconds>> runs;
-      const double seconds = median_seconds([&] {
-        r = BooleanResult{};  // the previous run's result is freed off the clock, as the peers'
-        const Stopwatch start;
-        r = compute_boolean(c.a, c.b, op, trusted);
-        runs.emplace_back(start.seconds(), r.stats.seconds);
-        return runs.back().first;
-      });
-      if (!r.ok()) return std::nullopt;
-      // Phases are measured in the timed runs themselves (the median one): a parent that ran TBB
-      // would hand its children a thread pool whose workers were not forked with them.
-      std::sort(runs.begin(), runs.end(),
-                [](const auto& x, const auto& y) { return x.first < y.first; });
-      const PhaseSeconds& p = runs[runs.size() / 2].second;
-      std::ostringstream note;
-      note << p.pairs << ' ' << p.segments << ' ' << p.retriangulate << ' ' << p.classify << ' '
-           << p.assemble << " pairs " << r.stats.candidate_pairs << " intersecting "
-           << r.stats.intersecting_pairs << " cut " << r.stats.cut_facets_a << "+"
-           << r.stats.cut_facets_b << " points " << r.stats.intersection_points << " patches "
-           << r.stats.patches << " (ray cast " << r.stats.patches_by_ray_cast << ")";
-      child_note = note.str();
-      return std::make_pair(seconds, signed_volume(r.mesh));
-    });
-    const Run check = in_child([&]() -> Result {
-      check_mesh(warm_a, kValidityOnly);
-      own_inputs();
-      bool valid = false;
-      const double seconds = median_seconds([&] {
-        const Stopwatch start;
-        valid = check_mesh(c.a, kValidityOnly).valid_solid() &&
-                check_mesh(c.b, kValidityOnly).valid_solid();
-        return start.seconds();
-      });
-      if (!valid) return std::nullopt;
-      return std::make_pair(seconds, FT(0));
-    });
-    const Run coref = in_child([&]() -> Result {
-      if (!peers_too) return std::nullopt;
-      peers::corefinement_boolean(warm_a, warm_b, op);
-      own_inputs();
-      std::optional<peers::PeerResult> r;
-      const double seconds = median_seconds([&] {
-        r = peers::corefinement_boolean(c.a, c.b, op);
-        return r ? r->seconds : 0.0;
-      });
-      if (r) return std::make_pair(seconds, r->volume);
-      return std::nullopt;
-    });
-    Run nef;
-    if (peers_too && faces <= nef_max_faces)
-      nef = in_child([&]() -> Result {
-        peers::nef_boolean(warm_a, warm_b, op);
-        own_inputs();
-        peers::PeerResult r;
-        const double seconds = median_seconds([&] {
-          r = peers::nef_boolean(c.a, c.b, op);  // conversions in
-          return r.seconds;
-        });
-        return std::make_pair(seconds, r.volume);
-      });
-    std::string agreement = ours.ok ? "" : "morphex FAILED";
-    if (!check.ok) agreement += "INVALID INPUT ";
-    if (ours.ok && coref.ok)
-      agreement += ours.volume == coref.volume ? "=coref " : "DIFFER(coref) ";
-    if (ours.ok && nef.ok) agreement += ours.volume == nef.volume ? "=Nef" : "DIFFER(Nef)";
-    if (!coref.ok && peers_too) agreement += " (coref failed)";
-    all_agree = all_agree && ours.ok && check.ok && (!coref.ok || ours.volume == coref.volume) &&
-                (!nef.ok || ours.volume == nef.volume);
-    auto cell = [](const Run& r, double value) {
-      std::ostringstream out;
-      if (r.ok)
-        out << std::setprecision(3) << value;
-      else
-        out << "-";
-      return out.str();
-    };
-    std::cout << std::left << std::setw(36) << c.name.substr(0, 35) << std::right << std::setw(9)
-              << faces << std::setw(10) << cell(ours, ours.seconds) << std::setw(9)
-              << cell(check, check.seconds) << std::setw(10) << cell(coref, coref.seconds)
-              << std::setw(9) << cell(coref, coref.seconds / ours.seconds) << std::setw(10)
-              << cell(nef, nef.seconds) << std::setw(9) << cell(nef, nef.seconds / ours.seconds)
-              << std::setw(12) << cell(ours, double(faces) / ours.seconds) << ' ' << std::setw(15)
-              << (cell(ours, ours.peak_mib) + "/" + cell(coref, coref.peak_mib) + "/" +
-                  cell(nef, nef.peak_mib))
-              << "  " << agreement << '\n';
-    nlohmann::json row = {{"case", c.name},
-                          {"op", to_string(op)},
-                          {"faces", faces},
-                          {"morphex_seconds", ours.seconds},
-                          {"morphex_peak_mib", ours.peak_mib},
-                          {"morphex_check_seconds", check.seconds},
-                          {"threads", threads > 0 ? threads : std::thread::hardware_concurrency()},
-                          {"agree", all_agree}};
-    if (coref.ok) {
-      row["corefinement_seconds"] = coref.seconds;
-      row["corefinement_peak_mib"] = coref.peak_mib;
-      row["ratio_corefinement"] = coref.seconds / ours.seconds;
-    }
-    if (nef.ok) {
-      row["nef_seconds"] = nef.seconds;
-      row["nef_peak_mib"] = nef.peak_mib;
-      row["ratio_nef"] = nef.seconds / ours.seconds;
-    }
-    if (phases && ours.ok) {
-      std::istringstream in(ours.note);
-      std::cout << "    phases:";
-      for (const char* name : {"pairs", "segments", "retriangulate", "classify", "assemble"}) {
-        double seconds = 0;
-        in >> seconds;
-        std::cout << ' ' << name << ' ' << std::setprecision(3) << seconds;
-        row["morphex_phase_seconds"][name] = seconds;
-      }
-      std::string counts;
-      std::getline(in, counts);
-      std::cout << " |" << counts << "\n";
-    }
-    rows.push_back(row);
+}
+
+// One row of the table: a failed run's cells show "-".
+void print_row(const Case& c, std::size_t faces, const Runs& runs, const std::string& agreement) {
+  const Run &ours = runs.ours, &check = runs.check, &coref = runs.coref, &nef = runs.nef;
+  auto cell = [](const Run& r, double value) {
+    std::ostringstream out;
+    if (r.ok)
+      out << std::setprecision(3) << value;
+    else
+      out << "-";
+    return out.str();
+  };
+  std::cout << std::left << std::setw(36) << c.name.substr(0, 35) << std::right << std::setw(9)
+            << faces << std::setw(10) << cell(ours, ours.seconds) << std::setw(9)
+            << cell(check, check.seconds) << std::setw(10) << cell(coref, coref.seconds)
+            << std::setw(9) << cell(coref, coref.seconds / ours.seconds) << std::setw(10)
+            << cell(nef, nef.seconds) << std::setw(9) << cell(nef, nef.seconds / ours.seconds)
+            << std::setw(12) << cell(ours, double(faces) / ours.seconds) << ' ' << std::setw(15)
+            << (cell(ours, ours.peak_mib) + "/" + cell(coref, coref.peak_mib) + "/" +
+                cell(nef, nef.peak_mib))
+            << "  " << agreement << '\n';
+}
+
+// One case's JSON row; `all_agree` is whether this and every earlier case passed.
+nlohmann::json json_row(const Case& c, const Options& o, std::size_t faces, const Runs& r,
+                        bool all_agree) {
+  nlohmann::json row = {
+      {"case", c.name},
+      {"op", to_string(o.op)},
+      {"faces", faces},
+      {"morphex_seconds", r.ours.seconds},
+      {"morphex_peak_mib", r.ours.peak_mib},
+      {"morphex_check_seconds", r.check.seconds},
+      {"threads", o.threads > 0 ? o.threads : std::thread::hardware_concurrency()},
+      {"agree", all_agree}};
+  if (r.coref.ok) {
+    row["corefinement_seconds"] = r.coref.seconds;
+    row["corefinement_peak_mib"] = r.coref.peak_mib;
+    row["ratio_corefinement"] = r.coref.seconds / r.ours.seconds;
   }
-  if (!json_path.empty()) std::ofstream(json_path) << rows.dump(2) << '\n';
+  if (r.nef.ok) {
+    row["nef_seconds"] = r.nef.seconds;
+    row["nef_peak_mib"] = r.nef.peak_mib;
+    row["ratio_nef"] = r.nef.seconds / r.ours.seconds;
+  }
+  return row;
+}
+
+// --phases: morphex's time per phase (from the note run_morphex sent back) under the row, and
+// into the JSON row.
+void print_phases(const std::string& note, nlohmann::json& row) {
+  std::istringstream in(note);
+  std::cout << "    phases:";
+  for (const char* name : {"pairs", "segments", "retriangulate", "classify", "assemble"}) {
+    double seconds = 0;
+    in >> seconds;
+    std::cout << ' ' << name << ' ' << std::setprecision(3) << seconds;
+    row["morphex_phase_seconds"][name] = seconds;
+  }
+  std::string counts;
+  std::getline(in, counts);
+  std::cout << " |" << counts << "\n";
+}
+
+// What the columns mean, under the table, so that a saved log explains itself.
+void print_legend() {
   std::cout
       << "ratio = peer time / morphex time (above 1: morphex is faster); tri/s = input "
          "triangles per second of morphex; MiB = peak memory above the inputs, morphex / "
@@ -410,5 +479,35 @@ int main(int argc, char** argv) {
          "morphex's validity check of both inputs, which compute_boolean runs by default. Both "
          "return exact output points that are evaluated lazily (as CGAL's Epeck constructions "
          "are); the volumes compared are exact.\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::optional<Options> options = parse_arguments(argc, argv);
+  if (!options) return 2;
+  const Options& o = *options;
+  const std::vector<Case> cases = make_cases(o);
+
+  // Limits morphex's TBB phases; CGAL's corefinement and Nef run sequentially anyway.
+  std::optional<tbb::global_control> thread_limit;
+  if (o.threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
+  nlohmann::json rows = nlohmann::json::array();
+  bool all_agree = true;
+  print_header();
+  const Warmup warm{make_box(Point(0, 0, 0), Point(1, 1, 1)),
+                    make_box(Point(FT(1) / 3, FT(1) / 5, FT(1) / 7), Point(2, 2, 2))};
+  for (const Case& c : cases) {
+    if (!o.only.empty() && c.name.find(o.only) == std::string::npos) continue;
+    const std::size_t faces = c.a.num_triangles() + c.b.num_triangles();
+    const Runs runs = run_case(c, o, faces, warm);
+    all_agree = all_agree && agrees(runs);
+    print_row(c, faces, runs, volume_agreement(runs, o.peers_too));
+    nlohmann::json row = json_row(c, o, faces, runs, all_agree);
+    if (o.phases && runs.ours.ok) print_phases(runs.ours.note, row);
+    rows.push_back(row);
+  }
+  if (!o.json_path.empty()) std::ofstream(o.json_path) << rows.dump(2) << '\n';
+  print_legend();
   return all_agree ? 0 : 1;
 }

@@ -67,153 +67,199 @@ struct AroundEdge {
 
 constexpr std::uint32_t kNone = 0xffffffffu;
 
-}  // namespace
+// A corner (f, k), numbered 3 f + k, sits at faces[f][k]; half-edge (f, k) leaves it for
+// faces[f][k + 1], and half-edge (f, k - 1) arrives at it from faces[f][k - 1].
+struct Corners {
+  const std::vector<Triangle>& faces;
+  PointId at(std::uint32_t corner) const { return faces[corner / 3][corner % 3]; }
+  PointId next(std::uint32_t corner) const { return faces[corner / 3][(corner % 3 + 1) % 3]; }
+  PointId previous(std::uint32_t corner) const { return faces[corner / 3][(corner % 3 + 2) % 3]; }
+};
 
-// Half-edge (f, k) runs faces[f][k] -> faces[f][k + 1]; the corner (f, k) sits at faces[f][k].
-// At a special point, each corner is attached to the corner of the face across each of its two
-// edges there; a non-manifold edge pairs its faces by the solid wedges between them. Each fan of
-// attached corners becomes one vertex.
-//
-// Fans do not always tell the pairs of a non-manifold edge apart: where the solid is two opposite
-// wedges along the edge but one piece around each end (a solid minus two boxes sharing an edge),
-// each end is a single fan, and both pairs of faces would share one edge. Each such extra pair is
-// split at the edge's midpoint, a vertex of its own (coincident midpoints only touch).
-IdMesh separate_non_manifold(PointTable& points, const std::vector<Triangle>& faces,
-                             const std::vector<std::uint8_t>& special,
-                             std::vector<FaceOrigin>* origin) {
+// The corners at special points as (point, corner), sorted, so each point's corners are
+// contiguous. Gathered in parallel blocks of faces: the faces are many, the special corners few.
+std::vector<std::pair<PointId, std::uint32_t>> special_corners(
+    const std::vector<Triangle>& faces, const std::vector<std::uint8_t>& special) {
   const std::size_t nf = faces.size();
-  // Corners at special points, grouped by point (gathered in parallel blocks of faces).
   std::vector<std::pair<PointId, std::uint32_t>> corners;
-  {
-    constexpr std::uint32_t kBlock = 4096;
-    const std::uint32_t blocks = std::uint32_t((nf + kBlock - 1) / kBlock);
-    std::vector<std::uint32_t> first(blocks + 1, 0);
-    tbb::parallel_for(std::uint32_t(0), blocks, [&](std::uint32_t k) {
-      for (std::uint32_t f = k * kBlock; f < std::min<std::size_t>(nf, (k + 1) * kBlock); ++f)
-        for (PointId p : faces[f]) first[k + 1] += special[p] != 0;
-    });
-    for (std::uint32_t k = 0; k < blocks; ++k) first[k + 1] += first[k];
-    corners.resize(first[blocks]);
-    tbb::parallel_for(std::uint32_t(0), blocks, [&](std::uint32_t k) {
-      std::uint32_t slot = first[k];
-      for (std::uint32_t f = k * kBlock; f < std::min<std::size_t>(nf, (k + 1) * kBlock); ++f)
-        for (int i = 0; i < 3; ++i)
-          if (special[faces[f][i]]) corners[slot++] = {faces[f][i], f * 3 + i};
-    });
-  }
+  constexpr std::uint32_t kBlock = 4096;
+  const std::uint32_t blocks = std::uint32_t((nf + kBlock - 1) / kBlock);
+  std::vector<std::uint32_t> first(blocks + 1, 0);
+  tbb::parallel_for(std::uint32_t(0), blocks, [&](std::uint32_t k) {
+    for (std::uint32_t f = k * kBlock; f < std::min<std::size_t>(nf, (k + 1) * kBlock); ++f)
+      for (PointId p : faces[f]) first[k + 1] += special[p] != 0;
+  });
+  for (std::uint32_t k = 0; k < blocks; ++k) first[k + 1] += first[k];
+  corners.resize(first[blocks]);
+  tbb::parallel_for(std::uint32_t(0), blocks, [&](std::uint32_t k) {
+    std::uint32_t slot = first[k];
+    for (std::uint32_t f = k * kBlock; f < std::min<std::size_t>(nf, (k + 1) * kBlock); ++f)
+      for (int i = 0; i < 3; ++i)
+        if (special[faces[f][i]]) corners[slot++] = {faces[f][i], f * 3 + i};
+  });
   tbb::parallel_sort(corners.begin(), corners.end());
-  auto at = [&](std::uint32_t corner) { return faces[corner / 3][corner % 3]; };
-  auto next = [&](std::uint32_t corner) { return faces[corner / 3][(corner % 3 + 1) % 3]; };
-  auto previous = [&](std::uint32_t corner) { return faces[corner / 3][(corner % 3 + 2) % 3]; };
+  return corners;
+}
 
-  // fan[i]: union-find over the special corners (by their index in `corners`).
-  UnionFind fans(corners.size());
-  FlatMap<std::uint64_t, std::uint32_t, Hash64> slot_of_corner(corners.size());
-  for (std::uint32_t i = 0; i < corners.size(); ++i) slot_of_corner.emplace(corners[i].second, i);
-  // Non-manifold edges (lo, hi): each pair of faces that the radial order put together.
-  struct WedgePair {
-    PointId lo, hi;
-    std::uint32_t faces[2];
-  };
-  std::vector<WedgePair> wedge_pairs;
-  std::vector<std::pair<PointId, std::uint32_t>> leaving, arriving;  // (w, slot) at one point
-  for (std::size_t begin = 0; begin < corners.size();) {
-    std::size_t end = begin + 1;
-    while (end < corners.size() && corners[end].first == corners[begin].first) ++end;
-    const PointId v = corners[begin].first;
-    // Half-edges v -> w leave the corner (f, k); half-edges w -> v arrive at it from (f, k - 1).
-    // Join each corner to the corner whose arriving half-edge is the mate of its leaving one.
-    leaving.clear();
-    arriving.clear();
-    for (std::size_t i = begin; i < end; ++i) {
-      leaving.emplace_back(next(corners[i].second), std::uint32_t(i));
-      arriving.emplace_back(previous(corners[i].second), std::uint32_t(i));
+// A pair of faces along the non-manifold edge (lo, hi) that the radial order put together.
+struct WedgePair {
+  PointId lo, hi;
+  std::uint32_t faces[2];
+};
+
+// The fans of attached corners at the special points: at each point, each corner is joined to
+// the corner whose arriving half-edge is the mate of its leaving one; the faces of a non-manifold
+// edge are paired by the solid wedges between them.
+class Fans {
+ public:
+  Fans(const PointTable& points, const std::vector<Triangle>& faces,
+       std::vector<std::pair<PointId, std::uint32_t>> corners)
+      : points_(points),
+        faces_{faces},
+        corners_(std::move(corners)),
+        sets_(corners_.size()),
+        slot_of_corner_(corners_.size()) {
+    for (std::uint32_t i = 0; i < corners_.size(); ++i)
+      slot_of_corner_.emplace(corners_[i].second, i);
+  }
+
+  // Joins the fans at every special point, in the order of the points.
+  void join_all() {
+    for (std::size_t begin = 0; begin < corners_.size();) {
+      std::size_t end = begin + 1;
+      while (end < corners_.size() && corners_[end].first == corners_[begin].first) ++end;
+      join_at(begin, end);
+      begin = end;
     }
-    std::sort(leaving.begin(), leaving.end());
-    std::sort(arriving.begin(), arriving.end());
-    for (std::size_t i = 0, j = 0; i < leaving.size();) {
-      const PointId w = leaving[i].first;
+  }
+
+  std::size_t size() const { return corners_.size(); }
+  // The fan of a corner at a special point: the same number for all the corners of one fan.
+  std::uint32_t fan_of(std::uint64_t corner) const {
+    return sets_.root(*slot_of_corner_.find(corner));
+  }
+  const std::vector<WedgePair>& wedge_pairs() const { return wedge_pairs_; }
+
+ private:
+  using Slots = std::vector<std::pair<PointId, std::uint32_t>>;  // (w, slot) at one point
+
+  // The corners [begin, end) of `corners_`, all at one point v. Half-edges v -> w leave the
+  // corner (f, k); half-edges w -> v arrive at it from (f, k - 1). Edges vw with one of each
+  // join their two corners; edges with several are paired radially.
+  void join_at(std::size_t begin, std::size_t end) {
+    const PointId v = corners_[begin].first;
+    leaving_.clear();
+    arriving_.clear();
+    for (std::size_t i = begin; i < end; ++i) {
+      leaving_.emplace_back(faces_.next(corners_[i].second), std::uint32_t(i));
+      arriving_.emplace_back(faces_.previous(corners_[i].second), std::uint32_t(i));
+    }
+    std::sort(leaving_.begin(), leaving_.end());
+    std::sort(arriving_.begin(), arriving_.end());
+    for (std::size_t i = 0, j = 0; i < leaving_.size();) {
+      const PointId w = leaving_[i].first;
       std::size_t i_end = i;
-      while (i_end < leaving.size() && leaving[i_end].first == w) ++i_end;
-      while (j < arriving.size() && arriving[j].first < w) ++j;
+      while (i_end < leaving_.size() && leaving_[i_end].first == w) ++i_end;
+      while (j < arriving_.size() && arriving_[j].first < w) ++j;
       std::size_t j_end = j;
-      while (j_end < arriving.size() && arriving[j_end].first == w) ++j_end;
-      if (i_end - i == 1 && j_end - j == 1) {
-        fans.join(leaving[i].second, arriving[j].second);
-      } else if (i_end - i == j_end - j && i_end > i) {
-        // Several solids meet along the edge vw: sort its faces around the axis u->v with
-        // u < v (the same order seen from both ends) and pair each face that runs u->v with the
-        // one just before it (the wedge between them is inside the solid).
-        struct HalfEdge {
-          std::uint32_t corner;  // the face's corner at v
-          bool leaves_v;
-        };
-        std::vector<HalfEdge> hs;
-        for (std::size_t t = i; t < i_end; ++t)
-          hs.push_back({corners[leaving[t].second].second, true});
-        for (std::size_t t = j; t < j_end; ++t)
-          hs.push_back({corners[arriving[t].second].second, false});
-        const PointId lo = std::min(v, w), hi = std::max(v, w);
-        auto third = [&](const HalfEdge& h) {
-          return h.leaves_v ? previous(h.corner) : next(h.corner);
-        };
-        auto face_of = [](const HalfEdge& h) { return h.corner / 3; };
-        std::sort(hs.begin(), hs.end(),
-                  [&](const HalfEdge& x, const HalfEdge& y) { return face_of(x) < face_of(y); });
-        const AroundEdge order{points, lo, hi, third(hs[0])};
-        std::sort(hs.begin(), hs.end(),
-                  [&](const HalfEdge& x, const HalfEdge& y) { return order(third(x), third(y)); });
-        for (std::size_t t = 0; t < hs.size(); ++t) {
-          const bool runs_lo_hi = hs[t].leaves_v == (v == lo);
-          if (!runs_lo_hi) continue;
-          const HalfEdge& before = hs[(t + hs.size() - 1) % hs.size()];
-          // One of the two leaves v and the other arrives at it: their corners at v share a fan.
-          fans.join(*slot_of_corner.find(hs[t].corner), *slot_of_corner.find(before.corner));
-          if (v == lo) wedge_pairs.push_back({lo, hi, {face_of(hs[t]), face_of(before)}});
-        }
-      }
+      while (j_end < arriving_.size() && arriving_[j_end].first == w) ++j_end;
+      if (i_end - i == 1 && j_end - j == 1)
+        sets_.join(leaving_[i].second, arriving_[j].second);
+      else if (i_end - i == j_end - j && i_end > i)
+        join_around_edge(v, w, i, i_end, j, j_end);
       // Otherwise the edge is not closed (not possible for selected patches of valid inputs);
       // its corners keep their own fans.
       i = i_end;
       j = j_end;
     }
-    begin = end;
   }
 
-  // Output vertices: one per non-special point, one per fan of a special point, numbered in the
-  // order of their first corner (in parallel: each corner's vertex key, the first corner of each
-  // key by an atomic minimum, then ranks).
+  // Several solids meet along the edge vw, whose half-edges at v are leaving_[i, i_end) and
+  // arriving_[j, j_end): sort its faces around the axis u->v with u < v (the same order seen
+  // from both ends) and pair each face that runs u->v with the one just before it (the wedge
+  // between them is inside the solid).
+  void join_around_edge(PointId v, PointId w, std::size_t i, std::size_t i_end, std::size_t j,
+                        std::size_t j_end) {
+    struct HalfEdge {
+      std::uint32_t corner;  // the face's corner at v
+      bool leaves_v;
+    };
+    std::vector<HalfEdge> hs;
+    for (std::size_t t = i; t < i_end; ++t)
+      hs.push_back({corners_[leaving_[t].second].second, true});
+    for (std::size_t t = j; t < j_end; ++t)
+      hs.push_back({corners_[arriving_[t].second].second, false});
+    const PointId lo = std::min(v, w), hi = std::max(v, w);
+    auto third = [&](const HalfEdge& h) {
+      return h.leaves_v ? faces_.previous(h.corner) : faces_.next(h.corner);
+    };
+    auto face_of = [](const HalfEdge& h) { return h.corner / 3; };
+    std::sort(hs.begin(), hs.end(),
+              [&](const HalfEdge& x, const HalfEdge& y) { return face_of(x) < face_of(y); });
+    const AroundEdge order{points_, lo, hi, third(hs[0])};
+    std::sort(hs.begin(), hs.end(),
+              [&](const HalfEdge& x, const HalfEdge& y) { return order(third(x), third(y)); });
+    for (std::size_t t = 0; t < hs.size(); ++t) {
+      const bool runs_lo_hi = hs[t].leaves_v == (v == lo);
+      if (!runs_lo_hi) continue;
+      const HalfEdge& before = hs[(t + hs.size() - 1) % hs.size()];
+      // One of the two leaves v and the other arrives at it: their corners at v share a fan.
+      sets_.join(*slot_of_corner_.find(hs[t].corner), *slot_of_corner_.find(before.corner));
+      if (v == lo) wedge_pairs_.push_back({lo, hi, {face_of(hs[t]), face_of(before)}});
+    }
+  }
+
+  const PointTable& points_;
+  const Corners faces_;
+  const std::vector<std::pair<PointId, std::uint32_t>> corners_;  // see special_corners
+  UnionFind sets_;  // over the special corners, by their index in `corners_`
+  FlatMap<std::uint64_t, std::uint32_t, Hash64> slot_of_corner_;
+  std::vector<WedgePair> wedge_pairs_;
+  Slots leaving_, arriving_;  // scratch for join_at, reused from point to point
+};
+
+// Output vertices: one per non-special point, one per fan of a special point, numbered in the
+// order of their first corner so that the output does not depend on the thread count (in
+// parallel: each corner's vertex key, the first corner of each key by an atomic minimum, then
+// ranks).
+IdMesh number_vertices(const PointTable& points, const std::vector<Triangle>& faces,
+                       const std::vector<std::uint8_t>& special, const Fans& fans) {
+  const Corners corner{faces};
+  const std::size_t nf = faces.size();
   IdMesh out;
   out.triangles.resize(nf);
-  {
-    const std::size_t corners_total = nf * 3, keys = points.size() + corners.size();
-    std::vector<std::uint32_t> key_of(corners_total);
-    tbb::parallel_for(std::size_t(0), corners_total, [&](std::size_t c) {
-      const PointId p = at(std::uint32_t(c));
-      key_of[c] =
-          special[p] ? std::uint32_t(points.size() + fans.root(*slot_of_corner.find(c))) : p;
-    });
-    std::unique_ptr<std::atomic<std::uint32_t>[]> first(new std::atomic<std::uint32_t>[keys]);
-    tbb::parallel_for(std::size_t(0), keys, [&](std::size_t k) { first[k].store(kNone); });
-    tbb::parallel_for(std::size_t(0), corners_total, [&](std::size_t c) {
-      std::atomic<std::uint32_t>& f = first[key_of[c]];
-      std::uint32_t seen = f.load(std::memory_order_relaxed);
-      while (c < seen && !f.compare_exchange_weak(seen, std::uint32_t(c))) {
-      }
-    });
-    std::vector<std::uint32_t> rank(corners_total + 1, 0);
-    for (std::size_t c = 0; c < corners_total; ++c)
-      rank[c + 1] = rank[c] + (first[key_of[c]].load(std::memory_order_relaxed) == c);
-    out.vertex_point.resize(rank[corners_total]);
-    tbb::parallel_for(std::size_t(0), corners_total, [&](std::size_t c) {
-      const VertexIndex v = rank[first[key_of[c]].load(std::memory_order_relaxed)];
-      out.triangles[c / 3][c % 3] = v;
-      if (first[key_of[c]].load(std::memory_order_relaxed) == c) out.vertex_point[v] = at(c);
-    });
-  }
+  const std::size_t corners_total = nf * 3, keys = points.size() + fans.size();
+  std::vector<std::uint32_t> key_of(corners_total);
+  tbb::parallel_for(std::size_t(0), corners_total, [&](std::size_t c) {
+    const PointId p = corner.at(std::uint32_t(c));
+    key_of[c] = special[p] ? std::uint32_t(points.size() + fans.fan_of(c)) : p;
+  });
+  std::unique_ptr<std::atomic<std::uint32_t>[]> first(new std::atomic<std::uint32_t>[keys]);
+  tbb::parallel_for(std::size_t(0), keys, [&](std::size_t k) { first[k].store(kNone); });
+  tbb::parallel_for(std::size_t(0), corners_total, [&](std::size_t c) {
+    std::atomic<std::uint32_t>& f = first[key_of[c]];
+    std::uint32_t seen = f.load(std::memory_order_relaxed);
+    while (c < seen && !f.compare_exchange_weak(seen, std::uint32_t(c))) {
+    }
+  });
+  std::vector<std::uint32_t> rank(corners_total + 1, 0);
+  for (std::size_t c = 0; c < corners_total; ++c)
+    rank[c + 1] = rank[c] + (first[key_of[c]].load(std::memory_order_relaxed) == c);
+  out.vertex_point.resize(rank[corners_total]);
+  tbb::parallel_for(std::size_t(0), corners_total, [&](std::size_t c) {
+    const VertexIndex v = rank[first[key_of[c]].load(std::memory_order_relaxed)];
+    out.triangles[c / 3][c % 3] = v;
+    if (first[key_of[c]].load(std::memory_order_relaxed) == c) out.vertex_point[v] = corner.at(c);
+  });
+  return out;
+}
 
-  // Pairs of one non-manifold edge that still share both vertex copies: each is split at its own
-  // copy of the midpoint, so that the halves of different pairs meet only at common edges.
+// Pairs of one non-manifold edge that still share both vertex copies: each is split at its own
+// copy of the midpoint, so that the halves of different pairs meet only at common edges. The
+// split faces' second halves are appended to `out` (and their origins to `origin`).
+void split_shared_pairs(PointTable& points, const std::vector<Triangle>& faces,
+                        const std::vector<WedgePair>& wedge_pairs, IdMesh& out,
+                        std::vector<FaceOrigin>* origin) {
   std::vector<std::pair<std::uint64_t, std::size_t>> copies;  // (output edge, pair)
   for (std::size_t i = 0; i < wedge_pairs.size(); ++i) {
     const WedgePair& w = wedge_pairs[i];
@@ -244,6 +290,25 @@ IdMesh separate_non_manifold(PointTable& points, const std::vector<Triangle>& fa
       if (origin) origin->push_back((*origin)[f]);
     }
   }
+}
+
+}  // namespace
+
+// At a special point, each corner is attached to the corner of the face across each of its two
+// edges there; a non-manifold edge pairs its faces by the solid wedges between them. Each fan of
+// attached corners becomes one vertex.
+//
+// Fans do not always tell the pairs of a non-manifold edge apart: where the solid is two opposite
+// wedges along the edge but one piece around each end (a solid minus two boxes sharing an edge),
+// each end is a single fan, and both pairs of faces would share one edge. Each such extra pair is
+// split at the edge's midpoint, a vertex of its own (coincident midpoints only touch).
+IdMesh separate_non_manifold(PointTable& points, const std::vector<Triangle>& faces,
+                             const std::vector<std::uint8_t>& special,
+                             std::vector<FaceOrigin>* origin) {
+  Fans fans(points, faces, special_corners(faces, special));
+  fans.join_all();
+  IdMesh out = number_vertices(points, faces, special, fans);
+  split_shared_pairs(points, faces, fans.wedge_pairs(), out, origin);
   return out;
 }
 

@@ -178,237 +178,351 @@ std::vector<std::uint8_t> coincident(const PointTable& table, const IdMesh& surf
   return shared;
 }
 
-}  // namespace
-
-void merge_coplanar(const PointTable& table, IdMesh& surface,
-                    const std::vector<std::array<PointId, 3>>& planes,
-                    std::vector<std::uint32_t>& plane_of) {
-  const std::size_t nf = surface.triangles.size(), nv = surface.vertex_point.size();
-  if (nf == 0) return;
-  const auto& tri = surface.triangles;
-  const auto& point = surface.vertex_point;
-  // The face across each edge: edge k of face f runs tri[f][k] -> tri[f][k + 1], and its twin is
-  // the face around tri[f][k + 1] that runs back. Faces around each vertex are listed
-  // contiguously, so the search stays in cache (a hash table of all edges did not).
+// The face across each edge, at 3 f + k for edge k of face f (kNone on a border): edge k runs
+// tri[f][k] -> tri[f][k + 1], and its twin is the face around tri[f][k + 1] that runs back. Faces
+// around each vertex are listed contiguously, so the search stays in cache (a hash table of all
+// edges did not).
+std::vector<std::uint32_t> edge_twins(const std::vector<Triangle>& tri, std::size_t nv) {
+  const std::size_t nf = tri.size();
   std::vector<std::uint32_t> twin(3 * nf, kNone);
-  {
-    std::vector<std::uint32_t> start(nv + 1, 0);
-    for (const Triangle& t : tri)
-      for (VertexIndex v : t) ++start[v + 1];
-    for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-    std::vector<std::uint32_t> faces_at(3 * nf), fill(start.begin(), start.end() - 1);
-    for (std::uint32_t f = 0; f < nf; ++f)
-      for (VertexIndex v : tri[f]) faces_at[fill[v]++] = f;
-    for (std::uint32_t f = 0; f < nf; ++f)
-      for (int k = 0; k < 3; ++k) {
-        const VertexIndex u = tri[f][k], v = tri[f][(k + 1) % 3];
-        for (std::uint32_t i = start[v]; i < start[v + 1]; ++i) {
-          const Triangle& g = tri[faces_at[i]];
-          if ((g[0] == v && g[1] == u) || (g[1] == v && g[2] == u) || (g[2] == v && g[0] == u)) {
-            twin[3 * f + k] = faces_at[i];
-            break;
-          }
+  std::vector<std::uint32_t> start(nv + 1, 0);
+  for (const Triangle& t : tri)
+    for (VertexIndex v : t) ++start[v + 1];
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<std::uint32_t> faces_at(3 * nf), fill(start.begin(), start.end() - 1);
+  for (std::uint32_t f = 0; f < nf; ++f)
+    for (VertexIndex v : tri[f]) faces_at[fill[v]++] = f;
+  for (std::uint32_t f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const VertexIndex u = tri[f][k], v = tri[f][(k + 1) % 3];
+      for (std::uint32_t i = start[v]; i < start[v + 1]; ++i) {
+        const Triangle& g = tri[faces_at[i]];
+        if ((g[0] == v && g[1] == u) || (g[1] == v && g[2] == u) || (g[2] == v && g[0] == u)) {
+          twin[3 * f + k] = faces_at[i];
+          break;
         }
       }
-  }
-  auto twin_face = [&](std::uint32_t f, int k) { return twin[3 * f + k]; };
-  // Two planes are one when each corner of the second is on the first and the normals agree;
-  // decided once per pair of planes.
-  FlatMap<std::uint64_t, std::uint8_t, Hash64> same_plane_cache;
-  std::vector<std::unique_ptr<PointTable::Plane>> equation(planes.size());
-  auto same_plane = [&](std::uint32_t a, std::uint32_t b) {
+    }
+  return twin;
+}
+
+// Whether two planes (indices into `planes`) are one: each corner of the second is on the first
+// and the normals agree. Many edges join faces of the same two planes, so the answer is cached
+// per pair of planes.
+class SamePlane {
+ public:
+  SamePlane(const PointTable& table, const std::vector<std::array<PointId, 3>>& planes)
+      : table_(table), planes_(planes), equation_(planes.size()) {}
+
+  bool operator()(std::uint32_t a, std::uint32_t b) {
     if (a == b) return true;
     const std::uint64_t key = edge_key(std::min(a, b), std::max(a, b));
-    if (const std::uint8_t* known = same_plane_cache.find(key)) return *known != 0;
-    const auto &pa = planes[a], &pb = planes[b];
-    // Intervals first; the planes that meet here are mostly one plane, so the exact test is
-    // against the plane's equation, computed once.
-    auto on_plane = [&](PointId q) {
-      const CGAL::Uncertain<CGAL::Sign> s = table.orientation_filter(pa[0], pa[1], pa[2], q);
-      if (s.is_certain()) return s.make_certain() == CGAL::ZERO;
-      if (!equation[a])
-        equation[a] = std::make_unique<PointTable::Plane>(table.exact_plane(pa[0], pa[1], pa[2]));
-      return table.plane_side(*equation[a], q) == CGAL::ZERO;
-    };
+    if (const std::uint8_t* known = cache_.find(key)) return *known != 0;
+    const auto &pa = planes_[a], &pb = planes_[b];
     const bool same =
-        std::all_of(pb.begin(), pb.end(), on_plane) && table.normal_dot(pa, pb) == CGAL::POSITIVE;
-    same_plane_cache.emplace(key, same);
+        std::all_of(pb.begin(), pb.end(), [&](PointId q) { return on_plane(a, q); }) &&
+        table_.normal_dot(pa, pb) == CGAL::POSITIVE;
+    cache_.emplace(key, same);
     return same;
-  };
+  }
 
-  // Regions: flood fill across edges whose two faces lie in one plane, alike oriented.
-  std::vector<std::uint32_t> region(nf, kNone);
-  std::vector<std::uint32_t> region_seed;
+ private:
+  // Intervals first; the planes that meet here are mostly one plane, so the exact test is
+  // against the plane's equation, computed once.
+  bool on_plane(std::uint32_t a, PointId q) {
+    const auto& pa = planes_[a];
+    const CGAL::Uncertain<CGAL::Sign> s = table_.orientation_filter(pa[0], pa[1], pa[2], q);
+    if (s.is_certain()) return s.make_certain() == CGAL::ZERO;
+    if (!equation_[a])
+      equation_[a] = std::make_unique<PointTable::Plane>(table_.exact_plane(pa[0], pa[1], pa[2]));
+    return table_.plane_side(*equation_[a], q) == CGAL::ZERO;
+  }
+
+  const PointTable& table_;
+  const std::vector<std::array<PointId, 3>>& planes_;
+  FlatMap<std::uint64_t, std::uint8_t, Hash64> cache_;
+  std::vector<std::unique_ptr<PointTable::Plane>> equation_;
+};
+
+// The surface being merged with what every later step reads: its adjacency and its coplanar
+// regions (merging never crosses a region's border).
+struct Regions {
+  const PointTable& table;
+  const IdMesh& surface;
+  const std::vector<std::array<PointId, 3>>& planes;
+  const std::vector<std::uint32_t>& plane_of;
+  std::vector<std::uint32_t> twin;    // see edge_twins
+  std::vector<std::uint32_t> region;  // of each face
+  std::uint32_t count = 0;            // regions
+
+  std::uint32_t twin_face(std::uint32_t f, int k) const { return twin[3 * f + k]; }
+};
+
+// Numbers the coplanar regions: flood fill across edges whose two faces lie in one plane, alike
+// oriented.
+void find_regions(Regions& s) {
+  const std::size_t nf = s.surface.triangles.size();
+  SamePlane same_plane(s.table, s.planes);
+  s.region.assign(nf, kNone);
   std::vector<std::uint32_t> stack;
   for (std::uint32_t start = 0; start < nf; ++start) {
-    if (region[start] != kNone) continue;
-    const auto r = std::uint32_t(region_seed.size());
-    region_seed.push_back(start);
-    region[start] = r;
+    if (s.region[start] != kNone) continue;
+    const std::uint32_t r = s.count++;
+    s.region[start] = r;
     stack.push_back(start);
     while (!stack.empty()) {
       const std::uint32_t f = stack.back();
       stack.pop_back();
       for (int i = 0; i < 3; ++i) {
-        const std::uint32_t g = twin_face(f, i);
-        if (g == kNone || region[g] != kNone || !same_plane(plane_of[f], plane_of[g])) continue;
-        region[g] = r;
+        const std::uint32_t g = s.twin_face(f, i);
+        if (g == kNone || s.region[g] != kNone || !same_plane(s.plane_of[f], s.plane_of[g]))
+          continue;
+        s.region[g] = r;
         stack.push_back(g);
       }
     }
   }
-  if (region_seed.size() == nf) return;  // nothing coplanar to merge
+}
 
-  // Removable vertices: inside one region, or on a straight crease between exactly two. Both
-  // regions need two faces or more (a corner of a lone triangle stays), which leaves few
-  // candidates; only those are examined further.
-  std::vector<std::uint32_t> region_size(region_seed.size(), 0);
-  for (std::uint32_t f = 0; f < nf; ++f) ++region_size[region[f]];
-  std::vector<std::uint32_t> first_region(nv, kNone), second_region(nv, kNone);
+// Vertices that may be removable: inside one region, or between exactly two (first_region and
+// second_region; kNone where a vertex has fewer).
+struct Candidates {
+  std::vector<std::uint32_t> first_region, second_region;  // of each vertex
+  std::vector<VertexIndex> list;
+  std::vector<std::uint8_t> flag;  // of each vertex: in `list`
+};
+
+// Both regions of a candidate need two faces or more (a corner of a lone triangle stays), which
+// leaves few candidates; only those are examined further.
+Candidates find_candidates(const Regions& s) {
+  const auto& tri = s.surface.triangles;
+  const std::size_t nf = tri.size(), nv = s.surface.vertex_point.size();
+  std::vector<std::uint32_t> region_size(s.count, 0);
+  for (std::uint32_t f = 0; f < nf; ++f) ++region_size[s.region[f]];
+  Candidates c;
+  c.first_region.assign(nv, kNone);
+  c.second_region.assign(nv, kNone);
   std::vector<std::uint8_t> many_regions(nv, 0);
   for (std::uint32_t f = 0; f < nf; ++f)
     for (VertexIndex v : tri[f]) {
-      const std::uint32_t r = region[f];
-      if (first_region[v] == kNone || first_region[v] == r)
-        first_region[v] = r;
-      else if (second_region[v] == kNone || second_region[v] == r)
-        second_region[v] = r;
+      const std::uint32_t r = s.region[f];
+      if (c.first_region[v] == kNone || c.first_region[v] == r)
+        c.first_region[v] = r;
+      else if (c.second_region[v] == kNone || c.second_region[v] == r)
+        c.second_region[v] = r;
       else
         many_regions[v] = 1;
     }
-  std::vector<VertexIndex> candidates;
-  std::vector<std::uint8_t> is_candidate(nv, 0);
+  c.flag.assign(nv, 0);
   for (VertexIndex v = 0; v < nv; ++v) {
-    if (first_region[v] == kNone || many_regions[v] || region_size[first_region[v]] < 2) continue;
-    if (second_region[v] != kNone && region_size[second_region[v]] < 2) continue;
-    candidates.push_back(v);
-    is_candidate[v] = 1;
+    if (c.first_region[v] == kNone || many_regions[v] || region_size[c.first_region[v]] < 2)
+      continue;
+    if (c.second_region[v] != kNone && region_size[c.second_region[v]] < 2) continue;
+    c.list.push_back(v);
+    c.flag[v] = 1;
   }
-  if (candidates.empty()) return;
+  return c;
+}
 
-  // A region holding a candidate whose position another vertex shares (a separated non-manifold
-  // feature or a contact) keeps all its triangles and vertices: its edges may be needed to keep
-  // the touching parts meeting only at common vertices and edges.
-  std::vector<std::uint8_t> frozen_region(region_seed.size(), 0);
-  {
-    const std::vector<std::uint8_t> shared = coincident(table, surface, is_candidate);
-    for (std::uint32_t f = 0; f < nf; ++f)
-      for (VertexIndex v : tri[f])
-        if (shared[v]) frozen_region[region[f]] = 1;
-  }
+// A region holding a candidate whose position another vertex shares (a separated non-manifold
+// feature or a contact) keeps all its triangles and vertices: its edges may be needed to keep
+// the touching parts meeting only at common vertices and edges.
+std::vector<std::uint8_t> frozen_regions(const Regions& s, const Candidates& c) {
+  const auto& tri = s.surface.triangles;
+  std::vector<std::uint8_t> frozen(s.count, 0);
+  const std::vector<std::uint8_t> shared = coincident(s.table, s.surface, c.flag);
+  for (std::uint32_t f = 0; f < tri.size(); ++f)
+    for (VertexIndex v : tri[f])
+      if (shared[v]) frozen[s.region[f]] = 1;
+  return frozen;
+}
 
-  // The crease neighbours of the candidates: the other ends of their edges between two regions.
-  std::vector<std::uint32_t> crease_count(nv, 0);
-  std::vector<std::array<VertexIndex, 2>> crease(nv);
-  std::vector<std::uint32_t> face_at(nv, kNone);  // a face of each candidate, for its plane
-  for (std::uint32_t f = 0; f < nf; ++f)
+// The crease neighbours of the candidates: the other ends of their edges between two regions.
+// A candidate on a straight crease has exactly two; `ends` keeps the first two, `count` all.
+struct Creases {
+  std::vector<std::uint32_t> count;
+  std::vector<std::array<VertexIndex, 2>> ends;
+  std::vector<std::uint32_t> face_at;  // a face of each candidate, for its plane
+};
+
+Creases find_creases(const Regions& s, const Candidates& c) {
+  const auto& tri = s.surface.triangles;
+  const std::size_t nv = s.surface.vertex_point.size();
+  Creases creases{std::vector<std::uint32_t>(nv, 0), std::vector<std::array<VertexIndex, 2>>(nv),
+                  std::vector<std::uint32_t>(nv, kNone)};
+  for (std::uint32_t f = 0; f < tri.size(); ++f)
     for (int i = 0; i < 3; ++i) {
       const VertexIndex u = tri[f][i], v = tri[f][(i + 1) % 3];
-      if (!is_candidate[u]) continue;
-      face_at[u] = f;
-      const std::uint32_t g = twin_face(f, i);
-      if (g != kNone && region[g] == region[f]) continue;
-      if (crease_count[u] < 2) crease[u][crease_count[u]] = v;
-      ++crease_count[u];
+      if (!c.flag[u]) continue;
+      creases.face_at[u] = f;
+      const std::uint32_t g = s.twin_face(f, i);
+      if (g != kNone && s.region[g] == s.region[f]) continue;
+      if (creases.count[u] < 2) creases.ends[u][creases.count[u]] = v;
+      ++creases.count[u];
     }
-  // a, v, b collinear (all three in the plane of v's face) with v strictly between a and b.
-  auto strictly_between = [&](VertexIndex a, VertexIndex v, VertexIndex b) {
-    const auto& plane = planes[plane_of[face_at[v]]];
-    const int dropped = table.dominant_axis(plane[0], plane[1], plane[2]);
-    if (table.orientation_2(dropped, point[a], point[v], point[b]) != CGAL::ZERO) return false;
-    for (int axis = 0; axis < 3; ++axis) {
-      const CGAL::Comparison_result ab = table.compare(axis, point[a], point[b]);
-      if (ab == CGAL::EQUAL) continue;
-      return table.compare(axis, point[a], point[v]) == ab &&
-             table.compare(axis, point[v], point[b]) == ab;
-    }
-    return false;
-  };
-  std::vector<std::uint8_t> removable(nv, 0);
-  std::vector<std::uint8_t> region_changes(region_seed.size(), 0);
-  for (const VertexIndex v : candidates) {
-    if (frozen_region[first_region[v]] ||
-        (second_region[v] != kNone && frozen_region[second_region[v]]))
-      continue;
-    bool remove = false;
-    if (second_region[v] == kNone)
-      remove = crease_count[v] == 0;
-    else if (crease_count[v] == 2)
-      remove = strictly_between(crease[v][0], v, crease[v][1]);
-    if (!remove) continue;
-    removable[v] = 1;
-    region_changes[first_region[v]] = 1;
-    if (second_region[v] != kNone) region_changes[second_region[v]] = 1;
-  }
+  return creases;
+}
 
-  // Only the faces around removable vertices change: per region, their union is re-triangulated
-  // from its boundary, with runs of removable vertices skipped (a large planar face that loses
-  // two vertices keeps the rest of its triangles).
-  std::vector<std::vector<std::uint32_t>> faces_of(region_seed.size());
-  std::vector<std::uint8_t> changes(nf, 0);
-  for (std::uint32_t f = 0; f < nf; ++f) {
-    const Triangle& t = tri[f];
-    if (!removable[t[0]] && !removable[t[1]] && !removable[t[2]]) continue;
-    changes[f] = 1;
-    faces_of[region[f]].push_back(f);
+// a, v, b collinear (all three in the plane of `face`, a face of v) with v strictly between a
+// and b: only then does dropping v leave the crease straight, with no T-junction.
+bool strictly_between(const Regions& s, std::uint32_t face, VertexIndex a, VertexIndex v,
+                      VertexIndex b) {
+  const PointTable& table = s.table;
+  const auto& point = s.surface.vertex_point;
+  const auto& plane = s.planes[s.plane_of[face]];
+  const int dropped = table.dominant_axis(plane[0], plane[1], plane[2]);
+  if (table.orientation_2(dropped, point[a], point[v], point[b]) != CGAL::ZERO) return false;
+  for (int axis = 0; axis < 3; ++axis) {
+    const CGAL::Comparison_result ab = table.compare(axis, point[a], point[b]);
+    if (ab == CGAL::EQUAL) continue;
+    return table.compare(axis, point[a], point[v]) == ab &&
+           table.compare(axis, point[v], point[b]) == ab;
   }
-  std::vector<Triangle> out;
-  std::vector<std::uint32_t> out_plane;
-  out.reserve(nf);
-  out_plane.reserve(nf);
-  std::unordered_map<VertexIndex, VertexIndex> next;  // along one region's boundary
-  for (std::uint32_t r = 0; r < region_seed.size(); ++r) {
-    if (!region_changes[r]) continue;
-    std::vector<std::pair<VertexIndex, VertexIndex>> directed;
-    next.clear();
-    for (std::uint32_t f : faces_of[r])
-      for (int i = 0; i < 3; ++i) {
-        const VertexIndex u = tri[f][i], v = tri[f][(i + 1) % 3];
-        const std::uint32_t g = twin_face(f, i);
-        if (g != kNone && region[g] == r && changes[g]) continue;
-        directed.emplace_back(u, v);
-        if (removable[u]) next[u] = v;  // a removable crease vertex has one way on
-      }
-    std::vector<std::pair<VertexIndex, VertexIndex>> boundary;
-    bool ok = true;
-    for (const auto& [u, v] : directed) {
-      if (removable[u]) continue;
-      VertexIndex w = v;
-      for (std::size_t steps = 0; removable[w] && ok; ++steps) {
-        const auto it = next.find(w);
-        ok = it != next.end() && steps < directed.size();
-        if (ok) w = it->second;
-      }
-      boundary.emplace_back(u, w);
+  return false;
+}
+
+// The vertices merging drops, and the regions that lose one (only those are re-triangulated).
+struct Removal {
+  std::vector<std::uint8_t> vertex;          // of each vertex: removed
+  std::vector<std::uint8_t> region_changes;  // of each region: loses a vertex
+};
+
+// The candidates actually removed: those of unfrozen regions that lie inside one region with no
+// crease, or on a straight crease between two.
+Removal find_removable(const Regions& s, const Candidates& c,
+                       const std::vector<std::uint8_t>& frozen) {
+  const Creases creases = find_creases(s, c);
+  Removal removal{std::vector<std::uint8_t>(s.surface.vertex_point.size(), 0),
+                  std::vector<std::uint8_t>(s.count, 0)};
+  for (const VertexIndex v : c.list) {
+    const std::uint32_t first = c.first_region[v], second = c.second_region[v];
+    if (frozen[first] || (second != kNone && frozen[second])) continue;
+    bool remove = false;
+    if (second == kNone)
+      remove = creases.count[v] == 0;
+    else if (creases.count[v] == 2)
+      remove = strictly_between(s, creases.face_at[v], creases.ends[v][0], v, creases.ends[v][1]);
+    if (!remove) continue;
+    removal.vertex[v] = 1;
+    removal.region_changes[first] = 1;
+    if (second != kNone) removal.region_changes[second] = 1;
+  }
+  return removal;
+}
+
+// The faces that change: those around removable vertices.
+struct Changes {
+  std::vector<std::vector<std::uint32_t>> faces_of;  // of each region
+  std::vector<std::uint8_t> face;                    // of each face: changes
+};
+
+Changes changing_faces(const Regions& s, const Removal& removal) {
+  const auto& tri = s.surface.triangles;
+  Changes changes{std::vector<std::vector<std::uint32_t>>(s.count),
+                  std::vector<std::uint8_t>(tri.size(), 0)};
+  for (std::uint32_t f = 0; f < tri.size(); ++f) {
+    const Triangle& t = tri[f];
+    if (!removal.vertex[t[0]] && !removal.vertex[t[1]] && !removal.vertex[t[2]]) continue;
+    changes.face[f] = 1;
+    changes.faces_of[s.region[f]].push_back(f);
+  }
+  return changes;
+}
+
+// Directed edges between surface vertices, each oriented as in the face it bounds.
+using Boundary = std::vector<std::pair<VertexIndex, VertexIndex>>;
+
+// The boundary of region r's changing faces with each run of removable vertices skipped, or
+// nullopt when a run does not lead on to a kept vertex. `next` is scratch space, kept by the
+// caller so that its buckets are reused from region to region.
+std::optional<Boundary> boundary_without_removable(
+    const Regions& s, const Removal& removal, const Changes& changes, std::uint32_t r,
+    std::unordered_map<VertexIndex, VertexIndex>& next) {
+  const auto& tri = s.surface.triangles;
+  const auto& removable = removal.vertex;
+  Boundary directed;
+  next.clear();
+  for (std::uint32_t f : changes.faces_of[r])
+    for (int i = 0; i < 3; ++i) {
+      const VertexIndex u = tri[f][i], v = tri[f][(i + 1) % 3];
+      const std::uint32_t g = s.twin_face(f, i);
+      if (g != kNone && s.region[g] == r && changes.face[g]) continue;
+      directed.emplace_back(u, v);
+      if (removable[u]) next[u] = v;  // a removable crease vertex has one way on
     }
-    const Triangle& seed = tri[faces_of[r].front()];
-    const auto& plane = planes[plane_of[faces_of[r].front()]];
+  Boundary boundary;
+  for (const auto& [u, v] : directed) {
+    if (removable[u]) continue;
+    VertexIndex w = v;
+    for (std::size_t steps = 0; removable[w]; ++steps) {
+      const auto it = next.find(w);
+      if (it == next.end() || steps >= directed.size()) return std::nullopt;
+      w = it->second;
+    }
+    boundary.emplace_back(u, w);
+  }
+  return boundary;
+}
+
+// triangulate_region in the coordinate plane the region's plane projects to without folding.
+std::optional<std::vector<Triangle>> triangulate_in_plane(const Regions& s,
+                                                          const std::array<PointId, 3>& plane,
+                                                          const Boundary& boundary,
+                                                          const Triangle& seed) {
+  switch (s.table.dominant_axis(plane[0], plane[1], plane[2])) {
+    case 0:
+      return triangulate_region<0>(s.table, s.surface, boundary, seed);
+    case 1:
+      return triangulate_region<1>(s.table, s.surface, boundary, seed);
+    default:
+      return triangulate_region<2>(s.table, s.surface, boundary, seed);
+  }
+}
+
+// The faces of the merged surface, each with the index of its plane.
+struct Faces {
+  std::vector<Triangle> triangles;
+  std::vector<std::uint32_t> plane_of;
+};
+
+// The merged surface's faces: per region, the union of the changing faces re-triangulated from
+// its boundary (a large planar face that loses two vertices keeps the rest of its triangles),
+// then the unchanged faces in order. Nullopt when a region cannot be re-triangulated.
+std::optional<Faces> retriangulate(const Regions& s, const Removal& removal) {
+  const auto& tri = s.surface.triangles;
+  const std::size_t nf = tri.size();
+  const Changes changes = changing_faces(s, removal);
+  Faces out;
+  out.triangles.reserve(nf);
+  out.plane_of.reserve(nf);
+  std::unordered_map<VertexIndex, VertexIndex> next;  // along one region's boundary
+  for (std::uint32_t r = 0; r < s.count; ++r) {
+    if (!removal.region_changes[r]) continue;
+    const std::uint32_t seed = changes.faces_of[r].front();
+    const std::optional<Boundary> boundary =
+        boundary_without_removable(s, removal, changes, r, next);
     std::optional<std::vector<Triangle>> merged;
-    if (ok) switch (table.dominant_axis(plane[0], plane[1], plane[2])) {
-        case 0:
-          merged = triangulate_region<0>(table, surface, boundary, seed);
-          break;
-        case 1:
-          merged = triangulate_region<1>(table, surface, boundary, seed);
-          break;
-        default:
-          merged = triangulate_region<2>(table, surface, boundary, seed);
-      }
+    if (boundary)
+      merged = triangulate_in_plane(s, s.planes[s.plane_of[seed]], *boundary, tri[seed]);
     // Rare (coincident vertices in the region): a neighbour may already have dropped a shared
     // crease vertex, so the only safe answer is the unmerged surface, which is always valid.
-    if (!merged) return;
-    out.insert(out.end(), merged->begin(), merged->end());
-    out_plane.resize(out.size(), plane_of[faces_of[r].front()]);
+    if (!merged) return std::nullopt;
+    out.triangles.insert(out.triangles.end(), merged->begin(), merged->end());
+    out.plane_of.resize(out.triangles.size(), s.plane_of[seed]);
   }
   for (std::uint32_t f = 0; f < nf; ++f)
-    if (!changes[f]) {
-      out.push_back(tri[f]);
-      out_plane.push_back(plane_of[f]);
+    if (!changes.face[f]) {
+      out.triangles.push_back(tri[f]);
+      out.plane_of.push_back(s.plane_of[f]);
     }
+  return out;
+}
 
-  // Compact: keep referenced vertices in their original order.
+// The surface of `faces` over the referenced vertices only, kept in their original order.
+IdMesh compacted(const std::vector<PointId>& point, const std::vector<Triangle>& faces) {
+  const std::size_t nv = point.size();
   std::vector<VertexIndex> new_index(nv, kNone);
-  for (const Triangle& t : out)
+  for (const Triangle& t : faces)
     for (VertexIndex v : t) new_index[v] = 0;
   IdMesh result;
   for (VertexIndex v = 0; v < nv; ++v)
@@ -416,11 +530,32 @@ void merge_coplanar(const PointTable& table, IdMesh& surface,
       new_index[v] = VertexIndex(result.vertex_point.size());
       result.vertex_point.push_back(point[v]);
     }
-  result.triangles.reserve(out.size());
-  for (const Triangle& t : out)
+  result.triangles.reserve(faces.size());
+  for (const Triangle& t : faces)
     result.triangles.push_back({new_index[t[0]], new_index[t[1]], new_index[t[2]]});
-  surface = std::move(result);
-  plane_of = std::move(out_plane);
+  return result;
+}
+
+}  // namespace
+
+// Each step narrows the work: coplanar regions, then the few vertices that may go, then those
+// that do, and only their faces are re-triangulated.
+void merge_coplanar(const PointTable& table, IdMesh& surface,
+                    const std::vector<std::array<PointId, 3>>& planes,
+                    std::vector<std::uint32_t>& plane_of) {
+  const std::size_t nf = surface.triangles.size();
+  if (nf == 0) return;
+  Regions s{table, surface, planes, plane_of,
+            edge_twins(surface.triangles, surface.vertex_point.size())};
+  find_regions(s);
+  if (s.count == nf) return;  // nothing coplanar to merge
+  const Candidates candidates = find_candidates(s);
+  if (candidates.list.empty()) return;
+  const Removal removal = find_removable(s, candidates, frozen_regions(s, candidates));
+  std::optional<Faces> merged = retriangulate(s, removal);
+  if (!merged) return;
+  surface = compacted(surface.vertex_point, merged->triangles);
+  plane_of = std::move(merged->plane_of);
 }
 
 Mesh materialize(const PointTable& table, const IdMesh& surface) {
