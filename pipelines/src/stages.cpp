@@ -186,7 +186,8 @@ std::vector<OptionInfo> describe_options() {
           integer("seed", double(d.seed), 0, 4294967295.0, "D2 random seed")};
 }
 
-void add_builtin_stages(StageRegistry& r) {
+// Reading, repairing and writing meshes.
+void add_io_stages(StageRegistry& r) {
   r.add({"read",
          "read a closed mesh (OFF, OBJ, STL, PLY) and check that it is a valid solid (unless it "
          "goes only to repair stages)",
@@ -228,6 +229,10 @@ void add_builtin_stages(StageRegistry& r) {
            c.extra["path"] = path;
            return *c.inputs[0];
          }});
+}
+
+// The exact operations: morphology, Booleans, Minkowski sums, and simplification.
+void add_operation_stages(StageRegistry& r) {
   const std::pair<MorphologyOp, const char*> morphology[] = {
       {MorphologyOp::Dilate, "dilation A + B"},
       {MorphologyOp::Erode, "erosion {x : x + B inside A}"},
@@ -273,6 +278,10 @@ void add_builtin_stages(StageRegistry& r) {
            c.extra["attempts"] = report.attempts;
            return copy;
          }});
+}
+
+// Exact rigid motions and scaling.
+void add_transform_stages(StageRegistry& r) {
   r.add({"translate",
          "move the mesh by an exact offset",
          1,
@@ -305,6 +314,10 @@ void add_builtin_stages(StageRegistry& r) {
            make_exact(m);
            return m;
          }});
+}
+
+// Stages that report on the mesh and pass it on.
+void add_report_stages(StageRegistry& r) {
   r.add({"describe",
          "multi-scale granulometry and anti-granulometry by exact openings and closings with "
          "cubes, where their residues lie, and the D2 baseline; passes the mesh on",
@@ -379,7 +392,10 @@ std::string StageRegistry::closest(const std::string& type) const {
 const StageRegistry& StageRegistry::builtin() {
   static const StageRegistry registry = [] {
     StageRegistry r;
-    add_builtin_stages(r);
+    add_io_stages(r);
+    add_operation_stages(r);
+    add_transform_stages(r);
+    add_report_stages(r);
     return r;
   }();
   return registry;
