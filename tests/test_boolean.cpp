@@ -268,11 +268,7 @@ namespace {
 
 // An exact rotation: about z, then x, by angles whose half-tangents are the rationals tz and tx.
 CGAL::Aff_transformation_3<Kernel> rational_rotation(const FT& tz, const FT& tx) {
-  const FT cz = (1 - tz * tz) / (1 + tz * tz), sz = 2 * tz / (1 + tz * tz);
-  const FT cx = (1 - tx * tx) / (1 + tx * tx), sx = 2 * tx / (1 + tx * tx);
-  const CGAL::Aff_transformation_3<Kernel> rz(cz, -sz, 0, sz, cz, 0, 0, 0, 1);
-  const CGAL::Aff_transformation_3<Kernel> rx(1, 0, 0, 0, cx, -sx, 0, sx, cx);
-  return rx * rz;
+  return half_tangent_rotation(0, tx) * half_tangent_rotation(2, tz);
 }
 
 }  // namespace

@@ -47,8 +47,7 @@ namespace {
 // Exact rotation about z then x by the rational angle whose half-tangent is near tan(deg/2).
 Transformation rational_rotation(double degrees) {
   const FT t = FT(std::round(std::tan(degrees * 3.14159265358979 / 360) * 1000)) / 1000;
-  const FT c = (1 - t * t) / (1 + t * t), s = 2 * t / (1 + t * t);
-  return Transformation(1, 0, 0, 0, c, -s, 0, s, c) * Transformation(c, -s, 0, s, c, 0, 0, 0, 1);
+  return half_tangent_rotation(0, t) * half_tangent_rotation(2, t);
 }
 
 struct Case {

@@ -78,6 +78,16 @@ Mesh make_icosphere(int level, const FT& radius) {
   return from_double(d);
 }
 
+Transformation axis_rotation(int axis, const FT& c, const FT& s) {
+  if (axis == 0) return Transformation(1, 0, 0, 0, c, -s, 0, s, c);
+  if (axis == 1) return Transformation(c, 0, s, 0, 1, 0, -s, 0, c);
+  return Transformation(c, -s, 0, s, c, 0, 0, 0, 1);
+}
+
+Transformation half_tangent_rotation(int axis, const FT& t) {
+  return axis_rotation(axis, (1 - t * t) / (1 + t * t), 2 * t / (1 + t * t));
+}
+
 Transformation quaternion_rotation(const FT& a, const FT& b, const FT& c, const FT& d) {
   const FT n = a * a + b * b + c * c + d * d;
   return Transformation(

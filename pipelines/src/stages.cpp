@@ -100,6 +100,7 @@ DescriptorSettings descriptor_settings(const nlohmann::json& options) {
 }
 
 Transformation rotation(const std::string& axis, const FT& degrees) {
+  const int index = axis == "x" ? 0 : axis == "y" ? 1 : 2;
   FT c, s;
   const double d = CGAL::to_double(degrees);
   const double turns = d / 90.0;
@@ -107,14 +108,10 @@ Transformation rotation(const std::string& axis, const FT& degrees) {
     const long q = ((std::llround(turns) % 4) + 4) % 4;
     c = q == 0 ? 1 : q == 2 ? -1 : 0;
     s = q == 1 ? 1 : q == 3 ? -1 : 0;
-  } else {
-    const FT t = FT(std::round(std::tan(d * M_PI / 360.0) * 1e9)) / FT(1000000000);
-    c = (1 - t * t) / (1 + t * t);
-    s = 2 * t / (1 + t * t);
+    return axis_rotation(index, c, s);
   }
-  if (axis == "x") return Transformation(1, 0, 0, 0, c, -s, 0, s, c);
-  if (axis == "y") return Transformation(c, 0, s, 0, 1, 0, -s, 0, c);
-  return Transformation(c, -s, 0, s, c, 0, 0, 0, 1);
+  return half_tangent_rotation(index,
+                               FT(std::round(std::tan(d * M_PI / 360.0) * 1e9)) / FT(1000000000));
 }
 
 }  // namespace detail

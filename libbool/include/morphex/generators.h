@@ -33,6 +33,12 @@ Mesh concatenate(const Mesh& a, const Mesh& b);  // disjoint union of the vertex
 // The rotation of the quaternion (a, b, c, d), not necessarily unit: R(q) / |q|^2 is exactly
 // orthogonal in rational arithmetic, so rational quaternions give exact rotations.
 Transformation quaternion_rotation(const FT& a, const FT& b, const FT& c, const FT& d);
+// The rotation about coordinate axis `axis` (0, 1, 2: x, y, z; counter-clockwise seen from the
+// axis' positive end) whose angle has cosine c and sine s; orthogonal when c^2 + s^2 = 1.
+Transformation axis_rotation(int axis, const FT& c, const FT& s);
+// The same by the angle whose half-angle tangent is t: c = (1 - t^2) / (1 + t^2),
+// s = 2t / (1 + t^2), so a rational t gives an exactly orthogonal rotation.
+Transformation half_tangent_rotation(int axis, const FT& t);
 Mesh transformed(const Mesh& mesh, const Transformation& transformation);  // exact
 Mesh translated(const Mesh& mesh, const Vector& offset);                   // exact
 Mesh reversed(const Mesh& mesh);                                           // every face flipped
