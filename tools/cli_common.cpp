@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "cli_common.h"
 
+#include <unistd.h>
+
+#include <iomanip>
 #include <iostream>
+#include <sstream>
 
 #include "morphex/check.h"
 #include "morphex/io.h"
@@ -58,6 +62,33 @@ void emit_json(const nlohmann::json& value, const std::string& target) {
     return;
   }
   write_file_atomically(target, [&](std::ostream& out) { out << value.dump(2) << '\n'; });
+}
+
+ProgressDisplay::ProgressDisplay(std::string verb, std::string units, bool in_logs)
+    : verb_(std::move(verb)),
+      units_(std::move(units)),
+      tty_(isatty(STDERR_FILENO) != 0),
+      in_logs_(in_logs) {}
+
+void ProgressDisplay::update(std::size_t done, std::size_t total, std::size_t failed,
+                             const std::string& note) {
+  if (total == 0 || (!tty_ && !in_logs_)) return;
+  const double elapsed = clock_.seconds();
+  if (!tty_ && done != total && last_line_ >= 0 && elapsed - last_line_ < 5) return;
+  last_line_ = elapsed;
+  const double eta = done > 0 ? elapsed / double(done) * double(total - done) : 0;
+  std::ostringstream eta_text;
+  eta_text << int(eta) / 60 << "m" << std::setw(2) << std::setfill('0') << int(eta) % 60 << "s";
+  if (!tty_) {
+    std::cerr << verb_ << " " << done << "/" << total << " " << units_ << ", " << failed
+              << " failed, ETA " << eta_text.str() << std::endl;
+    return;
+  }
+  const int width = 30, filled = int(width * done / total);
+  std::cerr << "\r\033[K[" << std::string(filled, '=') << std::string(width - filled, ' ') << "] "
+            << done << "/" << total << " " << units_ << ", " << failed << " failed, ETA "
+            << eta_text.str() << (note.empty() ? "" : "  " + note) << (done == total ? "\n" : "")
+            << std::flush;
 }
 
 }  // namespace morphex::cli

@@ -4,6 +4,7 @@
 #include <glob.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -66,7 +67,17 @@ Command add_run_command(CLI::App& app) {
               return kBadInput;
             }
             options.inputs = expand_inputs(args->inputs);
-            options.progress = isatty(STDERR_FILENO) != 0;
+            // The stages of every input, on a terminal only (a log gets the summary line).
+            ProgressDisplay display("ran", "stages", false);
+            std::atomic<std::size_t> failed_inputs{0};
+            options.on_input_done = [&](const mp::InputReport& r) { failed_inputs += !r.ok; };
+            options.on_progress = [&](std::size_t done, std::size_t total, const std::string& input,
+                                      const std::string& stage) {
+              display.update(
+                  done, total, failed_inputs,
+                  (input.empty() ? "" : std::filesystem::path(input).filename().string() + ": ") +
+                      stage);
+            };
             mp::RunReport report;
             try {
               report = mp::run(mp::load_document(args->file), args->file, options);

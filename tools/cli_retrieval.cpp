@@ -162,37 +162,6 @@ Command add_generate_command(CLI::App& app) {
           }};
 }
 
-// Progress of an index run on stderr: a bar redrawn in place on a terminal; in a log (stderr not
-// a terminal), a plain line at most every five seconds and one at the end.
-class ProgressBar {
- public:
-  explicit ProgressBar(std::size_t total) : total_(total), tty_(isatty(STDERR_FILENO) != 0) {}
-  void update(std::size_t done, std::size_t failed) {
-    if (total_ == 0) return;
-    const double elapsed = start_.seconds();
-    if (!tty_ && done != total_ && elapsed - last_line_ < 5) return;
-    last_line_ = elapsed;
-    const double eta = done > 0 ? elapsed / double(done) * double(total_ - done) : 0;
-    std::ostringstream eta_text;
-    eta_text << int(eta) / 60 << "m" << std::setw(2) << std::setfill('0') << int(eta) % 60 << "s";
-    if (!tty_) {
-      std::cerr << "indexed " << done << "/" << total_ << ", " << failed << " failed, ETA "
-                << eta_text.str() << std::endl;
-      return;
-    }
-    const int width = 30, filled = int(width * done / total_);
-    std::cerr << "\r\033[K[" << std::string(filled, '=') << std::string(width - filled, ' ') << "] "
-              << done << "/" << total_ << " meshes, " << failed << " failed, ETA " << eta_text.str()
-              << (done == total_ ? "\n" : "") << std::flush;
-  }
-
- private:
-  std::size_t total_;
-  bool tty_;
-  double last_line_ = 0;
-  Stopwatch start_;
-};
-
 Command add_index_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("index", "Describe meshes into a SQLite retrieval index");
   struct Args {
@@ -228,7 +197,7 @@ Command add_index_command(CLI::App& app) {
             for (const std::string& input : expand_inputs(args->inputs))
               items.push_back(index_item(input));
             IndexDb db(args->db);
-            std::optional<ProgressBar> bar;
+            ProgressDisplay bar("indexed", "meshes");
             IndexSummary summary;
             try {
               summary = index_meshes(db, pipeline, items,
@@ -236,8 +205,7 @@ Command add_index_command(CLI::App& app) {
                                          const IndexProgress& progress) {
                                        if (!error.empty()) print_error(item.path + ": " + error);
                                        if (progress.total == 0) return;  // before the run starts
-                                       if (!bar) bar.emplace(progress.total);
-                                       bar->update(progress.done, progress.failed);
+                                       bar.update(progress.done, progress.total, progress.failed);
                                      });
             } catch (const mp::PipelineError& e) {
               for (const auto& p : e.problems()) print_error(pipeline.name + ": " + p.text());

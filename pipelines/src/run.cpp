@@ -4,10 +4,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_for_each.h>
 
-#include <atomic>
 #include <chrono>
 #include <filesystem>
-#include <iostream>
 #include <mutex>
 #include <optional>
 #include <set>
@@ -18,22 +16,19 @@
 namespace morphex::pipeline {
 namespace {
 
+// Counts finished stages over the whole run and passes them to the caller's callback.
 class Progress {
  public:
-  Progress(bool enabled, std::size_t total) : enabled_(enabled), total_(total) {}
+  Progress(const RunOptions& options, std::size_t total) : options_(options), total_(total) {}
   void stage_done(const std::string& input, const Stage& stage) {
-    if (!enabled_) return;
-    const std::size_t done = ++done_;
+    if (!options_.on_progress) return;
     std::lock_guard<std::mutex> lock(mutex_);
-    std::cerr << "\r\033[K[" << done << "/" << total_ << "] "
-              << (input.empty() ? "" : std::filesystem::path(input).filename().string() + ": ")
-              << stage.type << (done == total_ ? "\n" : "") << std::flush;
+    options_.on_progress(++done_, total_, input, stage.type);
   }
 
  private:
-  bool enabled_;
-  std::size_t total_;
-  std::atomic<std::size_t> done_{0};
+  const RunOptions& options_;
+  std::size_t total_, done_ = 0;
   std::mutex mutex_;
 };
 
@@ -158,7 +153,7 @@ RunReport run(const nlohmann::json& document, const std::string& name, const Run
   if (!problems.empty()) throw PipelineError(std::move(problems));
 
   const Stopwatch start;
-  Progress progress(options.progress, pipelines.size() * pipelines[0].stages.size());
+  Progress progress(options, pipelines.size() * pipelines[0].stages.size());
   RunReport report;
   report.inputs.resize(pipelines.size());
   std::mutex done_mutex;

@@ -158,7 +158,12 @@ struct InputReport {
 struct RunOptions {
   Variables variables;              // from --set
   std::vector<std::string> inputs;  // each run binds ${input} and ${stem}
-  bool progress = false;            // a progress line on stderr
+  // Called after every stage of every input (one call at a time, from worker threads): how many
+  // stages of the whole run are done, and which one just finished. The libraries never print;
+  // the command line draws this as its progress bar.
+  std::function<void(std::size_t done, std::size_t total, const std::string& input,
+                     const std::string& stage)>
+      on_progress;
   // Called once per input as soon as it finishes (from a worker thread, one call at a time), so a
   // caller can commit results before the whole run ends.
   std::function<void(const InputReport&)> on_input_done;
