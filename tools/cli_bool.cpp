@@ -14,8 +14,8 @@ namespace morphex::cli {
 Command add_bool_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("bool", "Exact Boolean operation on two closed meshes");
   struct Args {
-    std::string op, a, b, out, stats;
-    bool exact = false;
+    std::string op, a, b;
+    OutputArgs output;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("OP", args->op, "union, intersection or difference (A minus B)")
@@ -23,15 +23,9 @@ Command add_bool_command(CLI::App& app) {
       ->check(CLI::IsMember({"union", "intersection", "difference"}));
   cmd->add_option("A", args->a, "First operand")->required();
   cmd->add_option("B", args->b, "Second operand")->required();
-  cmd->add_option("-o,--output", args->out, "Output mesh (format from the extension)")->required();
-  cmd->add_flag("--exact", args->exact, "Write the lossless exact OFF format");
-  cmd->add_option("--stats", args->stats, "Write statistics as JSON to FILE, or '-' for stdout");
+  add_output_options(cmd, args->output);
   return {cmd, [args]() -> int {
-            for (const std::string& input : {args->a, args->b})
-              if (same_file(input, args->out)) {
-                print_error(args->out + ": refusing to overwrite an input");
-                return kBadInput;
-              }
+            if (output_overwrites_input(args->output.out, {args->a, args->b})) return kBadInput;
             Mesh a, b;
             try {
               a = read_mesh(args->a);
@@ -49,10 +43,7 @@ Command add_bool_command(CLI::App& app) {
               print_error(file + ": " + result.message);
               return kBadInput;
             }
-            WriteOptions write_options;
-            write_options.exact = args->exact;
-            write_mesh(result.mesh, args->out, write_options);
-            if (!args->stats.empty()) {
+            write_result(result.mesh, args->output, [&] {
               nlohmann::json stats = result_stats(result.mesh, seconds);
               const BooleanStats& s = result.stats;
               stats["operation"] = args->op;
@@ -62,8 +53,8 @@ Command add_bool_command(CLI::App& app) {
                   {"validate", s.seconds.validate}, {"pairs", s.seconds.pairs},
                   {"segments", s.seconds.segments}, {"retriangulate", s.seconds.retriangulate},
                   {"classify", s.seconds.classify}, {"assemble", s.seconds.assemble}};
-              emit_json(stats, args->stats);
-            }
+              return stats;
+            });
             return kSuccess;
           }};
 }

@@ -56,6 +56,20 @@ bool output_overwrites_input(const std::string& output, const std::vector<std::s
   return false;
 }
 
+void add_output_options(CLI::App* cmd, OutputArgs& args) {
+  cmd->add_option("-o,--output", args.out, "Output mesh (format from the extension)")->required();
+  cmd->add_flag("--exact", args.exact, "Write the lossless exact OFF format");
+  cmd->add_option("--stats", args.stats, "Write statistics as JSON to FILE, or '-' for stdout");
+}
+
+void write_result(const Mesh& mesh, const OutputArgs& args,
+                  const std::function<nlohmann::json()>& stats) {
+  WriteOptions options;
+  options.exact = args.exact;
+  write_mesh(mesh, args.out, options);
+  if (!args.stats.empty()) emit_json(stats(), args.stats);
+}
+
 void emit_json(const nlohmann::json& value, const std::string& target) {
   if (target == "-") {
     std::cout << value.dump() << std::endl;

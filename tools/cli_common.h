@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,6 +33,18 @@ std::optional<Mesh> read_solid(const std::string& path);
 
 // Refuses an output path that names one of the inputs.
 bool output_overwrites_input(const std::string& output, const std::vector<std::string>& inputs);
+
+// The output options every mesh-producing command shares: -o/--output (required), --exact and
+// --stats FILE|-.
+struct OutputArgs {
+  std::string out, stats;
+  bool exact = false;
+};
+void add_output_options(CLI::App* cmd, OutputArgs& args);
+// Writes the mesh (atomically, in the format of the extension) and, if asked, the statistics that
+// `stats` builds (only then: they check the result, which costs as much as a check).
+void write_result(const Mesh& mesh, const OutputArgs& args,
+                  const std::function<nlohmann::json()>& stats);
 
 // Each subcommand registers itself on the app and returns the function that runs it.
 using Runner = std::function<int()>;

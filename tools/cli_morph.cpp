@@ -12,24 +12,6 @@
 namespace morphex::cli {
 namespace {
 
-struct OutputArgs {
-  std::string out, stats;
-  bool exact = false;
-};
-
-void add_output_options(CLI::App* cmd, OutputArgs& args) {
-  cmd->add_option("-o,--output", args.out, "Output mesh (format from the extension)")->required();
-  cmd->add_flag("--exact", args.exact, "Write the lossless exact OFF format");
-  cmd->add_option("--stats", args.stats, "Write statistics as JSON to FILE, or '-' for stdout");
-}
-
-void write_result(const Mesh& mesh, const OutputArgs& args, nlohmann::json stats) {
-  WriteOptions options;
-  options.exact = args.exact;
-  write_mesh(mesh, args.out, options);
-  if (!args.stats.empty()) emit_json(stats, args.stats);
-}
-
 std::string se_help() {
   std::string help = "Structuring element, shape:key=value,... with shapes";
   for (const SeShapeInfo& s : structuring_element_shapes()) {
@@ -68,13 +50,16 @@ Command add_morphology_command(CLI::App& app, MorphologyOp op, const std::string
             const Stopwatch start;
             MorphologyStats stats;
             const Mesh result = apply_morphology(op, *a, se, &stats);
-            nlohmann::json j = result_stats(result, start.seconds());
-            j["operation"] = to_string(op);
-            j["se"] = se.spec;
-            j["se_convex"] = se.convex;
-            j["pieces"] = stats.pieces;
-            j["binary_unions"] = stats.binary_unions;
-            write_result(result, args->output, j);
+            const double seconds = start.seconds();
+            write_result(result, args->output, [&] {
+              nlohmann::json j = result_stats(result, seconds);
+              j["operation"] = to_string(op);
+              j["se"] = se.spec;
+              j["se_convex"] = se.convex;
+              j["pieces"] = stats.pieces;
+              j["binary_unions"] = stats.binary_unions;
+              return j;
+            });
             return kSuccess;
           }};
 }
@@ -98,12 +83,15 @@ Command add_minkowski_command(CLI::App& app) {
             const Stopwatch start;
             MinkowskiStats stats;
             const Mesh result = minkowski_sum(*a, *b, &stats);
-            nlohmann::json j = result_stats(result, start.seconds());
-            j["operation"] = "minkowski";
-            j["pieces"] = stats.pieces;
-            j["binary_unions"] = stats.binary_unions;
-            j["phases"] = {{"pieces", stats.seconds_pieces}, {"union", stats.seconds_union}};
-            write_result(result, args->output, j);
+            const double seconds = start.seconds();
+            write_result(result, args->output, [&] {
+              nlohmann::json j = result_stats(result, seconds);
+              j["operation"] = "minkowski";
+              j["pieces"] = stats.pieces;
+              j["binary_unions"] = stats.binary_unions;
+              j["phases"] = {{"pieces", stats.seconds_pieces}, {"union", stats.seconds_union}};
+              return j;
+            });
             return kSuccess;
           }};
 }

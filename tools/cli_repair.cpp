@@ -16,16 +16,14 @@ Command add_repair_command(CLI::App& app) {
       "Exact repair: the valid solid a closed mesh bounds, where it crosses or touches itself, "
       "repeats vertices or faces, or has faces without area (its positive winding region)");
   struct Args {
-    std::string in, out, stats;
-    bool exact = false;
+    std::string in;
+    OutputArgs output;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("IN", args->in, "Closed, consistently oriented mesh")->required();
-  cmd->add_option("-o,--output", args->out, "Output mesh (format from the extension)")->required();
-  cmd->add_flag("--exact", args->exact, "Write the lossless exact OFF format");
-  cmd->add_option("--stats", args->stats, "Write statistics as JSON to FILE, or '-' for stdout");
+  add_output_options(cmd, args->output);
   return {cmd, [args]() -> int {
-            if (output_overwrites_input(args->out, {args->in})) return kBadInput;
+            if (output_overwrites_input(args->output.out, {args->in})) return kBadInput;
             Mesh mesh;
             try {
               mesh = read_mesh(args->in);
@@ -44,16 +42,13 @@ Command add_repair_command(CLI::App& app) {
               return kBadInput;
             }
             const double seconds = start.seconds();
-            WriteOptions write_options;
-            write_options.exact = args->exact;
-            write_mesh(result.mesh, args->out, write_options);
-            if (!args->stats.empty()) {
+            write_result(result.mesh, args->output, [&] {
               nlohmann::json stats = result_stats(result.mesh, seconds);
               stats["operation"] = "repair";
               stats["input_faces"] = result.report.input_faces;
               stats["repair"] = pipeline::to_json(result.report);
-              emit_json(stats, args->stats);
-            }
+              return stats;
+            });
             return kSuccess;
           }};
 }
