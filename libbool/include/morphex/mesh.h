@@ -44,7 +44,11 @@ struct DoubleMesh {
   std::vector<Triangle> triangles;
 };
 
-// Rounds every coordinate to the nearest double.
+// Every coordinate as a double by CGAL::to_double: exact when it is one; otherwise the midpoint of
+// CGAL's interval, which CGAL refines exactly only when it is wider than its relative precision of
+// to_double (1e-5 by default), so lazy constructions are rarely evaluated. It is therefore not
+// always the nearest double (1/3 may give 0.33333333333333337); the Python module's
+// Mesh.vertices rounds to nearest through MPFR where that matters.
 DoubleMesh to_double(const Mesh& mesh);
 // Exact: every double is a dyadic rational, so the conversion loses nothing.
 Mesh from_double(const DoubleMesh& mesh);
