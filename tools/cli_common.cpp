@@ -57,7 +57,19 @@ bool output_overwrites_input(const std::string& output, const std::vector<std::s
 }
 
 void add_output_options(CLI::App* cmd, OutputArgs& args) {
-  cmd->add_option("-o,--output", args.out, "Output mesh (format from the extension)")->required();
+  // An unknown extension is bad usage, reported before any work (exit 2).
+  cmd->add_option("-o,--output", args.out, "Output mesh (format from the extension)")
+      ->required()
+      ->check(CLI::Validator(
+          [](std::string& path) -> std::string {
+            try {
+              format_from_path(path);
+              return "";
+            } catch (const InputError& e) {
+              return e.problem();
+            }
+          },
+          "MESH"));
   cmd->add_flag("--exact", args.exact, "Write the lossless exact OFF format");
   cmd->add_option("--stats", args.stats, "Write statistics as JSON to FILE, or '-' for stdout");
 }

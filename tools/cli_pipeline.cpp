@@ -80,7 +80,9 @@ Command add_run_command(CLI::App& app) {
             };
             mp::RunReport report;
             try {
-              report = mp::run(mp::load_document(args->file), args->file, options);
+              const nlohmann::json document = mp::load_document(args->file);
+              mp::check_assignments_used(document, options.variables);
+              report = mp::run(document, args->file, options);
             } catch (const mp::PipelineError& e) {
               print_problems(args->file, e);
               return kBadInput;
@@ -118,6 +120,7 @@ Command add_validate_command(CLI::App& app) {
         const auto inputs = expand_inputs(args->inputs);
         try {
           const nlohmann::json document = mp::load_document(args->file);
+          mp::check_assignments_used(document, variables);
           std::size_t stages = 0;
           if (inputs.empty()) {
             stages = mp::validate(document, args->file, variables, {"input", "stem"}).stages.size();

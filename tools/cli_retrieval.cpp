@@ -296,6 +296,11 @@ Command add_evaluate_command(CLI::App& app) {
             }
             IndexDb db(args->db);
             const IndexEvaluation e = evaluate_index(db, labels, parse_metric(args->metric));
+            if (e.models == 0) {  // a table of zeros would hide a wrong --labels or --db
+              print_error(args->labels + ": none of its " + std::to_string(labels.size()) +
+                          " models is in the index " + args->db);
+              return kBadInput;
+            }
             nlohmann::json j = {{"models", e.models},
                                 {"metric", args->metric},
                                 {"unlabelled", e.unlabelled},

@@ -36,9 +36,19 @@ int main(int argc, char** argv) {
   CLI::App app{"morphex: exact mathematical morphology on 3D triangle meshes"};
   app.set_version_flag("--version", std::string("morphex ") + MORPHEX_VERSION);
   app.require_subcommand(1);
+  // Global options are accepted after the subcommand too (`morphex bool --threads 2 ...`), as
+  // ../shared/conventions.md promises.
+  app.fallthrough();
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
   app.add_option("--threads", threads, "Worker threads (default: all cores)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Validator(
+          [](std::string& value) -> std::string {
+            return value.find_first_not_of("0123456789") == std::string::npos &&
+                           value.find_first_not_of('0') != std::string::npos
+                       ? ""
+                       : "expected a positive number of threads, got '" + value + "'";
+          },
+          "POSITIVE"));
   morphex::InputLimits limits = morphex::input_limits();
   std::uint64_t max_input_mb = limits.max_file_bytes >> 20, max_memory_mb = 0;
   app.add_option("--max-faces", limits.max_faces, "Refuse input meshes with more faces")

@@ -84,6 +84,7 @@ IndexPipeline make_index_pipeline(const nlohmann::json* document, const std::str
   out.name = document ? name : "default";
   out.document = document ? *document : mp::parse_document(kDefaultIndexPipeline, "default");
   if (repair) out.document = with_repairs(out.document);
+  mp::check_assignments_used(out.document, variables);
   out.variables = std::move(variables);
   const mp::Pipeline p = mp::validate(out.document, out.name, out.variables, {"input", "stem"});
   if (std::none_of(p.stages.begin(), p.stages.end(),

@@ -211,6 +211,15 @@ Variables parse_assignments(const std::vector<std::string>& assignments) {
   return out;
 }
 
+void check_assignments_used(const nlohmann::json& document, const Variables& assignments) {
+  const std::string text = document.dump();
+  std::vector<Problem> problems;
+  for (const auto& [name, value] : assignments)
+    if (text.find("${" + name + "}") == std::string::npos)
+      problems.push_back({"--set " + name, "the pipeline uses no ${" + name + "}"});
+  if (!problems.empty()) throw PipelineError(std::move(problems));
+}
+
 nlohmann::json load_document(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw PipelineError(std::vector<Problem>{{path, "cannot open the pipeline file"}});

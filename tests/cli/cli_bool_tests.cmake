@@ -60,3 +60,12 @@ morphex_cli_test(describe_repair 0 "\"repair\":\\{\"cancelled_faces\":0,\"change
   describe --repair --json --scales 2 ${data}/crossing_cubes.off)
 morphex_cli_test(describe_without_repair 2 "crossing_cubes.off: mesh self-intersects"
   describe --json ${data}/crossing_cubes.off)
+# The doorstep (issue 23): global options after the subcommand, clear refusals before any work.
+morphex_cli_test(bool_threads_after_subcommand 0 "\"volume\":\"1\""
+  bool union ${data}/unit_cube.off ${data}/unit_cube.off -o ${out}/threads.off --threads 2 --stats -)
+morphex_cli_test(threads_zero 2 "expected a positive number of threads, got '0'"
+  --threads 0 check ${data}/unit_cube.off)
+morphex_cli_test(bool_unknown_output_format 2 "--output: unknown mesh format '.xyz'"
+  bool union ${data}/unit_cube.off ${data}/unit_cube.off -o ${out}/never.xyz)
+morphex_cli_test(dilate_unknown_output_format 2 "--output: unknown mesh format '.glb'"
+  dilate ${data}/unit_cube.off --se cube:r=1 -o ${out}/never.glb)

@@ -26,6 +26,11 @@ morphex_cli_test(run_one_bad_input 1
 morphex_cli_test(run_glob 0 "2 runs, 2 succeeded, 0 failed"
   run ${pipelines}/grow.json --set out_dir=${pipe_out} --input "${data}/[ut]*_*.off")
 morphex_cli_test(run_bad_set 2 "--set r: expected name=value" run ${pipelines}/grow.json --set r)
+# a --set that names no ${variable} of the pipeline is a mistake, not silently ignored
+morphex_cli_test(run_unused_set 2 "--set out_dri: the pipeline uses no \\$\\{out_dri\\}"
+  run ${pipelines}/grow.json --set out_dri=${pipe_out} --input ${data}/unit_cube.off)
+morphex_cli_test(validate_unused_set 2 "--set nosuch: the pipeline uses no"
+  validate ${pipelines}/grow.json --set nosuch=1)
 # one parser for run, validate and index: an empty name is refused everywhere
 morphex_cli_test(validate_bad_set 2 "--set =1/2: expected name=value"
   validate ${pipelines}/grow.json --set =1/2)

@@ -57,6 +57,9 @@ set_tests_properties(cli.evaluate PROPERTIES DEPENDS cli.index_resume)
 morphex_cli_test(evaluate_bad_labels 2 "unit_cube.off: line 1: expected the header"
   evaluate --db ${rdir}/index.sqlite --labels ${data}/unit_cube.off)
 set_tests_properties(cli.evaluate_bad_labels PROPERTIES DEPENDS cli.index_resume)
+morphex_cli_test(evaluate_no_labelled_model 2 "unindexed-labels.cla: none of its 2 models is in the index"
+  evaluate --db ${rdir}/index.sqlite --labels ${data}/unindexed-labels.cla)
+set_tests_properties(cli.evaluate_no_labelled_model PROPERTIES DEPENDS cli.index_resume)
 # killed with SIGKILL midway, the index keeps what it committed and the re-run does the rest
 add_test(NAME cli.index_killed_and_resumed COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/index_kill.sh
   $<TARGET_FILE:morphex> ${quick} ${PROJECT_BINARY_DIR}/cli-index-kill)

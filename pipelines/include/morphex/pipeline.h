@@ -102,6 +102,9 @@ using Variables = std::map<std::string, std::string>;
 // Variables from `name=value` assignments (the CLI's --set), later ones winning. A malformed one
 // (no '=', or an empty or non-identifier name) throws PipelineError located at "--set <text>".
 Variables parse_assignments(const std::vector<std::string>& assignments);
+// Throws PipelineError for every assignment whose ${name} the document never uses (a mistyped
+// --set would otherwise be ignored silently), located at "--set <name>".
+void check_assignments_used(const nlohmann::json& document, const Variables& assignments);
 
 struct Stage {
   std::size_t index;                // position in the "pipeline" array
