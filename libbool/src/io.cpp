@@ -77,6 +77,11 @@ Mesh read_mesh_from_string(const std::string& content, MeshFormat format, const 
 }
 
 Mesh read_mesh(const std::string& path) {
+  // What is wrong with the path itself comes first: "unknown mesh format ''" would mislead.
+  std::error_code error;
+  if (path == "-") throw InputError(path, "standard input is not read: give a mesh file");
+  if (fs::is_directory(path, error)) throw InputError(path, "is a directory, not a mesh file");
+  if (!fs::exists(path, error)) throw InputError(path, "cannot open file: no such file");
   const MeshFormat format = format_from_path(path);
   Mesh mesh = read_mesh_from_string(read_file(path), format, path);
   if (mesh.num_triangles() > max_faces)

@@ -174,6 +174,9 @@ std::vector<Neighbour> query_index(IndexDb& db, const std::string& target, std::
     query = stored->descriptors.at(kind);
     exclude = stored->id;
   } else {
+    if (!fs::exists(target))
+      throw InputError(target, by_name ? "neither a mesh file nor the name of an indexed mesh"
+                                       : "cannot open file: no such file");
     // Described as the index's meshes were: its pipeline and variables.
     mp::RunOptions options;
     options.inputs = {target};

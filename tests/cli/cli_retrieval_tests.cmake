@@ -51,6 +51,9 @@ morphex_cli_test(query_copy_first 0 "\"neighbours\":\\[\\{\"distance\":0.0,\"nam
 set_tests_properties(cli.query_copy_first PROPERTIES DEPENDS cli.copy_mesh)
 morphex_cli_test(query_by_name 0 "\"query\":\"ell-1\"" query --db ${rdir}/index.sqlite ell-1 -k 2 --json --descriptor d2)
 set_tests_properties(cli.query_by_name PROPERTIES DEPENDS cli.index_resume)
+morphex_cli_test(query_unknown_name 2 "nosuch: neither a mesh file nor the name of an indexed mesh"
+  query --db ${rdir}/index.sqlite nosuch)
+set_tests_properties(cli.query_unknown_name PROPERTIES DEPENDS cli.index_resume)
 morphex_cli_test(evaluate 0 "Nearest Neighbor +First Tier +Second Tier +E-measure +DCG.*granulometry.*d2.*12 labelled models"
   evaluate --db ${rdir}/index.sqlite --labels ${rdir}/coll2/labels.cla)
 set_tests_properties(cli.evaluate PROPERTIES DEPENDS cli.index_resume)

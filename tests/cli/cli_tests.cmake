@@ -91,3 +91,6 @@ add_test(NAME bench.bool_smoke COMMAND bench_bool --max-level 2 --only "icospher
 set_tests_properties(bench.bool_smoke PROPERTIES PASS_REGULAR_EXPRESSION "=coref =Nef")
 add_test(NAME bench.morph_smoke COMMAND bench_morph --se cube:r=1/4 --peer l-shape)
 set_tests_properties(bench.morph_smoke PROPERTIES PASS_REGULAR_EXPRESSION "agree with minkowski_sum_3")
+# Paths that are not mesh files say so (not "unknown mesh format ''").
+morphex_cli_test(check_directory 2 "tests/data: is a directory, not a mesh file" check ${data})
+morphex_cli_test(check_stdin 2 "-: standard input is not read" check -)
