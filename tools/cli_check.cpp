@@ -56,34 +56,48 @@ void print_text(const std::string& path, const MeshReport& r) {
   if (!r.valid_solid()) std::cout << "  problem: " << describe_problems(r) << '\n';
 }
 
+// One file: its report on stdout (text, or one JSON line), its problem on stderr. Returns the
+// file's exit code.
+int check_one(const std::string& path, bool json) {
+  Mesh mesh;
+  try {
+    mesh = read_mesh(path);
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    print_error(e.what());
+    // With --json, stdout still carries one object per file, so a script reading it sees why.
+    if (json) emit_json({{"file", path}, {"valid", false}, {"error", e.what()}}, "-");
+    return kBadInput;
+  }
+  const Stopwatch start;
+  const MeshReport report = check_mesh(mesh);
+  const double seconds = start.seconds();
+  if (json)
+    emit_json(report_json(path, report, seconds), "-");
+  else
+    print_text(path, report);
+  if (!report.valid_solid()) {
+    std::cerr << "morphex: " << path << ": " << describe_problems(report) << '\n';
+    return kFailed;
+  }
+  return kSuccess;
+}
+
 }  // namespace
 
 Command add_check_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("check", "Validity report of a mesh (exit 0 valid solid, 1 not)");
-  auto path = std::make_shared<std::string>();
+  auto* cmd = app.add_subcommand(
+      "check",
+      "Validity report of meshes (exit 0 all valid solids, 1 some not, 2 some unreadable)");
+  auto paths = std::make_shared<std::vector<std::string>>();
   auto json = std::make_shared<bool>(false);
-  cmd->add_option("MESH", *path, "Mesh file (OFF, OBJ, STL, PLY)")->required();
-  cmd->add_flag("--json", *json, "Print one JSON object instead of text");
+  cmd->add_option("MESH", *paths, "Mesh files (OFF, OBJ, STL, PLY)")->required();
+  cmd->add_flag("--json", *json, "Print one JSON object per file (one line each) instead of text");
   return {cmd, [=]() -> int {
-            Mesh mesh;
-            try {
-              mesh = read_mesh(*path);
-            } catch (const std::exception& e) {
-              print_error(e.what());
-              return kBadInput;
-            }
-            const Stopwatch start;
-            const MeshReport report = check_mesh(mesh);
-            const double seconds = start.seconds();
-            if (*json)
-              emit_json(report_json(*path, report, seconds), "-");
-            else
-              print_text(*path, report);
-            if (!report.valid_solid()) {
-              std::cerr << "morphex: " << *path << ": " << describe_problems(report) << '\n';
-              return kFailed;
-            }
-            return kSuccess;
+            int worst = kSuccess;  // bad input (2) outranks an invalid solid (1)
+            for (const std::string& path : *paths) worst = std::max(worst, check_one(path, *json));
+            return worst;
           }};
 }
 

@@ -94,3 +94,9 @@ set_tests_properties(bench.morph_smoke PROPERTIES PASS_REGULAR_EXPRESSION "agree
 # Paths that are not mesh files say so (not "unknown mesh format ''").
 morphex_cli_test(check_directory 2 "tests/data: is a directory, not a mesh file" check ${data})
 morphex_cli_test(check_stdin 2 "-: standard input is not read" check -)
+# Several files at once: one JSON line each, an unreadable one as an error object; worst exit code.
+morphex_cli_test(check_many_json 2
+  "\"file\":\"[^\"]*unit_cube.off\".*\"valid\":true.*\"error\":\"[^\"]*does_not_exist.off: cannot open file.*\"valid\":false.*\"border_edges\":4"
+  check --json ${data}/unit_cube.off ${data}/does_not_exist.off ${data}/open_cube.off)
+morphex_cli_test(check_many_invalid 1 "unit_cube.off: valid closed solid.*open_cube.off: NOT a valid solid"
+  check ${data}/unit_cube.off ${data}/open_cube.off)
