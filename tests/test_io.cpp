@@ -6,6 +6,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include "morphex/generators.h"
 #include "morphex/io.h"
@@ -83,6 +84,28 @@ TEST(Io, PlainFormatsRoundTripDoublesExactly) {
     for (std::size_t i = 0; i < m.points.size(); ++i)
       EXPECT_EQ(back.points[i], m.points[i]) << name;
     EXPECT_EQ(back.triangles, m.triangles) << name;
+  }
+}
+
+// Every written file says what made it (issue 23): the version and the provenance line, as the
+// format's comment, and still reads back as the same mesh.
+TEST(Io, WrittenFilesCarryTheirProvenance) {
+  TempDir dir;
+  const Mesh m = make_icosphere(1, FT(1));
+  WriteOptions options;
+  options.provenance = "morphex bool union a.off b.off\n-o c.off";  // a newline is flattened
+  const std::string line = provenance_line(options.provenance);
+  EXPECT_EQ(line, std::string("written by morphex ") + version() +
+                      ": morphex bool union a.off b.off -o c.off");
+  for (const char* name : {"m.off", "m.obj", "m.ply", "m.stl"}) {
+    write_mesh(m, dir.file(name), options);
+    std::ifstream in(dir.file(name), std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    // binary STL keeps the first 80 bytes of it
+    const std::string expected = std::string(name) == "m.stl" ? line.substr(0, 80) : line;
+    EXPECT_NE(bytes.find(expected), std::string::npos) << name;
+    const Mesh back = read_mesh(dir.file(name));
+    EXPECT_EQ(back.triangles.size(), m.triangles.size()) << name;
   }
 }
 

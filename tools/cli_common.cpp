@@ -74,10 +74,16 @@ void add_output_options(CLI::App* cmd, OutputArgs& args) {
   cmd->add_option("--stats", args.stats, "Write statistics as JSON to FILE, or '-' for stdout");
 }
 
+std::string& command_line() {
+  static std::string line;
+  return line;
+}
+
 void write_result(const Mesh& mesh, const OutputArgs& args,
                   const std::function<nlohmann::json()>& stats) {
   WriteOptions options;
   options.exact = args.exact;
+  options.provenance = command_line();
   write_mesh(mesh, args.out, options);
   if (!args.stats.empty()) emit_json(stats(), args.stats);
 }

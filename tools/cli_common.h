@@ -36,6 +36,9 @@ bool output_overwrites_input(const std::string& output, const std::vector<std::s
 
 // The output options every mesh-producing command shares: -o/--output (required), --exact and
 // --stats FILE|-.
+// The command line as typed, for the provenance comment of written files (set by main).
+std::string& command_line();
+
 struct OutputArgs {
   std::string out, stats;
   bool exact = false;

@@ -67,6 +67,8 @@ int main(int argc, char** argv) {
   for (Command& c : add_pipeline_commands(app)) commands.push_back(std::move(c));
   for (Command& c : add_retrieval_commands(app)) commands.push_back(std::move(c));
 
+  for (int i = 0; i < argc; ++i)
+    command_line() += (i ? " " : "") + std::string(i ? argv[i] : "morphex");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -99,23 +99,36 @@ InputLimits input_limits() {
   return {max_file_bytes.load(), max_faces.load()};
 }
 
+const char* version() {
+  return MORPHEX_VERSION;
+}
+
+std::string provenance_line(const std::string& provenance) {
+  std::string line = std::string("written by morphex ") + version();
+  if (!provenance.empty()) line += ": " + provenance;
+  for (char& c : line)  // one line of printable text in every format
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = ' ';
+  return line;
+}
+
 void write_mesh(const Mesh& mesh, const std::string& path, const WriteOptions& options) {
+  const std::string note = provenance_line(options.provenance);
   const MeshFormat format = format_from_path(path);
   if (options.exact && format != MeshFormat::Off)
     throw InputError(path, "the exact format is OFF: use a .off output with --exact");
   write_file_atomically(path, [&](std::ostream& out) {
     switch (format) {
       case MeshFormat::Off:
-        detail::write_off(mesh, out, options.exact);
+        detail::write_off(mesh, out, options.exact, note);
         break;
       case MeshFormat::Obj:
-        detail::write_obj(mesh, out);
+        detail::write_obj(mesh, out, note);
         break;
       case MeshFormat::Stl:
-        detail::write_stl(mesh, out);
+        detail::write_stl(mesh, out, note);
         break;
       case MeshFormat::Ply:
-        detail::write_ply(mesh, out);
+        detail::write_ply(mesh, out, note);
         break;
     }
   });

@@ -46,8 +46,8 @@ Mesh read_obj(const std::string& content, const std::string& name) {
   return mesh;
 }
 
-void write_obj(const Mesh& m, std::ostream& out) {
-  std::string text;
+void write_obj(const Mesh& m, std::ostream& out, const std::string& note) {
+  std::string text = "# " + note + "\n";
   for (const Point& p : m.points) {
     text += "v";
     for (int k = 0; k < 3; ++k) {

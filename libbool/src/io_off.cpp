@@ -72,8 +72,8 @@ Mesh read_off(const std::string& content, const std::string& name) {
   return mesh;
 }
 
-void write_off(const Mesh& m, std::ostream& out, bool exact) {
-  std::string text = "OFF\n" + std::to_string(m.points.size()) + ' ' +
+void write_off(const Mesh& m, std::ostream& out, bool exact, const std::string& note) {
+  std::string text = "OFF\n# " + note + "\n" + std::to_string(m.points.size()) + ' ' +
                      std::to_string(m.triangles.size()) + " 0\n";
   auto flush = [&](bool always) {
     if (always || text.size() > (1u << 20)) {

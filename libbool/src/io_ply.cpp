@@ -213,8 +213,8 @@ Mesh read_ply(const std::string& content, const std::string& name) {
   return mesh;
 }
 
-void write_ply(const Mesh& m, std::ostream& out) {
-  out << "ply\nformat binary_little_endian 1.0\ncomment written by morphex\nelement vertex "
+void write_ply(const Mesh& m, std::ostream& out, const std::string& note) {
+  out << "ply\nformat binary_little_endian 1.0\ncomment " << note << "\nelement vertex "
       << m.points.size()
       << "\nproperty double x\nproperty double y\nproperty double z\nelement face "
       << m.triangles.size() << "\nproperty list uchar int vertex_indices\nend_header\n";

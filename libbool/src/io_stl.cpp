@@ -115,8 +115,10 @@ Mesh read_stl(const std::string& content, const std::string& name) {
   return read_stl_binary(content, name);
 }
 
-void write_stl(const Mesh& m, std::ostream& out) {
-  char header[80] = "binary STL written by morphex";
+void write_stl(const Mesh& m, std::ostream& out, const std::string& note) {
+  // The header is free text, but it must not start with "solid" (ASCII STL); the note never does.
+  char header[80] = {};
+  note.copy(header, sizeof header);
   out.write(header, 80);
   const std::uint32_t n = std::uint32_t(m.triangles.size());
   out.write(reinterpret_cast<const char*>(&n), 4);

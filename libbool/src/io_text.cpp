@@ -33,9 +33,9 @@ bool TextReader::next(Line& line) {
   while (pos_ < content_.size()) {
     const char* start = content_.data() + pos_;
     const void* newline = std::memchr(start, '\n', content_.size() - pos_);
-    const std::size_t end =
-        newline ? std::size_t(static_cast<const char*>(newline) - content_.data())
-                : content_.size();
+    const std::size_t end = newline
+                                ? std::size_t(static_cast<const char*>(newline) - content_.data())
+                                : content_.size();
     std::string_view text = content_.substr(pos_, end - pos_);
     pos_ = end + 1;
     ++number_;

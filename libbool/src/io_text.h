@@ -19,10 +19,11 @@ Mesh read_off(const std::string& content, const std::string& name);
 Mesh read_obj(const std::string& content, const std::string& name);
 Mesh read_stl(const std::string& content, const std::string& name);
 Mesh read_ply(const std::string& content, const std::string& name);
-void write_off(const Mesh& mesh, std::ostream& out, bool exact);
-void write_obj(const Mesh& mesh, std::ostream& out);
-void write_stl(const Mesh& mesh, std::ostream& out);
-void write_ply(const Mesh& mesh, std::ostream& out);
+// `note`: one line of provenance, written as the format's comment (provenance_line, io.h).
+void write_off(const Mesh& mesh, std::ostream& out, bool exact, const std::string& note);
+void write_obj(const Mesh& mesh, std::ostream& out, const std::string& note);
+void write_stl(const Mesh& mesh, std::ostream& out, const std::string& note);
+void write_ply(const Mesh& mesh, std::ostream& out, const std::string& note);
 
 // Lines of a text, '#' comments stripped, split on whitespace; the tokens view the text.
 struct Line {

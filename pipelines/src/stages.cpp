@@ -222,6 +222,7 @@ void add_io_stages(StageRegistry& r) {
            if (!parent.empty()) std::filesystem::create_directories(parent);
            WriteOptions options;
            options.exact = c.option("exact").get<bool>();
+           options.provenance = "pipeline stage " + c.stage.tag;
            write_mesh(*c.inputs[0], path, options);
            c.extra["path"] = path;
            return *c.inputs[0];

@@ -37,7 +37,15 @@ void remove_pending_temporary_files() noexcept;
 
 struct WriteOptions {
   bool exact = false;  // OFF with rational coordinates; only for .off
+  // Provenance, one line (what made the file: the command or pipeline stage), written with the
+  // morphex version as a comment where the format has one: OFF and OBJ '#', PLY "comment", binary
+  // STL's 80-byte header (cut to fit). Empty: the version alone.
+  std::string provenance;
 };
+// The library's version ("0.1.0").
+const char* version();
+// The comment line a file written with `provenance` carries, without the format's comment marker.
+std::string provenance_line(const std::string& provenance);
 void write_mesh(const Mesh& mesh, const std::string& path, const WriteOptions& options = {});
 
 // Writes through `writer` into a temporary file next to `path`, then renames it over `path`:
