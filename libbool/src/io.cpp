@@ -99,10 +99,6 @@ InputLimits input_limits() {
   return {max_file_bytes.load(), max_faces.load()};
 }
 
-const char* version() {
-  return MORPHEX_VERSION;
-}
-
 std::string provenance_line(const std::string& provenance) {
   std::string line = std::string("written by morphex ") + version();
   if (!provenance.empty()) line += ": " + provenance;
