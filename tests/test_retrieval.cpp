@@ -230,6 +230,7 @@ TEST(Index, IndexResumeQueryAndEvaluate) {
   EXPECT_EQ(first.indexed, meshes.size());
   ASSERT_EQ(first.errors.size(), 1u);
   EXPECT_EQ(first.errors[0].first, items.back().path);
+  EXPECT_TRUE(std::filesystem::path(first.errors[0].first).is_absolute());
   EXPECT_EQ(calls, meshes.size() + 1);
   // a re-run skips what is up to date; another pipeline re-describes
   EXPECT_EQ(index_meshes(db, pipeline, items).skipped, meshes.size());

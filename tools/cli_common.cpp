@@ -103,7 +103,7 @@ ProgressDisplay::ProgressDisplay(std::string verb, std::string units, bool in_lo
       in_logs_(in_logs) {}
 
 void ProgressDisplay::update(std::size_t done, std::size_t total, std::size_t failed,
-                             const std::string& note) {
+                             const std::string& note, double running) {
   if (total == 0 || (!tty_ && !in_logs_)) return;
   const double elapsed = clock_.seconds();
   if (!tty_ && done != total && last_line_ >= 0 && elapsed - last_line_ < 5) return;
@@ -116,7 +116,8 @@ void ProgressDisplay::update(std::size_t done, std::size_t total, std::size_t fa
               << " failed, ETA " << eta_text.str() << std::endl;
     return;
   }
-  const int width = 30, filled = int(width * done / total);
+  const int width = 30;
+  const int filled = std::min(width, int(width * (double(done) + running) / double(total)));
   std::cerr << "\r\033[K[" << std::string(filled, '=') << std::string(width - filled, ' ') << "] "
             << done << "/" << total << " " << units_ << ", " << failed << " failed, ETA "
             << eta_text.str() << (note.empty() ? "" : "  " + note) << (done == total ? "\n" : "")

@@ -61,6 +61,7 @@ Command add_repair_command(CLI::App& app);
 std::vector<Command> add_morphology_commands(CLI::App& app);
 std::vector<Command> add_pipeline_commands(CLI::App& app);
 std::vector<Command> add_retrieval_commands(CLI::App& app);
+std::vector<Command> add_index_commands(CLI::App& app);  // index, ls, rm
 
 // Expands glob patterns; plain paths are kept even if missing (reading reports them).
 std::vector<std::string> expand_inputs(const std::vector<std::string>& patterns);
@@ -71,8 +72,9 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& patterns)
 class ProgressDisplay {
  public:
   ProgressDisplay(std::string verb, std::string units, bool in_logs = true);
-  void update(std::size_t done, std::size_t total, std::size_t failed,
-              const std::string& note = "");
+  // `running`: the finished share of the units in progress (the bar moves inside a long one).
+  void update(std::size_t done, std::size_t total, std::size_t failed, const std::string& note = "",
+              double running = 0);
 
  private:
   std::string verb_, units_;

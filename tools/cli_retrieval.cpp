@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Descriptors and retrieval: `morphex describe`, `generate`, `index`, `query` and `evaluate`.
+// Descriptors and retrieval: `morphex describe`, `generate`, `query` and `evaluate` (`index`, `ls`
+// and `rm`, the collection manager, are in cli_index.cpp).
 #include <unistd.h>
 
 #include <chrono>
@@ -162,68 +163,6 @@ Command add_generate_command(CLI::App& app) {
           }};
 }
 
-Command add_index_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("index", "Describe meshes into a SQLite retrieval index");
-  struct Args {
-    std::vector<std::string> inputs, sets;
-    std::string db, pipeline;
-    bool repair = true;
-  };
-  auto args = std::make_shared<Args>();
-  cmd->add_option("INPUT", args->inputs, "Meshes or quoted globs")->required();
-  cmd->add_flag("--repair,!--no-repair", args->repair,
-                "Repair meshes that are not valid solids (self-intersecting, touching, repeated or "
-                "degenerate faces) before describing them; on by default, recorded per mesh");
-  cmd->add_option("--db", args->db, "Index file (SQLite), created if missing")->required();
-  cmd->add_option("--pipeline", args->pipeline,
-                  "Descriptor pipeline run on each ${input}; its last describe stage is stored "
-                  "(default: read, then describe with default settings)");
-  cmd->add_option("--set", args->sets, "Pipeline variable name=value (repeatable)");
-  return {cmd, [args]() -> int {
-            IndexPipeline pipeline;
-            try {
-              std::optional<nlohmann::json> document;
-              if (!args->pipeline.empty()) document = mp::load_document(args->pipeline);
-              pipeline = make_index_pipeline(document ? &*document : nullptr, args->pipeline,
-                                             mp::parse_assignments(args->sets), args->repair);
-            } catch (const mp::PipelineError& e) {
-              for (const auto& p : e.problems())
-                print_error(p.location.rfind("--set", 0) == 0 || args->pipeline.empty()
-                                ? p.text()
-                                : args->pipeline + ": " + p.text());
-              return kBadInput;
-            }
-            std::vector<IndexItem> items;
-            for (const std::string& input : expand_inputs(args->inputs))
-              items.push_back(index_item(input));
-            IndexDb db(args->db);
-            ProgressDisplay bar("indexed", "meshes");
-            IndexSummary summary;
-            try {
-              summary = index_meshes(db, pipeline, items,
-                                     [&](const IndexItem& item, const std::string& error,
-                                         const IndexProgress& progress) {
-                                       if (!error.empty()) print_error(item.path + ": " + error);
-                                       if (progress.total == 0) return;  // before the run starts
-                                       bar.update(progress.done, progress.total, progress.failed);
-                                     });
-            } catch (const mp::PipelineError& e) {
-              for (const auto& p : e.problems()) print_error(pipeline.name + ": " + p.text());
-              return kBadInput;
-            }
-            const std::size_t failed = summary.errors.size();
-            const std::size_t done = summary.indexed + failed;
-            std::cout << args->db << ": indexed " << summary.indexed << " meshes ("
-                      << summary.skipped << " already up to date, " << failed << " failed) in "
-                      << std::setprecision(3) << summary.seconds << " s";
-            if (done > 0)
-              std::cout << ", " << std::setprecision(3) << 60.0 * double(done) / summary.seconds
-                        << " meshes/min";
-            std::cout << '\n';
-            return failed == 0 ? kSuccess : kFailed;
-          }};
-}
-
 Command add_query_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("query", "Nearest neighbours of a mesh in a retrieval index");
   struct Args {
@@ -339,8 +278,8 @@ Command add_evaluate_command(CLI::App& app) {
 }  // namespace
 
 std::vector<Command> add_retrieval_commands(CLI::App& app) {
-  return {add_describe_command(app), add_generate_command(app), add_index_command(app),
-          add_query_command(app), add_evaluate_command(app)};
+  return {add_describe_command(app), add_generate_command(app), add_query_command(app),
+          add_evaluate_command(app)};
 }
 
 }  // namespace morphex::cli

@@ -66,6 +66,7 @@ int main(int argc, char** argv) {
   for (Command& c : add_morphology_commands(app)) commands.push_back(std::move(c));
   for (Command& c : add_pipeline_commands(app)) commands.push_back(std::move(c));
   for (Command& c : add_retrieval_commands(app)) commands.push_back(std::move(c));
+  for (Command& c : add_index_commands(app)) commands.push_back(std::move(c));
 
   for (int i = 0; i < argc; ++i)
     command_line() += (i ? " " : "") + std::string(i ? argv[i] : "morphex");

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <set>
 
+#include "index_internal.h"
 #include "morphex/stopwatch.h"
 
 namespace morphex {
@@ -61,15 +63,6 @@ std::map<std::string, std::vector<double>> descriptors_of(const mp::InputReport&
   return out;
 }
 
-IndexedMesh record(const IndexItem& item, const std::string& hash, const std::string& settings) {
-  IndexedMesh m;
-  m.name = item.name;
-  m.path = item.path;
-  m.hash = hash;
-  m.settings = settings;
-  return m;
-}
-
 }  // namespace
 
 std::string IndexPipeline::settings() const {
@@ -95,65 +88,132 @@ IndexPipeline make_index_pipeline(const nlohmann::json* document, const std::str
 }
 
 IndexItem index_item(const std::string& file) {
-  return {file, file, fs::path(file).stem().string()};
+  return {file, fs::absolute(file).lexically_normal().string(), fs::path(file).stem().string()};
 }
 
-IndexSummary index_meshes(IndexDb& db, const IndexPipeline& pipeline,
-                          const std::vector<IndexItem>& items, const IndexCallback& on_mesh) {
-  const Stopwatch clock;
-  const std::string settings = pipeline.settings();
+namespace detail {
+
+IndexRun::IndexRun(IndexDb& db, const IndexPipeline& pipeline, const IndexOptions& options,
+                   const IndexCallback& on_mesh)
+    : db_(db), options_(options), on_mesh_(on_mesh), settings_(pipeline.settings()) {
   db.set_meta("pipeline", pipeline.document.dump());
   db.set_meta("sets", nlohmann::json(pipeline.variables).dump());
-  IndexSummary summary;
-  IndexProgress progress;
-  auto fail = [&](const IndexItem& item, const std::string& error) {
-    summary.errors.emplace_back(item.path, error);
-    ++progress.failed;
-    if (on_mesh) on_mesh(item, error, progress);
-  };
+}
 
-  // Unreadable files fail at once; meshes up to date are skipped.
+void IndexRun::report(const IndexItem& item, const std::string& error) {
+  if (!error.empty()) {
+    summary_.errors.emplace_back(item.path, error);
+    ++progress_.failed;
+  }
+  if (on_mesh_) on_mesh_(item, error, progress_);
+}
+
+std::vector<PendingMesh> IndexRun::plan(const std::vector<IndexItem>& items) {
+  std::vector<PendingMesh> pending;
+  std::set<std::string> seen;
+  for (const IndexItem& item : items) {
+    if (!seen.insert(item.path).second) continue;  // named twice (a glob and a path)
+    PendingMesh p{item, "", 0};
+    try {
+      p.hash = content_hash(item.file);
+      p.bytes = fs::file_size(item.file);
+    } catch (const std::exception&) {
+      IndexedMesh failed;
+      failed.name = item.name;
+      failed.path = item.path;
+      failed.settings = settings_;
+      failed.status = "failed";
+      failed.error = "cannot read the file";
+      db_.store(failed);
+      report(item, failed.error);
+      continue;
+    }
+    const std::string status = db_.status(item.path, p.hash, settings_);
+    if (status == "ok")
+      ++summary_.skipped;
+    else if (status == "failed" && !options_.retry_failed)
+      ++summary_.skipped_failed;
+    else
+      pending.push_back(std::move(p));
+  }
+  // Largest first: a huge mesh started last would hold the whole run back.
+  std::stable_sort(pending.begin(), pending.end(),
+                   [](const PendingMesh& a, const PendingMesh& b) { return a.bytes > b.bytes; });
+  progress_.total = pending.size();
+  return pending;
+}
+
+void IndexRun::stage_done(double meshes) {
+  if (!options_.on_stage) return;
+  std::lock_guard<std::mutex> lock(mutex_);
+  IndexProgress p = progress_;
+  p.running = std::max(0.0, meshes - double(p.done));
+  options_.on_stage(p);
+}
+
+void IndexRun::commit(const IndexedMesh& mesh) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  db_.store(mesh);
+  ++progress_.done;
+  if (mesh.status == "ok") ++summary_.indexed;
+  report({mesh.path, mesh.path, mesh.name}, mesh.error);
+}
+
+IndexSummary IndexRun::finish() {
+  return summary_;
+}
+
+IndexedMesh described_from_report(const mp::InputReport& r, const PendingMesh& p,
+                                  const std::string& settings) {
+  IndexedMesh d;
+  d.name = p.item.name;
+  d.path = p.item.path;
+  d.hash = p.hash;
+  d.settings = settings;
+  d.status = r.ok ? "ok" : "failed";
+  d.error = r.error;
+  if (r.ok) d.descriptors = descriptors_of(r);
+  d.repair = repair_of(r);
+  d.faces = r.stages.empty() ? 0 : r.stages.front().faces;
+  d.volume = r.stages.empty() ? "" : r.stages.front().volume;
+  d.seconds = r.seconds;
+  return d;
+}
+
+IndexedMesh describe_mesh(const IndexPipeline& pipeline, const PendingMesh& mesh,
+                          const std::string& settings) {
   mp::RunOptions options;
   options.variables = pipeline.variables;
-  std::map<std::string, std::pair<const IndexItem*, std::string>> pending;  // file -> item, hash
-  for (const IndexItem& item : items) {
-    std::string hash;
-    try {
-      hash = content_hash(item.file);
-    } catch (const std::exception&) {
-      IndexedMesh m = record(item, "", settings);
-      m.status = "failed";
-      m.error = "cannot read the file";
-      db.store(m, 0, "", 0);
-      fail(item, m.error);
-      continue;
-    }
-    if (db.up_to_date(item.path, hash, settings)) {
-      ++summary.skipped;
-      continue;
-    }
-    pending[item.file] = {&item, hash};
-    options.inputs.push_back(item.file);
-  }
-  progress.total = options.inputs.size();
+  options.inputs = {mesh.item.file};
+  const mp::RunReport r = mp::run(pipeline.document, pipeline.name, options);
+  return described_from_report(r.inputs.front(), mesh, settings);
+}
 
-  // Each mesh is committed as soon as its pipeline finishes.
-  options.on_input_done = [&](const mp::InputReport& r) {
-    const auto& [item, hash] = pending.at(r.input);
-    IndexedMesh m = record(*item, hash, settings);
-    m.status = r.ok ? "ok" : "failed";
-    m.error = r.error;
-    if (r.ok) m.descriptors = descriptors_of(r);
-    m.repair = repair_of(r);
-    const std::size_t faces = r.stages.empty() ? 0 : r.stages.front().faces;
-    const std::string volume = r.stages.empty() ? "" : r.stages.front().volume;
-    db.store(m, faces, volume, r.seconds);
-    ++progress.done;
-    if (!r.ok) return fail(*item, r.error);
-    ++summary.indexed;
-    if (on_mesh) on_mesh(*item, "", progress);
+}  // namespace detail
+
+IndexSummary index_meshes(IndexDb& db, const IndexPipeline& pipeline,
+                          const std::vector<IndexItem>& items, const IndexCallback& on_mesh,
+                          const IndexOptions& options) {
+  const Stopwatch clock;
+  detail::IndexRun run(db, pipeline, options, on_mesh);
+  const std::vector<detail::PendingMesh> pending = run.plan(items);
+  mp::RunOptions run_options;
+  run_options.variables = pipeline.variables;
+  std::map<std::string, const detail::PendingMesh*> by_file;
+  for (const detail::PendingMesh& p : pending) {
+    by_file[p.item.file] = &p;
+    run_options.inputs.push_back(p.item.file);
+  }
+  // The inputs run in parallel; each mesh is committed as soon as its pipeline finishes.
+  run_options.on_input_done = [&](const mp::InputReport& r) {
+    run.commit(detail::described_from_report(r, *by_file.at(r.input), run.settings()));
   };
-  if (!options.inputs.empty()) mp::run(pipeline.document, pipeline.name, options);
+  run_options.on_progress = [&](std::size_t done, std::size_t total, const std::string&,
+                                const std::string&) {
+    run.stage_done(double(done) * double(pending.size()) / double(total));
+  };
+  if (!pending.empty()) mp::run(pipeline.document, pipeline.name, run_options);
+  IndexSummary summary = run.finish();
   summary.seconds = clock.seconds();
   return summary;
 }

@@ -42,6 +42,7 @@ class Statement {
     return t ? reinterpret_cast<const char*>(t) : "";
   }
   long long integer(int col) const { return sqlite3_column_int64(stmt_, col); }
+  double real(int col) const { return sqlite3_column_double(stmt_, col); }
 
  private:
   sqlite3* db_;
@@ -102,17 +103,14 @@ void IndexDb::set_meta(const std::string& key, const std::string& value) {
   s.bind(1, key).bind(2, value).step();
 }
 
-bool IndexDb::up_to_date(const std::string& path, const std::string& hash,
-                         const std::string& settings) {
-  Statement s(db_,
-              "SELECT 1 FROM meshes WHERE path = ? AND hash = ? AND settings = ? AND "
-              "status = 'ok'");
+std::string IndexDb::status(const std::string& path, const std::string& hash,
+                            const std::string& settings) {
+  Statement s(db_, "SELECT status FROM meshes WHERE path = ? AND hash = ? AND settings = ?");
   s.bind(1, path).bind(2, hash).bind(3, settings);
-  return s.step();
+  return s.step() ? s.text(0) : "";
 }
 
-void IndexDb::store(const IndexedMesh& mesh, std::size_t faces, const std::string& volume,
-                    double seconds) {
+void IndexDb::store(const IndexedMesh& mesh) {
   exec("BEGIN IMMEDIATE");
   try {
     Statement upsert(db_,
@@ -124,8 +122,8 @@ void IndexDb::store(const IndexedMesh& mesh, std::size_t faces, const std::strin
                      "volume = excluded.volume, seconds = excluded.seconds, "
                      "repair = excluded.repair, indexed_at = CURRENT_TIMESTAMP");
     upsert.bind(1, mesh.name).bind(2, mesh.path).bind(3, mesh.hash).bind(4, mesh.settings);
-    upsert.bind(5, mesh.status).bind(6, mesh.error).bind(7, (long long)faces).bind(8, volume);
-    upsert.bind(9, seconds).bind(10, mesh.repair).step();
+    upsert.bind(5, mesh.status).bind(6, mesh.error).bind(7, (long long)mesh.faces);
+    upsert.bind(8, mesh.volume).bind(9, mesh.seconds).bind(10, mesh.repair).step();
     Statement id(db_, "SELECT id FROM meshes WHERE path = ?");
     id.bind(1, mesh.path).step();
     const long long mesh_id = id.integer(0);
@@ -142,11 +140,17 @@ void IndexDb::store(const IndexedMesh& mesh, std::size_t faces, const std::strin
   }
 }
 
-std::vector<IndexedMesh> IndexDb::load(bool only_ok) {
+bool IndexDb::remove(const std::string& path) {
+  Statement s(db_, "DELETE FROM meshes WHERE path = ?");  // descriptors cascade
+  s.bind(1, path).step();
+  return sqlite3_changes(db_) > 0;
+}
+
+std::vector<IndexedMesh> IndexDb::load(bool only_ok, bool with_descriptors) {
   std::vector<IndexedMesh> out;
   std::map<long long, std::size_t> position;
   Statement meshes(db_, std::string("SELECT id, name, path, hash, settings, status, error, "
-                                    "repair FROM meshes") +
+                                    "repair, faces, volume, seconds, indexed_at FROM meshes") +
                             (only_ok ? " WHERE status = 'ok'" : "") + " ORDER BY name, path");
   while (meshes.step()) {
     IndexedMesh m;
@@ -158,9 +162,14 @@ std::vector<IndexedMesh> IndexDb::load(bool only_ok) {
     m.status = meshes.text(5);
     m.error = meshes.text(6);
     m.repair = meshes.text(7);
+    m.faces = std::size_t(meshes.integer(8));
+    m.volume = meshes.text(9);
+    m.seconds = meshes.real(10);
+    m.indexed_at = meshes.text(11);
     position[m.id] = out.size();
     out.push_back(std::move(m));
   }
+  if (!with_descriptors) return out;
   Statement descriptors(db_, "SELECT mesh_id, kind, vector FROM descriptors");
   while (descriptors.step()) {
     const auto it = position.find(descriptors.integer(0));
@@ -171,20 +180,38 @@ std::vector<IndexedMesh> IndexDb::load(bool only_ok) {
   return out;
 }
 
-std::string content_hash(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot open");
-  std::uint64_t h = 1469598103934665603ULL;
-  char buffer[65536];
-  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
-    for (std::streamsize i = 0; i < in.gcount(); ++i) {
-      h ^= static_cast<unsigned char>(buffer[i]);
-      h *= 1099511628211ULL;
-    }
+namespace {
+
+constexpr std::uint64_t kFnvOffset = 1469598103934665603ULL, kFnvPrime = 1099511628211ULL;
+
+std::uint64_t fnv1a(std::uint64_t h, const char* bytes, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) {
+    h ^= static_cast<unsigned char>(bytes[i]);
+    h *= kFnvPrime;
   }
+  return h;
+}
+
+std::string hex(std::uint64_t h) {
   char text[17];
   std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
   return text;
+}
+
+}  // namespace
+
+std::string content_hash(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path + ": cannot open");
+  std::uint64_t h = kFnvOffset;
+  char buffer[65536];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0)
+    h = fnv1a(h, buffer, std::size_t(in.gcount()));
+  return hex(h);
+}
+
+std::string text_hash(const std::string& text) {
+  return hex(fnv1a(kFnvOffset, text.data(), text.size()));
 }
 
 }  // namespace morphex

@@ -66,3 +66,12 @@ set_tests_properties(cli.evaluate_no_labelled_model PROPERTIES DEPENDS cli.index
 # killed with SIGKILL midway, the index keeps what it committed and the re-run does the rest
 add_test(NAME cli.index_killed_and_resumed COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/index_kill.sh
   $<TARGET_FILE:morphex> ${quick} ${PROJECT_BINARY_DIR}/cli-index-kill)
+# the collection manager: absolute paths, failures skipped until --retry-failed, changed files,
+# ls, rm, --quiet, --json
+add_test(NAME cli.index_manage COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/index_manage.sh
+  $<TARGET_FILE:morphex> ${quick} ${data} ${PROJECT_BINARY_DIR}/cli-index-manage)
+if(MORPHEX_MPI)
+  # three MPI ranks store the rows of a single-process run, resume and skip as it does
+  add_test(NAME cli.index_mpi COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/index_mpi.sh
+    $<TARGET_FILE:morphex> ${MPIEXEC_EXECUTABLE} ${quick} ${PROJECT_BINARY_DIR}/cli-index-mpi)
+endif()

@@ -48,27 +48,44 @@ IndexPipeline make_index_pipeline(const nlohmann::json* document, const std::str
 struct IndexItem {
   std::string file, path, name;
 };
-IndexItem index_item(const std::string& file);  // path = file, name = its stem
+// path = the file's absolute path, so that an index can be updated from any folder; name = its
+// stem.
+IndexItem index_item(const std::string& file);
 
 // After each mesh described (or refused): how far the run is, and the mesh's error ("" if ok).
 struct IndexProgress {
   std::size_t done = 0, total = 0, failed = 0;
+  // The finished share of the meshes still being described, in meshes (their finished pipeline
+  // stages), so that a display can move inside a long mesh; 0 in per-mesh reports.
+  double running = 0;
 };
 using IndexCallback =
     std::function<void(const IndexItem& item, const std::string& error, const IndexProgress&)>;
 
+struct IndexOptions {
+  // Describe again meshes that failed before with the same content and settings (by default they
+  // are skipped: a mesh that cannot be described fails the same way every time).
+  bool retry_failed = false;
+  // Called after every pipeline stage of every mesh, one call at a time (single-process runs).
+  std::function<void(const IndexProgress&)> on_stage;
+};
+
 struct IndexSummary {
-  std::size_t indexed = 0, skipped = 0;                     // skipped: already up to date
+  std::size_t indexed = 0;
+  std::size_t skipped = 0;         // already up to date
+  std::size_t skipped_failed = 0;  // failed before with this content and these settings
   std::vector<std::pair<std::string, std::string>> errors;  // (recorded path, message)
   double seconds = 0;
+  int processes = 1;  // MPI ranks that described meshes
 };
 
 // Describes every item not already up to date (same content hash and settings) and commits each
 // as soon as it finishes, so that an interrupted run keeps what it committed and a re-run resumes.
-// The pipeline and its variables are stored in the index for queries. `on_mesh` is called from
-// one thread at a time.
+// Items are described largest file first. The pipeline and its variables are stored in the index
+// for queries. `on_mesh` is called from one thread at a time.
 IndexSummary index_meshes(IndexDb& db, const IndexPipeline& pipeline,
-                          const std::vector<IndexItem>& items, const IndexCallback& on_mesh = {});
+                          const std::vector<IndexItem>& items, const IndexCallback& on_mesh = {},
+                          const IndexOptions& options = {});
 
 struct Neighbour {
   std::string name, path;

@@ -8,6 +8,7 @@
 // Every mesh is committed in its own transaction, so a run killed midway keeps what it committed.
 #pragma once
 
+#include <cstddef>
 #include <map>
 #include <optional>
 #include <string>
@@ -17,11 +18,16 @@ struct sqlite3;  // SQLite's connection, used through pointers only
 
 namespace morphex {
 
+// One row of the index: a mesh described (status "ok") or refused ("failed", with its error).
 struct IndexedMesh {
   long long id = 0;
   std::string name, path, hash, settings, status, error;
   std::string repair;  // the repair report (JSON) when the mesh was repaired, else empty
   std::map<std::string, std::vector<double>> descriptors;
+  std::size_t faces = 0;   // of the mesh as read
+  std::string volume;      // its exact volume as read ("" when unknown)
+  double seconds = 0;      // its pipeline's wall time
+  std::string indexed_at;  // UTC, set by the database
 };
 
 class IndexDb {
@@ -33,10 +39,14 @@ class IndexDb {
 
   std::optional<std::string> meta(const std::string& key);
   void set_meta(const std::string& key, const std::string& value);
-  // True when `path` is indexed successfully with this content hash and these settings.
-  bool up_to_date(const std::string& path, const std::string& hash, const std::string& settings);
-  void store(const IndexedMesh& mesh, std::size_t faces, const std::string& volume, double seconds);
-  std::vector<IndexedMesh> load(bool only_ok = true);
+  // "ok" or "failed" when `path` was indexed with this content hash and these settings, else "".
+  std::string status(const std::string& path, const std::string& hash, const std::string& settings);
+  // Inserts or replaces the row of mesh.path (id and indexed_at are the database's).
+  void store(const IndexedMesh& mesh);
+  // Every row (only the successful ones by default), ordered by name then path.
+  std::vector<IndexedMesh> load(bool only_ok = true, bool with_descriptors = true);
+  // Removes the row of this recorded path and its descriptors; false when there is none.
+  bool remove(const std::string& path);
   const std::string& path() const { return path_; }
 
  private:
@@ -47,5 +57,7 @@ class IndexDb {
 
 // 64-bit FNV-1a of the file's bytes, as 16 hex digits.
 std::string content_hash(const std::string& path);
+// The same of a text (settings, for short names of them).
+std::string text_hash(const std::string& text);
 
 }  // namespace morphex

@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Indexing a collection across processes and machines with MPI (Open MPI or MPICH, started by
+// mpirun, mpiexec or Slurm's srun). Built when MPI is found (CMake option MORPHEX_MPI, library
+// morphex::retrieval_mpi); the command line uses it when it was started by an MPI launcher.
+//
+// Rank 0 owns the SQLite index: it plans the run (what is not up to date), hands meshes out one
+// at a time, largest first, to whichever rank asks next (so that one huge mesh does not hold the
+// others back), describes meshes itself on a worker thread, and commits every result in its own
+// transaction as it arrives: a killed job keeps what was committed and a re-run resumes. The other
+// ranks describe what they are given and never touch the index. The meshes' files must be
+// readable at the same absolute paths on every node (a shared file system).
+//
+// Errors: MPI failures abort the job (MPI's default error handler); a mesh that cannot be
+// described is recorded as failed, as in a single-process run.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "morphex/index.h"
+
+namespace morphex {
+
+// MPI for the lifetime of the object: MPI_Init_thread on construction (funneled: only the
+// constructing thread calls MPI), MPI_Finalize on destruction. One per process.
+class MpiSession {
+ public:
+  MpiSession();
+  ~MpiSession();
+  MpiSession(const MpiSession&) = delete;
+  MpiSession& operator=(const MpiSession&) = delete;
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  int ranks_on_this_node() const { return local_size_; }  // they share this node's cores
+
+ private:
+  int rank_ = 0, size_ = 1, local_size_ = 1;
+};
+
+// index_meshes (morphex/index.h) across the session's ranks; every rank calls it. `db` and `items`
+// are used on rank 0 only (db may be null elsewhere); on_mesh is called on rank 0 only. The
+// summary is rank 0's (other ranks get an empty one). The rows stored are identical to those of
+// a single-process run.
+IndexSummary index_meshes_mpi(MpiSession& session, IndexDb* db, const IndexPipeline& pipeline,
+                              const std::vector<IndexItem>& items,
+                              const IndexCallback& on_mesh = {}, const IndexOptions& options = {});
+
+}  // namespace morphex

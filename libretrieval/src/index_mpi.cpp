@@ -1,0 +1,204 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// `morphex index` across MPI ranks: rank 0 plans, hands out meshes on request and commits the
+// results; every other rank asks, describes, sends the row back and asks again. Messages are JSON
+// text (nlohmann writes doubles with the shortest text that reads back to the same double, so a
+// descriptor arrives bit for bit).
+#include "morphex/index_mpi.h"
+
+#include <mpi.h>
+
+#include <chrono>
+#include <deque>
+#include <filesystem>
+#include <future>
+#include <optional>
+#include <stdexcept>
+#include <thread>
+
+#include "index_internal.h"
+#include "morphex/stopwatch.h"
+
+namespace morphex {
+namespace {
+
+namespace fs = std::filesystem;
+using detail::PendingMesh;
+
+// Worker -> rank 0: "give me a mesh" (empty) or a described row (JSON), which also asks for more.
+constexpr int kTagRequest = 1;
+constexpr int kTagTask = 2;  // rank 0 -> worker: a mesh to describe (JSON)
+constexpr int kTagStop = 3;  // rank 0 -> worker: nothing left
+
+void send_text(const std::string& text, int to, int tag) {
+  MPI_Send(text.data(), int(text.size()), MPI_CHAR, to, tag, MPI_COMM_WORLD);
+}
+
+std::string receive_text(const MPI_Status& probed) {
+  int count = 0;
+  MPI_Get_count(&probed, MPI_CHAR, &count);
+  std::string text(std::size_t(count), '\0');
+  MPI_Recv(text.data(), count, MPI_CHAR, probed.MPI_SOURCE, probed.MPI_TAG, MPI_COMM_WORLD,
+           MPI_STATUS_IGNORE);
+  return text;
+}
+
+nlohmann::json row_to_json(const IndexedMesh& m) {
+  return {{"name", m.name},       {"path", m.path},
+          {"hash", m.hash},       {"status", m.status},
+          {"error", m.error},     {"repair", m.repair},
+          {"faces", m.faces},     {"volume", m.volume},
+          {"seconds", m.seconds}, {"descriptors", m.descriptors}};
+}
+
+IndexedMesh row_from_json(const nlohmann::json& j, const std::string& settings) {
+  IndexedMesh m;
+  m.name = j.at("name");
+  m.path = j.at("path");
+  m.hash = j.at("hash");
+  m.settings = settings;
+  m.status = j.at("status");
+  m.error = j.at("error");
+  m.repair = j.at("repair");
+  m.faces = j.at("faces");
+  m.volume = j.at("volume");
+  m.seconds = j.at("seconds");
+  m.descriptors = j.at("descriptors").get<std::map<std::string, std::vector<double>>>();
+  return m;
+}
+
+nlohmann::json task_to_json(const PendingMesh& p) {
+  return {{"file", p.item.file}, {"path", p.item.path}, {"name", p.item.name}, {"hash", p.hash}};
+}
+
+PendingMesh task_from_json(const nlohmann::json& j) {
+  return {{j.at("file"), j.at("path"), j.at("name")}, j.at("hash"), 0};
+}
+
+// A mesh described anywhere: never throws, an unexpected error is recorded as the mesh's failure.
+IndexedMesh describe_safely(const IndexPipeline& pipeline, const PendingMesh& mesh,
+                            const std::string& settings) {
+  try {
+    return detail::describe_mesh(pipeline, mesh, settings);
+  } catch (const std::exception& e) {
+    IndexedMesh failed;
+    failed.name = mesh.item.name;
+    failed.path = mesh.item.path;
+    failed.hash = mesh.hash;
+    failed.settings = settings;
+    failed.status = "failed";
+    failed.error = e.what();
+    return failed;
+  }
+}
+
+void pause() {
+  std::this_thread::sleep_for(std::chrono::milliseconds(1));
+}
+
+// Waits for every rank without spinning a core (a finished rank must not slow the ones still
+// describing on the same node, as a blocking barrier's busy wait would).
+void quiet_barrier() {
+  MPI_Request request;
+  MPI_Ibarrier(MPI_COMM_WORLD, &request);
+  int done = 0;
+  while (MPI_Test(&request, &done, MPI_STATUS_IGNORE) == MPI_SUCCESS && !done)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+}
+
+// Every rank but 0: ask, describe, send the row back (which asks again), until told to stop.
+void serve(const IndexPipeline& pipeline) {
+  const std::string settings = pipeline.settings();
+  send_text("", 0, kTagRequest);
+  for (;;) {
+    MPI_Status status;
+    int arrived = 0;
+    while (MPI_Iprobe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status) == MPI_SUCCESS && !arrived)
+      pause();
+    const std::string text = receive_text(status);
+    if (status.MPI_TAG == kTagStop) return;
+    const PendingMesh mesh = task_from_json(nlohmann::json::parse(text));
+    send_text(row_to_json(describe_safely(pipeline, mesh, settings)).dump(), 0, kTagRequest);
+  }
+}
+
+// Rank 0: hands out `pending` in order to whichever rank asks, describes on its own worker thread
+// too, and commits every row as it arrives.
+void lead(detail::IndexRun& run, const IndexPipeline& pipeline,
+          const std::vector<PendingMesh>& pending, int ranks) {
+  std::deque<const PendingMesh*> queue;
+  for (const PendingMesh& p : pending) queue.push_back(&p);
+  std::optional<std::future<IndexedMesh>> local;
+  int serving = ranks - 1;  // ranks not yet told to stop
+  while (serving > 0 || local || !queue.empty()) {
+    bool busy = false;
+    if (!local && !queue.empty()) {
+      const PendingMesh* next = queue.front();
+      queue.pop_front();
+      local = std::async(std::launch::async,
+                         [&, next] { return describe_safely(pipeline, *next, run.settings()); });
+    }
+    if (local && local->wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+      run.commit(local->get());
+      local.reset();
+      busy = true;
+    }
+    MPI_Status status;
+    int arrived = 0;
+    MPI_Iprobe(MPI_ANY_SOURCE, kTagRequest, MPI_COMM_WORLD, &arrived, &status);
+    if (arrived) {
+      const std::string text = receive_text(status);
+      if (!text.empty()) run.commit(row_from_json(nlohmann::json::parse(text), run.settings()));
+      if (queue.empty()) {
+        send_text("", status.MPI_SOURCE, kTagStop);
+        --serving;
+      } else {
+        send_text(task_to_json(*queue.front()).dump(), status.MPI_SOURCE, kTagTask);
+        queue.pop_front();
+      }
+      busy = true;
+    }
+    if (!busy) pause();
+  }
+}
+
+}  // namespace
+
+MpiSession::MpiSession() {
+  int provided = 0;
+  if (MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS)
+    throw std::runtime_error("MPI_Init_thread failed");
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  MPI_Comm node;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &node);
+  MPI_Comm_size(node, &local_size_);
+  MPI_Comm_free(&node);
+}
+
+MpiSession::~MpiSession() {
+  MPI_Finalize();
+}
+
+IndexSummary index_meshes_mpi(MpiSession& session, IndexDb* db, const IndexPipeline& pipeline,
+                              const std::vector<IndexItem>& items, const IndexCallback& on_mesh,
+                              const IndexOptions& options) {
+  const Stopwatch clock;
+  IndexSummary summary;
+  if (session.rank() != 0) {
+    serve(pipeline);
+  } else {
+    if (!db) throw std::invalid_argument("index_meshes_mpi: rank 0 needs the index");
+    detail::IndexRun run(*db, pipeline, options, on_mesh);
+    std::vector<PendingMesh> pending = run.plan(items);
+    // Other nodes open the files by absolute path: their working folders may differ.
+    for (PendingMesh& p : pending) p.item.file = fs::absolute(p.item.file).string();
+    lead(run, pipeline, pending, session.size());
+    summary = run.finish();
+  }
+  quiet_barrier();
+  summary.seconds = clock.seconds();
+  summary.processes = session.size();
+  return summary;
+}
+
+}  // namespace morphex
