@@ -7,6 +7,7 @@
 #include <set>
 
 #include "index_internal.h"
+#include "morphex/knn.h"
 #include "morphex/stopwatch.h"
 
 namespace morphex {
@@ -250,14 +251,21 @@ std::vector<Neighbour> query_index(IndexDb& db, const std::string& target, std::
       throw InputError(target, "the index's pipeline gives no '" + kind + "' descriptor");
     query = descriptors.at(kind);
   }
+  // One contiguous matrix of the stored vectors, in the order of `meshes` (by name), so that the
+  // scan breaks ties by name.
+  DescriptorMatrix matrix(query.size());
+  std::vector<const IndexedMesh*> rows;
+  std::size_t exclude_row = DescriptorMatrix::kNone;
+  for (const IndexedMesh& m : meshes) {
+    const auto it = m.descriptors.find(kind);
+    if (it == m.descriptors.end()) continue;
+    if (m.id == exclude) exclude_row = rows.size();
+    matrix.add(it->second);
+    rows.push_back(&m);
+  }
   std::vector<Neighbour> ranked;
-  for (const IndexedMesh& m : meshes)
-    if (m.id != exclude && m.descriptors.count(kind))
-      ranked.push_back({m.name, m.path, distance(query, m.descriptors.at(kind), metric)});
-  std::sort(ranked.begin(), ranked.end(), [](const Neighbour& a, const Neighbour& b) {
-    return a.distance != b.distance ? a.distance < b.distance : a.name < b.name;
-  });
-  ranked.resize(std::min(ranked.size(), k));
+  for (const Match& match : matrix.nearest(query, k, metric, exclude_row))
+    ranked.push_back({rows[match.row]->name, rows[match.row]->path, match.distance});
   return ranked;
 }
 

@@ -1,0 +1,147 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// k-nearest-neighbour queries at collection scale: DescriptorMatrix (morphex/knn.h) against the
+// plain loop over `distance` that query_index used before (vectors of vectors, every distance,
+// a full sort), on synthetic descriptors of the default kind's length, same run. Every answer of
+// the scan is checked equal to the loop's. Prints one table; --json FILE writes it as JSON.
+#include <sys/resource.h>
+#include <tbb/global_control.h>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <random>
+
+#include "morphex/knn.h"
+#include "morphex/stopwatch.h"
+
+namespace {
+
+using namespace morphex;
+
+double peak_rss_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_maxrss) / 1024.0;
+}
+
+// Rows that look like descriptor blocks: nonnegative histogram-like values in [0, 1).
+std::vector<double> random_row(std::mt19937_64& rng, std::size_t dims) {
+  std::uniform_real_distribution<double> value(0.0, 1.0);
+  std::vector<double> row(dims);
+  for (double& v : row) v = value(rng);
+  return row;
+}
+
+// The loop the index used before: every distance, sorted, ties by row.
+std::vector<Match> plain_loop(const std::vector<std::vector<double>>& rows,
+                              const std::vector<double>& query, std::size_t k, Metric metric) {
+  std::vector<Match> all;
+  all.reserve(rows.size());
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    all.push_back({r, distance(query, rows[r], metric)});
+  std::sort(all.begin(), all.end(), [](const Match& a, const Match& b) {
+    return a.distance != b.distance ? a.distance < b.distance : a.row < b.row;
+  });
+  all.resize(std::min(k, all.size()));
+  return all;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0 : v[v.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"k-nearest-neighbour queries: DescriptorMatrix against the plain loop"};
+  std::size_t rows = 1000000, dims = 185, k = 10;
+  int queries = 10, plain_queries = 3;
+  std::vector<unsigned> thread_counts = {1, 2};
+  std::string json_path;
+  app.add_option("--rows", rows, "Indexed descriptors")->capture_default_str();
+  app.add_option("--dims", dims, "Descriptor length (185: the default combined kind)")
+      ->capture_default_str();
+  app.add_option("-k", k, "Neighbours per query")->capture_default_str();
+  app.add_option("--queries", queries, "Queries per metric and thread count")
+      ->capture_default_str();
+  app.add_option("--plain-queries", plain_queries, "Queries of the plain loop (slow)")
+      ->capture_default_str();
+  app.add_option("--threads", thread_counts, "Thread counts to measure")->capture_default_str();
+  app.add_option("--json", json_path, "Also write the table as JSON");
+  CLI11_PARSE(app, argc, argv);
+
+  std::mt19937_64 rng(20261125);
+  const Stopwatch load;
+  DescriptorMatrix matrix(dims);
+  matrix.reserve(rows);
+  std::vector<std::vector<double>> plain;
+  plain.reserve(rows);
+  for (std::size_t r = 0; r < rows; ++r) {
+    plain.push_back(random_row(rng, dims));
+    matrix.add(plain.back());
+  }
+  std::cout << rows << " descriptors of " << dims << " doubles (" << std::fixed
+            << std::setprecision(0) << double(rows * dims * sizeof(double)) / 1048576.0
+            << " MiB matrix) made in " << std::setprecision(2) << load.seconds() << " s\n";
+  std::vector<std::vector<double>> probes;
+  for (int q = 0; q < queries; ++q) probes.push_back(random_row(rng, dims));
+
+  nlohmann::json table = nlohmann::json::array();
+  std::cout << std::left << std::setw(7) << "metric" << std::right << std::setw(9) << "threads"
+            << std::setw(14) << "scan med s" << std::setw(12) << "scan max s" << std::setw(14)
+            << "plain med s" << std::setw(10) << "speed-up" << std::setw(10) << "agree" << '\n';
+  for (const Metric metric : {Metric::L1, Metric::L2, Metric::ChiSquare}) {
+    for (const unsigned threads : thread_counts) {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+      std::vector<double> scan_s, plain_s;
+      int agree = 0;
+      for (int q = 0; q < queries; ++q) {
+        const Stopwatch t;
+        const std::vector<Match> got = matrix.nearest(probes[q], k, metric);
+        scan_s.push_back(t.seconds());
+        if (q >= plain_queries || threads != thread_counts.front()) continue;
+        const Stopwatch p;
+        const std::vector<Match> expected = plain_loop(plain, probes[q], k, metric);
+        plain_s.push_back(p.seconds());
+        const bool same = std::equal(got.begin(), got.end(), expected.begin(), expected.end(),
+                                     [](const Match& a, const Match& b) {
+                                       return a.row == b.row && a.distance == b.distance;
+                                     });
+        agree += same;
+        if (!same) {
+          std::cerr << "bench_knn: the scan disagrees with the plain loop\n";
+          return 1;
+        }
+      }
+      const double plain_median = median(plain_s);
+      table.push_back({{"metric", to_string(metric)},
+                       {"threads", threads},
+                       {"rows", rows},
+                       {"dims", dims},
+                       {"k", k},
+                       {"scan_median_s", median(scan_s)},
+                       {"scan_max_s", *std::max_element(scan_s.begin(), scan_s.end())},
+                       {"plain_median_s", plain_median},
+                       {"agreeing_queries", agree}});
+      std::cout << std::left << std::setw(7) << to_string(metric) << std::right << std::setw(9)
+                << threads << std::setprecision(4) << std::setw(14) << median(scan_s)
+                << std::setw(12) << *std::max_element(scan_s.begin(), scan_s.end());
+      if (plain_s.empty())
+        std::cout << std::setw(14) << "-" << std::setw(10) << "-" << std::setw(10) << "-";
+      else
+        std::cout << std::setw(14) << plain_median << std::setprecision(1) << std::setw(9)
+                  << plain_median / median(scan_s) << "x" << std::setw(7) << agree << "/"
+                  << plain_s.size();
+      std::cout << '\n';
+    }
+  }
+  std::cout << "peak memory " << std::setprecision(0) << peak_rss_mb()
+            << " MiB (matrix and the plain loop's vectors)\n";
+  if (!json_path.empty()) std::ofstream(json_path) << table.dump(2) << '\n';
+  return 0;
+}
