@@ -71,7 +71,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--plain-queries", plain_queries, "Queries of the plain loop (slow)")
       ->capture_default_str();
-  app.add_option("--threads", thread_counts, "Thread counts to measure")->capture_default_str();
+  app.add_option("--threads", thread_counts, "Thread counts to measure (comma-separated)")
+      ->delimiter(',')
+      ->capture_default_str();
   app.add_option("--json", json_path, "Also write the table as JSON");
   CLI11_PARSE(app, argc, argv);
 
