@@ -3,6 +3,7 @@
 // the documented rotation behaviour of the granulometry, the procedural collection.
 #include <gtest/gtest.h>
 
+#include <sqlite3.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -306,4 +307,43 @@ TEST(DescriptorMatrix, NearestEqualsThePlainLoop) {
       }
     }
   }
+}
+
+// Descriptors are stored as binary doubles and read back bit for bit, only the kinds asked for;
+// an index written by earlier versions (JSON text vectors) still reads.
+TEST(IndexDb, DescriptorsRoundTripAndOldJsonVectors) {
+  namespace fs = std::filesystem;
+  const fs::path file = fs::temp_directory_path() / ("morphex-db-" + std::to_string(::getpid()));
+  fs::remove(file);
+  const std::vector<double> a = {0.1, 1.0 / 3.0, -2.5e-300, 6.02e23}, b = {1, 2};
+  {
+    IndexDb db(file.string());
+    IndexedMesh m;
+    m.name = "m";
+    m.path = "/x/m.off";
+    m.hash = "h";
+    m.settings = "s";
+    m.status = "ok";
+    m.descriptors = {{"a", a}, {"b", b}};
+    db.store(m);
+    const auto only_a = db.load(true, {"a"});
+    ASSERT_EQ(only_a.size(), 1u);
+    EXPECT_EQ(only_a[0].descriptors.size(), 1u);
+    EXPECT_EQ(only_a[0].descriptors.at("a"), a);
+    EXPECT_TRUE(db.load(true, {})[0].descriptors.empty());
+    EXPECT_EQ(db.load()[0].descriptors.at("b"), b);
+    EXPECT_EQ(db.status("/x/m.off", "h", "s"), "ok");
+    EXPECT_EQ(db.status("/x/m.off", "other", "s"), "");
+  }
+  sqlite3* raw = nullptr;
+  ASSERT_EQ(sqlite3_open(file.string().c_str(), &raw), SQLITE_OK);
+  const std::string old = "UPDATE descriptors SET vector = '" + nlohmann::json(a).dump() + "'";
+  ASSERT_EQ(sqlite3_exec(raw, old.c_str(), nullptr, nullptr, nullptr), SQLITE_OK);
+  sqlite3_close(raw);
+  IndexDb db(file.string());
+  EXPECT_EQ(db.load()[0].descriptors.at("b"), a);
+  EXPECT_TRUE(db.remove("/x/m.off"));
+  EXPECT_FALSE(db.remove("/x/m.off"));
+  EXPECT_TRUE(db.load(false).empty());
+  fs::remove(file);
 }

@@ -216,7 +216,9 @@ Command add_ls_command(CLI::App& app) {
   cmd->add_flag("--descriptors", args->descriptors, "With --json: the descriptor vectors too");
   return {cmd, [args]() -> int {
             IndexDb db(args->db);
-            std::vector<IndexedMesh> entries = db.load(false, args->json && args->descriptors);
+            std::vector<IndexedMesh> entries =
+                db.load(false, args->json && args->descriptors ? std::vector<std::string>{"*"}
+                                                               : std::vector<std::string>{});
             if (args->failed)
               entries.erase(std::remove_if(entries.begin(), entries.end(),
                                            [](const IndexedMesh& m) { return m.status == "ok"; }),
@@ -262,7 +264,7 @@ Command add_rm_command(CLI::App& app) {
   cmd->add_option("MESH", args->keys, "Names or paths of indexed meshes")->required();
   return {cmd, [args]() -> int {
             IndexDb db(args->db);
-            const std::vector<IndexedMesh> entries = db.load(false, false);
+            const std::vector<IndexedMesh> entries = db.load(false, {});
             std::set<std::string> paths;
             bool ok = true;
             for (const std::string& key : args->keys) {  // every name checked before any removal

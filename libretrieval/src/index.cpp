@@ -221,7 +221,7 @@ IndexSummary index_meshes(IndexDb& db, const IndexPipeline& pipeline,
 
 std::vector<Neighbour> query_index(IndexDb& db, const std::string& target, std::size_t k,
                                    const std::string& kind, Metric metric, bool by_name) {
-  const std::vector<IndexedMesh> meshes = db.load();
+  const std::vector<IndexedMesh> meshes = db.load(true, {kind});
   std::vector<double> query;
   long long exclude = -1;
   const auto stored = std::find_if(meshes.begin(), meshes.end(), [&](const IndexedMesh& m) {

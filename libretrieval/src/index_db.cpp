@@ -4,12 +4,25 @@
 #include <sqlite3.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
+#include <limits>
 #include <stdexcept>
 
 namespace morphex {
 namespace {
+
+constexpr bool kBigEndian = __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__;
+
+double byteswap(double d) {
+  unsigned char bytes[8];
+  std::memcpy(bytes, &d, 8);
+  std::reverse(bytes, bytes + 8);
+  std::memcpy(&d, bytes, 8);
+  return d;
+}
 
 // A prepared statement that finalises itself.
 class Statement {
@@ -25,6 +38,19 @@ class Statement {
   }
   Statement& bind(int i, double v) {
     sqlite3_bind_double(stmt_, i, v);
+    return *this;
+  }
+  // Doubles as a BLOB of little-endian IEEE values: a million vectors load in a second, where
+  // parsing JSON text took a minute.
+  Statement& bind(int i, const std::vector<double>& v) {
+    static_assert(sizeof(double) == 8 && std::numeric_limits<double>::is_iec559);
+    if constexpr (kBigEndian) {
+      std::vector<double> swapped(v);
+      for (double& d : swapped) d = byteswap(d);
+      sqlite3_bind_blob(stmt_, i, swapped.data(), int(swapped.size() * 8), SQLITE_TRANSIENT);
+    } else {
+      sqlite3_bind_blob(stmt_, i, v.data(), int(v.size() * 8), SQLITE_TRANSIENT);
+    }
     return *this;
   }
   Statement& bind(int i, long long v) {
@@ -43,6 +69,15 @@ class Statement {
   }
   long long integer(int col) const { return sqlite3_column_int64(stmt_, col); }
   double real(int col) const { return sqlite3_column_double(stmt_, col); }
+  std::vector<double> doubles(int col) const {
+    if (sqlite3_column_type(stmt_, col) != SQLITE_BLOB)  // an index written as JSON text
+      return nlohmann::json::parse(text(col)).get<std::vector<double>>();
+    std::vector<double> v(std::size_t(sqlite3_column_bytes(stmt_, col)) / 8);
+    if (!v.empty()) std::memcpy(v.data(), sqlite3_column_blob(stmt_, col), v.size() * 8);
+    if constexpr (kBigEndian)
+      for (double& d : v) d = byteswap(d);
+    return v;
+  }
 
  private:
   sqlite3* db_;
@@ -131,7 +166,7 @@ void IndexDb::store(const IndexedMesh& mesh) {
     clear.bind(1, mesh_id).step();
     for (const auto& [kind, vector] : mesh.descriptors) {
       Statement insert(db_, "INSERT INTO descriptors(mesh_id, kind, vector) VALUES(?, ?, ?)");
-      insert.bind(1, mesh_id).bind(2, kind).bind(3, nlohmann::json(vector).dump()).step();
+      insert.bind(1, mesh_id).bind(2, kind).bind(3, vector).step();
     }
     exec("COMMIT");
   } catch (...) {
@@ -146,7 +181,7 @@ bool IndexDb::remove(const std::string& path) {
   return sqlite3_changes(db_) > 0;
 }
 
-std::vector<IndexedMesh> IndexDb::load(bool only_ok, bool with_descriptors) {
+std::vector<IndexedMesh> IndexDb::load(bool only_ok, const std::vector<std::string>& kinds) {
   std::vector<IndexedMesh> out;
   std::map<long long, std::size_t> position;
   Statement meshes(db_, std::string("SELECT id, name, path, hash, settings, status, error, "
@@ -169,13 +204,15 @@ std::vector<IndexedMesh> IndexDb::load(bool only_ok, bool with_descriptors) {
     position[m.id] = out.size();
     out.push_back(std::move(m));
   }
-  if (!with_descriptors) return out;
-  Statement descriptors(db_, "SELECT mesh_id, kind, vector FROM descriptors");
-  while (descriptors.step()) {
-    const auto it = position.find(descriptors.integer(0));
-    if (it == position.end()) continue;
-    out[it->second].descriptors[descriptors.text(1)] =
-        nlohmann::json::parse(descriptors.text(2)).get<std::vector<double>>();
+  for (const std::string& kind : kinds) {
+    Statement descriptors(db_, std::string("SELECT mesh_id, kind, vector FROM descriptors") +
+                                   (kind == "*" ? "" : " WHERE kind = ?"));
+    if (kind != "*") descriptors.bind(1, kind);
+    while (descriptors.step()) {
+      const auto it = position.find(descriptors.integer(0));
+      if (it != position.end())
+        out[it->second].descriptors[descriptors.text(1)] = descriptors.doubles(2);
+    }
   }
   return out;
 }

@@ -4,7 +4,8 @@
 //   meshes(id, name, path UNIQUE, hash, settings, status 'ok'|'failed', error, faces, volume,
 //          seconds, indexed_at, repair)  repair: what the repair changed (JSON), NULL when the
 //          mesh was a valid solid as read
-//   descriptors(mesh_id, kind, vector)       vector: a JSON array of doubles
+//   descriptors(mesh_id, kind, vector)       vector: IEEE doubles, little endian, as a BLOB
+//                                            (indexes written before 0.1 hold JSON arrays: read too)
 // Every mesh is committed in its own transaction, so a run killed midway keeps what it committed.
 #pragma once
 
@@ -43,8 +44,10 @@ class IndexDb {
   std::string status(const std::string& path, const std::string& hash, const std::string& settings);
   // Inserts or replaces the row of mesh.path (id and indexed_at are the database's).
   void store(const IndexedMesh& mesh);
-  // Every row (only the successful ones by default), ordered by name then path.
-  std::vector<IndexedMesh> load(bool only_ok = true, bool with_descriptors = true);
+  // Every row (only the successful ones by default), ordered by name then path, with the
+  // descriptors of `kinds` ({"*"}: every kind; {}: none).
+  std::vector<IndexedMesh> load(bool only_ok = true,
+                                const std::vector<std::string>& kinds = {"*"});
   // Removes the row of this recorded path and its descriptors; false when there is none.
   bool remove(const std::string& path);
   const std::string& path() const { return path_; }
