@@ -5,9 +5,9 @@
 
 #include <filesystem>
 
+#include "morphex/descriptors.h"
 #include "morphex/generators.h"
 #include "morphex/io.h"
-#include "morphex/descriptors.h"
 #include "morphex/minkowski.h"
 #include "morphex/pipeline.h"
 #include "morphex/structuring_element.h"
@@ -83,7 +83,8 @@ TEST(Pipeline, SimplifyStageGivesAValidCoarserSolid) {
   const std::string dir = fresh_dir("simplify");
   write_mesh(make_icosphere(3, 1), dir + "/sphere.off");  // 1,280 facets
   const mp::RunReport report = run_text(R"({"pipeline": [
-      {"type": "read", "path": ")" + dir + R"(/sphere.off"},
+      {"type": "read", "path": ")" + dir +
+                                        R"(/sphere.off"},
       {"type": "simplify", "facets": 200, "tag": "coarse"},
       {"type": "check", "tag": "checked"}]})");
   ASSERT_TRUE(report.ok()) << report.inputs[0].error;
@@ -93,7 +94,8 @@ TEST(Pipeline, SimplifyStageGivesAValidCoarserSolid) {
   EXPECT_TRUE(coarse.extra["simplified"].get<bool>());
   EXPECT_TRUE(stage(report.inputs[0], "checked").extra["valid"].get<bool>());
   EXPECT_FALSE(problems_of(R"({"pipeline": [{"type": "read", "path": "x.off"},
-      {"type": "simplify", "facets": 2}]})").empty());
+      {"type": "simplify", "facets": 2}]})")
+                   .empty());
 }
 
 TEST(Pipeline, VariablesComeFromSetThenFromTheDocument) {
@@ -326,14 +328,38 @@ TEST(ErrorModel, EveryLibraryThrowsAMorphexErrorWithWhereAndProblem) {
 
 // Typed options: validation builds a stage's structuring element once and the stage uses it.
 TEST(Validate, StructuringElementsAreBuiltOnceByValidation) {
-  const mp::Pipeline p = mp::validate(
-      nlohmann::json::parse(R"({"pipeline": [{"type": "read", "path": "a.off"},
+  const mp::Pipeline p =
+      mp::validate(nlohmann::json::parse(R"({"pipeline": [{"type": "read", "path": "a.off"},
                                 {"type": "dilate", "se": {"shape": "cube", "r": "1/4"}}]})"),
-      "p.json", {});
+                   "p.json", {});
   ASSERT_EQ(p.stages.size(), 2u);
   EXPECT_TRUE(p.stages[0].elements.empty());
   ASSERT_EQ(p.stages[1].elements.count("se"), 1u);
   const StructuringElement& se = *p.stages[1].elements.at("se");
   EXPECT_EQ(se.shape, "cube");
   EXPECT_EQ(signed_volume(se.mesh), FT(1) / 8);  // a cube of half side 1/4
+}
+
+// Progress moves inside a long stage: describe reports each filter, so the run's count of
+// finished stages takes values between 1 (read done) and 2 (describe done), never goes back, and
+// ends at the number of stages.
+TEST(Pipeline, ProgressMovesInsideTheDescribeStage) {
+  mp::RunOptions options;
+  options.inputs = {kData + "/unit_cube.off"};
+  std::vector<double> seen;
+  options.on_progress = [&](double done, std::size_t total, const std::string&,
+                            const std::string&) {
+    EXPECT_EQ(total, 2u);
+    seen.push_back(done);
+  };
+  const mp::RunReport report = run_text(R"({"pipeline": [
+      {"type": "read", "path": "${input}"},
+      {"type": "describe", "scales": 3, "d2_samples": 256}]})",
+                                        options);
+  ASSERT_TRUE(report.ok());
+  ASSERT_FALSE(seen.empty());
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+  EXPECT_EQ(seen.back(), 2.0);
+  // 3 openings and 3 closings reported inside describe (D2's share comes with the stage's end)
+  EXPECT_EQ(std::count_if(seen.begin(), seen.end(), [](double d) { return d > 1 && d < 2; }), 6);
 }

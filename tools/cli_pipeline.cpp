@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -71,12 +72,13 @@ Command add_run_command(CLI::App& app) {
             ProgressDisplay display("ran", "stages", false);
             std::atomic<std::size_t> failed_inputs{0};
             options.on_input_done = [&](const mp::InputReport& r) { failed_inputs += !r.ok; };
-            options.on_progress = [&](std::size_t done, std::size_t total, const std::string& input,
+            options.on_progress = [&](double done, std::size_t total, const std::string& input,
                                       const std::string& stage) {
               display.update(
-                  done, total, failed_inputs,
+                  std::size_t(done), total, failed_inputs,
                   (input.empty() ? "" : std::filesystem::path(input).filename().string() + ": ") +
-                      stage);
+                      stage,
+                  done - std::floor(done));
             };
             mp::RunReport report;
             try {

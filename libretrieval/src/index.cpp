@@ -209,9 +209,9 @@ IndexSummary index_meshes(IndexDb& db, const IndexPipeline& pipeline,
   run_options.on_input_done = [&](const mp::InputReport& r) {
     run.commit(detail::described_from_report(r, *by_file.at(r.input), run.settings()));
   };
-  run_options.on_progress = [&](std::size_t done, std::size_t total, const std::string&,
+  run_options.on_progress = [&](double done, std::size_t total, const std::string&,
                                 const std::string&) {
-    run.stage_done(double(done) * double(pending.size()) / double(total));
+    run.stage_done(done * double(pending.size()) / double(total));
   };
   if (!pending.empty()) mp::run(pipeline.document, pipeline.name, run_options);
   IndexSummary summary = run.finish();

@@ -4,8 +4,10 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_for_each.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <set>
@@ -16,19 +18,34 @@
 namespace morphex::pipeline {
 namespace {
 
-// Counts finished stages over the whole run and passes them to the caller's callback.
+// Counts finished stages over the whole run, plus the finished share of the stages running, and
+// passes them to the caller's callback.
 class Progress {
  public:
   Progress(const RunOptions& options, std::size_t total) : options_(options), total_(total) {}
+  void stage_advanced(const std::string& input, const Stage& stage, double share) {
+    if (!options_.on_progress) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    running_[{input, stage.index}] = std::clamp(share, 0.0, 1.0);
+    report(input, stage);
+  }
   void stage_done(const std::string& input, const Stage& stage) {
     if (!options_.on_progress) return;
     std::lock_guard<std::mutex> lock(mutex_);
-    options_.on_progress(++done_, total_, input, stage.type);
+    running_.erase({input, stage.index});
+    ++done_;
+    report(input, stage);
   }
 
  private:
+  void report(const std::string& input, const Stage& stage) {
+    double done = double(done_);
+    for (const auto& [key, share] : running_) done += share;
+    options_.on_progress(done, total_, input, stage.type);
+  }
   const RunOptions& options_;
   std::size_t total_, done_ = 0;
+  std::map<std::pair<std::string, std::size_t>, double> running_;
   std::mutex mutex_;
 };
 
@@ -52,7 +69,9 @@ InputReport run_one(const Pipeline& pipeline, const std::string& input, Progress
     }
     tbb::parallel_for_each(ready.begin(), ready.end(), [&](std::size_t s) {
       const Stage& stage = pipeline.stages[s];
-      StageContext context{stage, {}, nlohmann::json::object()};
+      StageContext context{stage, {}, nlohmann::json::object(), [&](double share) {
+                             progress.stage_advanced(input, stage, share);
+                           }};
       for (std::size_t i : stage.inputs) context.inputs.push_back(&*results[i]);
       const Stopwatch stage_start;
       try {

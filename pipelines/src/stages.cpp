@@ -320,7 +320,8 @@ void add_report_stages(StageRegistry& r) {
          "multi-scale granulometry and anti-granulometry by exact openings and closings with "
          "cubes, where their residues lie, and the D2 baseline; passes the mesh on",
          1, describe_options(), [](StageContext& c) {
-           const DescriptorSettings settings = detail::descriptor_settings(c.stage.options);
+           DescriptorSettings settings = detail::descriptor_settings(c.stage.options);
+           settings.on_progress = c.progress;
            // Stage outputs are valid solids (read checks, repair and every operation make them).
            const Descriptors d = describe_valid(*c.inputs[0], settings);
            nlohmann::json vectors;

@@ -33,6 +33,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,9 @@ struct DescriptorSettings {
   int d2_samples = 200000;         // point pairs
   int d2_bins = 64;
   std::uint64_t seed = 1;
+  // Called with the finished share of the work (0 to 1) after each filter, for progress displays;
+  // not a setting of the descriptor (to_string leaves it out).
+  std::function<void(double share)> on_progress;
   std::string to_string() const;  // canonical text, stored with indexed descriptors
 };
 

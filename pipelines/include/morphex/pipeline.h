@@ -161,10 +161,11 @@ struct InputReport {
 struct RunOptions {
   Variables variables;              // from --set
   std::vector<std::string> inputs;  // each run binds ${input} and ${stem}
-  // Called after every stage of every input (one call at a time, from worker threads): how many
-  // stages of the whole run are done, and which one just finished. The libraries never print;
-  // the command line draws this as its progress bar.
-  std::function<void(std::size_t done, std::size_t total, const std::string& input,
+  // Called after every stage of every input, and as long stages (describe) advance (one call at a
+  // time, from worker threads): how many stages of the whole run are done, counting the finished
+  // share of stages still running, and which stage reported. The libraries never print; the
+  // command line draws this as its progress bar.
+  std::function<void(double done, std::size_t total, const std::string& input,
                      const std::string& stage)>
       on_progress;
   // Called once per input as soon as it finishes (from a worker thread, one call at a time), so a
@@ -193,6 +194,8 @@ struct StageContext {
   const Stage& stage;
   std::vector<const Mesh*> inputs;
   nlohmann::json extra;  // facts for the report
+  // A long stage reports the finished share of its work (0 to 1) here, for progress displays.
+  std::function<void(double share)> progress;
   const nlohmann::json& option(const std::string& name) const { return stage.options.at(name); }
   const StructuringElement& element(const std::string& name) const {
     return *stage.elements.at(name);
