@@ -124,10 +124,8 @@ int run_index(const IndexArgs& args, const IndexPipeline& pipeline, bool threads
       share.emplace(tbb::global_control::max_allowed_parallelism,
                     std::max(1u, std::thread::hardware_concurrency() /
                                      unsigned(session.ranks_on_this_node())));
-    std::unique_ptr<IndexDb> db;
-    if (session.rank() == 0) db = std::make_unique<IndexDb>(args.db);
     const IndexSummary summary =
-        index_meshes_mpi(session, db.get(), pipeline, items, on_mesh, options);
+        index_meshes_mpi(session, args.db, pipeline, items, on_mesh, options);
     return session.rank() == 0 ? print_summary(args, summary) : kSuccess;
   }
 #endif

@@ -121,14 +121,25 @@ void serve(const IndexPipeline& pipeline) {
   }
 }
 
+// Rank 0 after an error: answers every rank's next message with a stop (discarding what they
+// send), so that none is left waiting when rank 0 reports the error and the job ends.
+void release(int serving) {
+  while (serving > 0) {
+    MPI_Status status;
+    MPI_Probe(MPI_ANY_SOURCE, kTagRequest, MPI_COMM_WORLD, &status);
+    receive_text(status);
+    send_text("", status.MPI_SOURCE, kTagStop);
+    --serving;
+  }
+}
+
 // Rank 0: hands out `pending` in order to whichever rank asks, describes on its own worker thread
-// too, and commits every row as it arrives.
+// too, and commits every row as it arrives. `serving` counts the ranks not yet told to stop.
 void lead(detail::IndexRun& run, const IndexPipeline& pipeline,
-          const std::vector<PendingMesh>& pending, int ranks) {
+          const std::vector<PendingMesh>& pending, int& serving) {
   std::deque<const PendingMesh*> queue;
   for (const PendingMesh& p : pending) queue.push_back(&p);
   std::optional<std::future<IndexedMesh>> local;
-  int serving = ranks - 1;  // ranks not yet told to stop
   while (serving > 0 || local || !queue.empty()) {
     bool busy = false;
     if (!local && !queue.empty()) {
@@ -179,21 +190,28 @@ MpiSession::~MpiSession() {
   MPI_Finalize();
 }
 
-IndexSummary index_meshes_mpi(MpiSession& session, IndexDb* db, const IndexPipeline& pipeline,
-                              const std::vector<IndexItem>& items, const IndexCallback& on_mesh,
-                              const IndexOptions& options) {
+IndexSummary index_meshes_mpi(MpiSession& session, const std::string& db_path,
+                              const IndexPipeline& pipeline, const std::vector<IndexItem>& items,
+                              const IndexCallback& on_mesh, const IndexOptions& options) {
   const Stopwatch clock;
   IndexSummary summary;
   if (session.rank() != 0) {
     serve(pipeline);
   } else {
-    if (!db) throw std::invalid_argument("index_meshes_mpi: rank 0 needs the index");
-    detail::IndexRun run(*db, pipeline, options, on_mesh);
-    std::vector<PendingMesh> pending = run.plan(items);
-    // Other nodes open the files by absolute path: their working folders may differ.
-    for (PendingMesh& p : pending) p.item.file = fs::absolute(p.item.file).string();
-    lead(run, pipeline, pending, session.size());
-    summary = run.finish();
+    int serving = session.size() - 1;
+    try {
+      IndexDb db(db_path);
+      detail::IndexRun run(db, pipeline, options, on_mesh);
+      std::vector<PendingMesh> pending = run.plan(items);
+      // Other nodes open the files by absolute path: their working folders may differ.
+      for (PendingMesh& p : pending) p.item.file = fs::absolute(p.item.file).string();
+      lead(run, pipeline, pending, serving);
+      summary = run.finish();
+    } catch (...) {  // the index cannot be opened or written: stop every rank, then report
+      release(serving);
+      quiet_barrier();
+      throw;
+    }
   }
   quiet_barrier();
   summary.seconds = clock.seconds();

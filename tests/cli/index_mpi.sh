@@ -37,4 +37,10 @@ echo "$out" | grep -q "indexed 8 meshes (4 already up to date, 0 failed)" || fai
 [ "$(rows "$dir/one.sqlite")" = "$(rows "$dir/resume.sqlite")" ] || fail "the resumed index differs"
 out=$(mpi "$morphex" index "$dir/coll/*.off" --db "$dir/resume.sqlite" --pipeline "$pipeline" --quiet)
 echo "$out" | grep -q "indexed 0 meshes (12 already up to date, 0 failed)" || fail "re-run: $out"
+# An index rank 0 cannot open stops every rank (none is left waiting) with the error.
+out=$(timeout 120 "$mpiexec" --oversubscribe -n 3 "$morphex" index "$dir/coll/*.off" \
+  --db "$dir/no/such/folder/x.sqlite" --pipeline "$pipeline" --quiet 2>&1)
+code=$?
+[ $code -ne 0 ] && [ $code -ne 124 ] || fail "an unopenable index: exit $code (124: a rank hung)"
+echo "$out" | grep -q "x.sqlite: cannot open the index database" || fail "no error message: $out"
 echo "PASS: 3 MPI ranks stored the single-process rows; resume and re-run as expected"

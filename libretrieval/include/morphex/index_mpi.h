@@ -37,12 +37,12 @@ class MpiSession {
   int rank_ = 0, size_ = 1, local_size_ = 1;
 };
 
-// index_meshes (morphex/index.h) across the session's ranks; every rank calls it. `db` and `items`
-// are used on rank 0 only (db may be null elsewhere); on_mesh is called on rank 0 only. The
-// summary is rank 0's (other ranks get an empty one). The rows stored are identical to those of
-// a single-process run.
-IndexSummary index_meshes_mpi(MpiSession& session, IndexDb* db, const IndexPipeline& pipeline,
-                              const std::vector<IndexItem>& items,
+// index_meshes (morphex/index.h) across the session's ranks; every rank calls it. Rank 0 opens
+// the index at `db_path`; `items` and on_mesh are used on rank 0 only. The summary is rank 0's
+// (other ranks get an empty one). The rows stored are identical to those of a single-process run.
+// When rank 0 cannot open or write the index, every rank is stopped before rank 0 throws.
+IndexSummary index_meshes_mpi(MpiSession& session, const std::string& db_path,
+                              const IndexPipeline& pipeline, const std::vector<IndexItem>& items,
                               const IndexCallback& on_mesh = {}, const IndexOptions& options = {});
 
 }  // namespace morphex
