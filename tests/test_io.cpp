@@ -4,12 +4,19 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 
 #include "morphex/generators.h"
 #include "morphex/io.h"
+
+#ifdef MORPHEX_HAVE_3MF
+#include <Model/COM/NMR_DLLInterfaces.h>
+#endif
 
 using namespace morphex;
 namespace fs = std::filesystem;
@@ -308,3 +315,198 @@ TEST(BadInput, PlyCountsThatCannotBeTrusted) {
                             "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
                   "list count must be an integer type");
 }
+
+// Standard input has no extension: its format comes from its first bytes (issue 23).
+TEST(Streams, FormatIsDetectedFromTheContent) {
+  std::ostringstream stl;
+  write_mesh(make_cube(FT(1) / 2), stl, MeshFormat::Stl);
+  EXPECT_EQ(detect_format(stl.str(), "<stdin>"), MeshFormat::Stl);
+  EXPECT_EQ(detect_format("solid x\nendsolid x\n", "<stdin>"), MeshFormat::Stl);
+  EXPECT_EQ(detect_format("# made by hand\n\n  OFF\n4 4 0\n", "<stdin>"), MeshFormat::Off);
+  EXPECT_EQ(detect_format("COFF 4 4 0\n", "<stdin>"), MeshFormat::Off);
+  EXPECT_EQ(detect_format("ply\nformat ascii 1.0\n", "<stdin>"), MeshFormat::Ply);
+  EXPECT_EQ(detect_format(std::string("PK\x03\x04", 4) + "rest", "<stdin>"), MeshFormat::ThreeMf);
+  try {
+    detect_format("v 0 0 0\nf 1 2 3\n", "<stdin>");
+    ADD_FAILURE() << "OBJ on standard input was not refused";
+  } catch (const InputError& e) {
+    EXPECT_CONTAINS(e.what(), "<stdin>: cannot tell the mesh format from the first bytes 'v 0 0");
+  }
+}
+
+TEST(Streams, WritingToAStreamGivesTheSameBytesAsAFile) {
+  TempDir dir;
+  const Mesh m = third_cube();
+  WriteOptions options;
+  options.exact = true;
+  std::ostringstream out;
+  write_mesh(m, out, MeshFormat::Off, options);
+  write_mesh(m, dir.file("m.off"), options);
+  std::ifstream in(dir.file("m.off"), std::ios::binary);
+  const std::string file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(out.str(), file);
+  EXPECT_EQ(signed_volume(read_mesh_from_string(out.str(), MeshFormat::Off, "<stdin>")),
+            FT(10) / 231);
+}
+
+// A result whose vertices are closer than the format's rounding re-reads as another mesh: refused
+// before any file exists, with the advice to write the exact format (issue 23, item 6).
+TEST(LossyOutput, RoundingThatMergesVerticesIsRefused) {
+  TempDir dir;
+  const FT big(1e300);
+  const Mesh m = make_box(Point(big, big, big), Point(big + 1, big + 1, big + 1));
+  for (const char* name : {"m.off", "m.obj", "m.ply", "m.stl", "m.glb"}) {
+    try {
+      write_mesh(m, dir.file(name));
+      ADD_FAILURE() << name << ": no error";
+    } catch (const LossyOutputError& e) {
+      EXPECT_CONTAINS(e.what(), dir.file(name) + ": the result cannot be written as ");
+      // doubles merge 1e300 and 1e300 + 1; floats cannot hold 1e300 at all
+      const bool floats =
+          fs::path(name).extension() == ".stl" || fs::path(name).extension() == ".glb";
+      EXPECT_CONTAINS(e.what(), floats ? "overflows its range" : "one point");
+      EXPECT_CONTAINS(e.what(), "; write the exact format instead (--exact");
+    }
+  }
+  EXPECT_EQ(dir.entries(), 0u);
+  write_mesh(m, dir.file("m.off"), {true});  // the exact format holds it
+  EXPECT_EQ(signed_volume(read_mesh(dir.file("m.off"))), FT(1));
+}
+
+TEST(LossyOutput, FloatFormatsAreCheckedAsFloats) {
+  // 1 + 2^-30 is a double but not a float: in floats the added vertex is (1,0,0) again.
+  Mesh m = make_tetrahedron();
+  m.points.push_back(Point(1 + std::ldexp(1.0, -30), 0, 0));
+  m.triangles.push_back({1, 4, 2});
+  std::ostringstream out;
+  EXPECT_NO_THROW(check_representable(m, false, "m.off"));
+  EXPECT_THROW(write_mesh(m, out, MeshFormat::Stl), LossyOutputError);
+  EXPECT_TRUE(out.str().empty());  // nothing written to the stream
+  EXPECT_NO_THROW(check_representable(make_cube(FT(1) / 3), true, "m.stl"));
+}
+
+// glTF binary for viewers: the header, the JSON chunk and the BIN chunk agree (issue 23, item 8).
+TEST(Glb, HeaderJsonAndBinaryChunksAgree) {
+  TempDir dir;
+  const Mesh m = make_cube(FT(1) / 2);
+  write_mesh(m, dir.file("m.glb"));
+  std::ifstream in(dir.file("m.glb"), std::ios::binary);
+  const std::string b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto u32 = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    std::memcpy(&v, b.data() + at, 4);
+    return v;
+  };
+  ASSERT_GE(b.size(), 28u);
+  EXPECT_EQ(b.substr(0, 4), "glTF");
+  EXPECT_EQ(u32(4), 2u);
+  EXPECT_EQ(u32(8), b.size());
+  const std::uint32_t json_length = u32(12);
+  EXPECT_EQ(u32(16), 0x4E4F534Au);  // JSON
+  EXPECT_EQ(json_length % 4, 0u);
+  const std::string json = b.substr(20, json_length);
+  EXPECT_CONTAINS(json, "\"version\":\"2.0\"");
+  EXPECT_CONTAINS(json,
+                  "\"count\":8,\"type\":\"VEC3\",\"min\":[-0.5,-0.5,-0.5],\"max\":[0.5,0.5,0.5]");
+  EXPECT_CONTAINS(json, "\"componentType\":5125,\"count\":36,\"type\":\"SCALAR\"");
+  const std::size_t bin = 20 + json_length;
+  EXPECT_EQ(u32(bin), 8u * 12 + 36 * 4);
+  EXPECT_EQ(u32(bin + 4), 0x004E4942u);  // BIN
+  float first[3];
+  std::memcpy(first, b.data() + bin + 8, 12);
+  const DoubleMesh d = to_double(m);
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(first[c], float(d.points[0][c]));
+  EXPECT_EQ(u32(bin + 8 + 96 + 4 * 35), m.triangles.back()[2]);
+}
+
+TEST(ThreeMf, WithoutLib3mfItIsRefusedClearly) {
+  if (format_available(MeshFormat::ThreeMf)) GTEST_SKIP() << "built with lib3mf";
+  try {
+    format_from_path("x.3mf");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_CONTAINS(e.what(), "x.3mf: 3MF is not available: this morphex was built without lib3mf");
+  }
+}
+
+#ifdef MORPHEX_HAVE_3MF
+namespace {
+
+// A 3MF file made with lib3mf itself: one mesh object placed twice by build items with different
+// transforms, in `unit` (lib3mf's MODELUNIT_*).
+void write_3mf_with_transforms(const std::string& path, const Mesh& mesh, DWORD unit) {
+  using namespace NMR;
+  PLib3MFModel* model = nullptr;
+  ASSERT_EQ(lib3mf_createmodel(&model), LIB3MF_OK);
+  ASSERT_EQ(lib3mf_model_setunit(model, unit), LIB3MF_OK);
+  PLib3MFModelMeshObject* object = nullptr;
+  ASSERT_EQ(lib3mf_model_addmeshobject(model, &object), LIB3MF_OK);
+  const DoubleMesh d = to_double(mesh);
+  std::vector<MODELMESHVERTEX> v(d.points.size());
+  std::vector<MODELMESHTRIANGLE> t(d.triangles.size());
+  for (std::size_t i = 0; i < v.size(); ++i)
+    for (int c = 0; c < 3; ++c) v[i].m_fPosition[c] = float(d.points[i][c]);
+  for (std::size_t i = 0; i < t.size(); ++i)
+    for (int k = 0; k < 3; ++k) t[i].m_nIndices[k] = DWORD(d.triangles[i][k]);
+  ASSERT_EQ(
+      lib3mf_meshobject_setgeometry(object, v.data(), DWORD(v.size()), t.data(), DWORD(t.size())),
+      LIB3MF_OK);
+  // Item 1: identity. Item 2: x' = 2x + 10, y' = y + 2z (a shear), z' = z.
+  MODELTRANSFORM shift{};
+  for (int i = 0; i < 3; ++i) shift.m_fFields[i][i] = 1;
+  shift.m_fFields[0][0] = 2;
+  shift.m_fFields[0][3] = 10;
+  shift.m_fFields[1][2] = 2;
+  PLib3MFModelBuildItem *first = nullptr, *second = nullptr;
+  ASSERT_EQ(lib3mf_model_addbuilditem(model, object, nullptr, &first), LIB3MF_OK);
+  ASSERT_EQ(lib3mf_model_addbuilditem(model, object, &shift, &second), LIB3MF_OK);
+  PLib3MFModelWriter* writer = nullptr;
+  ASSERT_EQ(lib3mf_model_querywriter(model, "3mf", &writer), LIB3MF_OK);
+  ASSERT_EQ(lib3mf_writer_writetofileutf8(writer, path.c_str()), LIB3MF_OK);
+  for (PLib3MFBase* p : {writer, second, first, object, model}) lib3mf_release(p);
+}
+
+}  // namespace
+
+TEST(ThreeMf, RoundTripKeepsSizesAndVolume) {
+  TempDir dir;
+  // A cube (exact in six decimals) and an icosphere (rounded: volume within float tolerance).
+  const Mesh cube = make_cube(FT(1) / 2), sphere = make_icosphere(2, FT(10));
+  write_mesh(cube, dir.file("cube.3mf"));
+  const Mesh cube_back = read_mesh(dir.file("cube.3mf"));
+  EXPECT_EQ(cube_back.points.size(), 8u);
+  EXPECT_EQ(cube_back.triangles, cube.triangles);
+  EXPECT_EQ(signed_volume(cube_back), FT(1));
+  WriteOptions options;
+  options.provenance = "test round trip";
+  write_mesh(sphere, dir.file("sphere.3mf"), options);
+  const Mesh back = read_mesh(dir.file("sphere.3mf"));
+  EXPECT_EQ(back.points.size(), sphere.points.size());
+  EXPECT_EQ(back.triangles, sphere.triangles);
+  const double v = CGAL::to_double(signed_volume(sphere));
+  EXPECT_NEAR(CGAL::to_double(signed_volume(back)), v, 1e-5 * v);
+  EXPECT_GT(v, 4000);  // sanity: about 4/3 pi 10^3
+}
+
+TEST(ThreeMf, BuildTransformsAndUnitsAreApplied) {
+  TempDir dir;
+  const Mesh cube = make_box(Point(0, 0, 0), Point(1, 1, 1));
+  write_3mf_with_transforms(dir.file("two.3mf"), cube, NMR::MODELUNIT_MILLIMETER);
+  const Mesh two = read_mesh(dir.file("two.3mf"));
+  ASSERT_EQ(two.points.size(), 16u);
+  EXPECT_EQ(two.triangles.size(), 24u);
+  // the second copy: (1,1,1) -> (2*1+10, 1+2*1, 1)
+  EXPECT_EQ(two.points[8 + 7], Point(12, 3, 1)) << "vertex 7 of make_box is its max corner";
+  EXPECT_EQ(signed_volume(two), FT(1) + FT(2));  // the shear keeps volume, x doubles it
+  // In inches, every coordinate is converted to millimetres exactly (25.4 = 127/5).
+  write_3mf_with_transforms(dir.file("inch.3mf"), cube, NMR::MODELUNIT_INCH);
+  const Mesh inch = read_mesh(dir.file("inch.3mf"));
+  EXPECT_EQ(inch.points[7], Point(FT(127) / 5, FT(127) / 5, FT(127) / 5));
+  EXPECT_EQ(signed_volume(inch), FT(3) * (FT(127) / 5) * (FT(127) / 5) * (FT(127) / 5));
+}
+
+TEST(ThreeMf, GarbageIsAnInputErrorNamingTheFile) {
+  const std::string message = error_for("bad.3mf", "PK\x03\x04 not really a zip archive");
+  EXPECT_CONTAINS(message, "not a readable 3MF file");
+}
+#endif

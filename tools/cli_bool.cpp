@@ -25,7 +25,7 @@ Command add_bool_command(CLI::App& app) {
   cmd->add_option("B", args->b, "Second operand")->required();
   add_output_options(cmd, args->output);
   return {cmd, [args]() -> int {
-            if (output_overwrites_input(args->output.out, {args->a, args->b})) return kBadInput;
+            if (!output_usable(args->output, {args->a, args->b})) return kBadInput;
             Mesh a, b;
             try {
               a = read_mesh(args->a);
@@ -40,7 +40,7 @@ Command add_bool_command(CLI::App& app) {
             if (!result.ok()) {
               const std::string& file =
                   result.status == BooleanStatus::InvalidInputA ? args->a : args->b;
-              print_error(file + ": " + result.message);
+              print_error(shown_path(file) + ": " + result.message);
               return kBadInput;
             }
             write_result(result.mesh, args->output, [&] {

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // `morphex check MESH [--json]`: is this file a valid closed solid, and what is its exact volume?
+#include <algorithm>
 #include <chrono>
 #include <iostream>
 
@@ -58,10 +59,11 @@ void print_text(const std::string& path, const MeshReport& r) {
 
 // One file: its report on stdout (text, or one JSON line), its problem on stderr. Returns the
 // file's exit code.
-int check_one(const std::string& path, bool json) {
+int check_one(const std::string& file, bool json) {
+  const std::string path = shown_path(file);
   Mesh mesh;
   try {
-    mesh = read_mesh(path);
+    mesh = read_mesh(file);
   } catch (const std::bad_alloc&) {
     throw;
   } catch (const std::exception& e) {
@@ -92,9 +94,14 @@ Command add_check_command(CLI::App& app) {
       "Validity report of meshes (exit 0 all valid solids, 1 some not, 2 some unreadable)");
   auto paths = std::make_shared<std::vector<std::string>>();
   auto json = std::make_shared<bool>(false);
-  cmd->add_option("MESH", *paths, "Mesh files (OFF, OBJ, STL, PLY)")->required();
+  cmd->add_option("MESH", *paths, "Mesh files (OFF, OBJ, STL, PLY, 3MF), '-' for standard input")
+      ->required();
   cmd->add_flag("--json", *json, "Print one JSON object per file (one line each) instead of text");
   return {cmd, [=]() -> int {
+            if (std::count(paths->begin(), paths->end(), kStandardStream) > 1) {
+              print_error("-: standard input can be read only once");
+              return kBadInput;
+            }
             int worst = kSuccess;  // bad input (2) outranks an invalid solid (1)
             for (const std::string& path : *paths) worst = std::max(worst, check_one(path, *json));
             return worst;

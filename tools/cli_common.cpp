@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -30,12 +31,16 @@ nlohmann::json result_stats(const Mesh& mesh, double seconds) {
   return j;
 }
 
+std::string shown_path(const std::string& path) {
+  return path == kStandardStream ? "<stdin>" : path;
+}
+
 std::optional<Mesh> read_solid(const std::string& path) {
   try {
     Mesh mesh = read_mesh(path);
     const MeshReport report = check_mesh(mesh, kValidityOnly);
     if (!report.valid_solid()) {
-      print_error(path + ": " + describe_problems(report));
+      print_error(shown_path(path) + ": " + describe_problems(report));
       return std::nullopt;
     }
     return mesh;
@@ -48,8 +53,12 @@ std::optional<Mesh> read_solid(const std::string& path) {
 }
 
 bool output_overwrites_input(const std::string& output, const std::vector<std::string>& inputs) {
+  if (std::count(inputs.begin(), inputs.end(), kStandardStream) > 1) {
+    print_error("-: standard input can be read only once: give the other operands as files");
+    return true;
+  }
   for (const std::string& input : inputs)
-    if (same_file(input, output)) {
+    if (input != kStandardStream && output != kStandardStream && same_file(input, output)) {
       print_error(output + ": refusing to overwrite an input");
       return true;
     }
@@ -58,20 +67,55 @@ bool output_overwrites_input(const std::string& output, const std::vector<std::s
 
 void add_output_options(CLI::App* cmd, OutputArgs& args) {
   // An unknown extension is bad usage, reported before any work (exit 2).
-  cmd->add_option("-o,--output", args.out, "Output mesh (format from the extension)")
+  cmd->add_option("-o,--output", args.out,
+                  "Output mesh (format from the extension), or '-' for standard output")
       ->required()
       ->check(CLI::Validator(
           [](std::string& path) -> std::string {
             try {
-              format_from_path(path);
+              if (path != kStandardStream) format_from_path(path);
               return "";
             } catch (const InputError& e) {
               return e.problem();
             }
           },
           "MESH"));
+  cmd->add_option("--format", args.format,
+                  "Format written to standard output (-o -): off (default), obj, stl, ply, 3mf "
+                  "or glb")
+      ->check(CLI::Validator(
+          [](std::string& name) -> std::string {
+            try {
+              if (!format_available(format_from_name(name))) format_from_path("x." + name);
+              return "";
+            } catch (const InputError& e) {
+              return e.problem();
+            }
+          },
+          "FORMAT"));
   cmd->add_flag("--exact", args.exact, "Write the lossless exact OFF format");
   cmd->add_option("--stats", args.stats, "Write statistics as JSON to FILE, or '-' for stdout");
+}
+
+bool output_usable(const OutputArgs& args, const std::vector<std::string>& inputs) {
+  const bool to_stdout = args.out == kStandardStream;
+  if (to_stdout && args.stats == kStandardStream) {
+    print_error(
+        "--stats -: standard output carries the mesh (-o -); write the statistics to a file");
+    return false;
+  }
+  if (!to_stdout && !args.format.empty()) {
+    print_error("--format " + args.format + ": only for -o - (a file's format is its extension)");
+    return false;
+  }
+  const MeshFormat format =
+      to_stdout ? (args.format.empty() ? MeshFormat::Off : format_from_name(args.format))
+                : format_from_path(args.out);
+  if (args.exact && format != MeshFormat::Off) {
+    print_error(shown_path(args.out) + ": the exact format is OFF: use a .off output with --exact");
+    return false;
+  }
+  return !output_overwrites_input(args.out, inputs);
 }
 
 std::string& command_line() {
@@ -84,6 +128,7 @@ void write_result(const Mesh& mesh, const OutputArgs& args,
   WriteOptions options;
   options.exact = args.exact;
   options.provenance = command_line();
+  if (!args.format.empty()) options.stream_format = format_from_name(args.format);
   write_mesh(mesh, args.out, options);
   if (!args.stats.empty()) emit_json(stats(), args.stats);
 }

@@ -31,19 +31,27 @@ nlohmann::json result_stats(const Mesh& mesh, double seconds);
 // Reads an operand; a read error or an invalid solid is reported as "FILE: problem" and nullopt.
 std::optional<Mesh> read_solid(const std::string& path);
 
-// Refuses an output path that names one of the inputs.
+// Refuses an output path that names one of the inputs, and standard input ("-") named twice.
 bool output_overwrites_input(const std::string& output, const std::vector<std::string>& inputs);
+
+// A path as messages show it: "-" is "<stdin>".
+std::string shown_path(const std::string& path);
 
 // The output options every mesh-producing command shares: -o/--output (required), --exact and
 // --stats FILE|-.
 // The command line as typed, for the provenance comment of written files (set by main).
 std::string& command_line();
 
+// -o - writes the mesh to standard output, in --format (default off).
 struct OutputArgs {
-  std::string out, stats;
+  std::string out, stats, format;
   bool exact = false;
 };
 void add_output_options(CLI::App* cmd, OutputArgs& args);
+// What the output options cannot do together, reported (exit 2) before any work: --stats - with
+// -o -, --format with a file, --exact with a format other than OFF. Also refuses an output that is
+// one of the inputs (output_overwrites_input). False when refused.
+bool output_usable(const OutputArgs& args, const std::vector<std::string>& inputs);
 // Writes the mesh (atomically, in the format of the extension) and, if asked, the statistics that
 // `stats` builds (only then: they check the result, which costs as much as a check).
 void write_result(const Mesh& mesh, const OutputArgs& args,

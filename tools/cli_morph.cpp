@@ -35,7 +35,7 @@ Command add_morphology_command(CLI::App& app, MorphologyOp op, const std::string
   cmd->add_option("--se", args->se, se_help())->required();
   add_output_options(cmd, args->output);
   return {cmd, [args, op]() -> int {
-            if (output_overwrites_input(args->output.out, {args->in})) return kBadInput;
+            if (!output_usable(args->output, {args->in})) return kBadInput;
             StructuringElement se;
             try {
               se = parse_structuring_element(args->se);
@@ -47,6 +47,12 @@ Command add_morphology_command(CLI::App& app, MorphologyOp op, const std::string
             }
             const auto a = read_solid(args->in);
             if (!a) return kBadInput;
+            try {
+              check_structuring_element_scale(se, *a);
+            } catch (const StructuringElementError& e) {
+              print_error("--se " + args->se + ": " + e.what());
+              return kBadInput;
+            }
             const Stopwatch start;
             MorphologyStats stats;
             const Mesh result = apply_morphology(op, *a, se, &stats);
@@ -75,7 +81,7 @@ Command add_minkowski_command(CLI::App& app) {
   cmd->add_option("B", args->b, "Second operand (convex or not)")->required();
   add_output_options(cmd, args->output);
   return {cmd, [args]() -> int {
-            if (output_overwrites_input(args->output.out, {args->a, args->b})) return kBadInput;
+            if (!output_usable(args->output, {args->a, args->b})) return kBadInput;
             const auto a = read_solid(args->a);
             if (!a) return kBadInput;
             const auto b = read_solid(args->b);

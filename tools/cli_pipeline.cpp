@@ -33,6 +33,45 @@ void add_pipeline_options(CLI::App* cmd, PipelineArgs& args) {
                   "${stem}");
 }
 
+namespace fs = std::filesystem;
+
+// Why the folders of `path` cannot be created or written in ("" when they can): the nearest
+// ancestor that exists must be a folder this process may write in.
+std::string folder_problem(const std::string& path) {
+  std::error_code error;
+  const fs::path parent = fs::absolute(path, error).parent_path();
+  fs::path existing = parent;
+  while (!existing.empty() && !fs::exists(existing, error) && existing != existing.root_path())
+    existing = existing.parent_path();
+  if (!fs::is_directory(existing, error))
+    return "cannot create the folder " + parent.string() + ": " + existing.string() +
+           " is not a folder";
+  if (access(existing.c_str(), W_OK | X_OK) != 0)
+    return (existing == parent ? "cannot write in the folder " : "cannot create the folder ") +
+           parent.string() + ": no permission to write in " + existing.string();
+  return "";
+}
+
+// What validation of the document alone cannot see: read stages whose file does not exist and
+// write stages whose folder cannot be created. Paths still holding a ${variable} (deferred, such
+// as ${input} without --input) are skipped: they are only known when the pipeline runs.
+void check_files(const mp::Pipeline& pipeline) {
+  std::vector<mp::Problem> problems;
+  for (const mp::Stage& stage : pipeline.stages) {
+    if (stage.type != "read" && stage.type != "write") continue;
+    const std::string path = stage.options.value("path", "");
+    if (path.empty() || path.find("${") != std::string::npos) continue;
+    const std::string location = "pipeline[" + std::to_string(stage.index) + "].path";
+    std::error_code error;
+    if (stage.type == "read" && !fs::exists(path, error))
+      problems.push_back({location, "no such file '" + path + "' (stage " + stage.tag + ")"});
+    if (stage.type == "write")
+      if (const std::string problem = folder_problem(path); !problem.empty())
+        problems.push_back({location, problem + " (stage " + stage.tag + ")"});
+  }
+  if (!problems.empty()) throw mp::PipelineError(problems);
+}
+
 void print_problems(const std::string& file, const mp::PipelineError& e) {
   for (const mp::Problem& p : e.problems())
     print_error(p.location.rfind(file, 0) == 0 ? p.text() : file + ": " + p.text());
@@ -110,37 +149,41 @@ Command add_validate_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("validate", "Check a pipeline without running it");
   auto args = std::make_shared<PipelineArgs>();
   add_pipeline_options(cmd, *args);
-  return {
-      cmd, [args]() -> int {
-        mp::Variables variables;
-        try {
-          variables = mp::parse_assignments(args->sets);
-        } catch (const mp::PipelineError& e) {
-          print_problems("", e);
-          return kBadInput;
-        }
-        const auto inputs = expand_inputs(args->inputs);
-        try {
-          const nlohmann::json document = mp::load_document(args->file);
-          mp::check_assignments_used(document, variables);
-          std::size_t stages = 0;
-          if (inputs.empty()) {
-            stages = mp::validate(document, args->file, variables, {"input", "stem"}).stages.size();
-          } else {
-            for (const std::string& input : inputs) {
-              mp::Variables v = variables;
-              v["input"] = input;
-              v["stem"] = std::filesystem::path(input).stem().string();
-              stages = mp::validate(document, args->file, v).stages.size();
+  return {cmd, [args]() -> int {
+            mp::Variables variables;
+            try {
+              variables = mp::parse_assignments(args->sets);
+            } catch (const mp::PipelineError& e) {
+              print_problems("", e);
+              return kBadInput;
             }
-          }
-          std::cout << args->file << ": valid pipeline, " << stages << " stages\n";
-        } catch (const mp::PipelineError& e) {
-          print_problems(args->file, e);
-          return kBadInput;
-        }
-        return kSuccess;
-      }};
+            const auto inputs = expand_inputs(args->inputs);
+            try {
+              const nlohmann::json document = mp::load_document(args->file);
+              mp::check_assignments_used(document, variables);
+              std::size_t stages = 0;
+              if (inputs.empty()) {
+                const mp::Pipeline pipeline =
+                    mp::validate(document, args->file, variables, {"input", "stem"});
+                check_files(pipeline);
+                stages = pipeline.stages.size();
+              } else {
+                for (const std::string& input : inputs) {
+                  mp::Variables v = variables;
+                  v["input"] = input;
+                  v["stem"] = std::filesystem::path(input).stem().string();
+                  const mp::Pipeline pipeline = mp::validate(document, args->file, v);
+                  check_files(pipeline);
+                  stages = pipeline.stages.size();
+                }
+              }
+              std::cout << args->file << ": valid pipeline, " << stages << " stages\n";
+            } catch (const mp::PipelineError& e) {
+              print_problems(args->file, e);
+              return kBadInput;
+            }
+            return kSuccess;
+          }};
 }
 
 std::string describe_option(const mp::OptionInfo& o) {

@@ -23,7 +23,7 @@ Command add_repair_command(CLI::App& app) {
   cmd->add_option("IN", args->in, "Closed, consistently oriented mesh")->required();
   add_output_options(cmd, args->output);
   return {cmd, [args]() -> int {
-            if (output_overwrites_input(args->output.out, {args->in})) return kBadInput;
+            if (!output_usable(args->output, {args->in})) return kBadInput;
             Mesh mesh;
             try {
               mesh = read_mesh(args->in);
@@ -38,7 +38,7 @@ Command add_repair_command(CLI::App& app) {
             try {
               result = repair_mesh(mesh);
             } catch (const InputError& e) {
-              print_error(args->in + ": cannot repair: " + e.what());
+              print_error(shown_path(args->in) + ": cannot repair: " + e.what());
               return kBadInput;
             }
             const double seconds = start.seconds();

@@ -10,6 +10,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
+#include <sstream>
 
 #include "io_text.h"
 
@@ -17,21 +19,106 @@ namespace morphex {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+std::string name_of(const std::string& path) {
+  return path == kStandardStream ? "<stdin>" : path;
+}
+
+const char* const kExpected = "(expected .off, .obj, .stl, .ply, .3mf or .glb)";
+
+bool lookup_format(std::string name, MeshFormat& format) {
+  static const std::pair<const char*, MeshFormat> kNames[] = {
+      {"off", MeshFormat::Off}, {"obj", MeshFormat::Obj},     {"stl", MeshFormat::Stl},
+      {"ply", MeshFormat::Ply}, {"3mf", MeshFormat::ThreeMf}, {"glb", MeshFormat::Glb}};
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  for (const auto& [known, value] : kNames)
+    if (name == known) {
+      format = value;
+      return true;
+    }
+  return false;
+}
+
+}  // namespace
+
 MeshFormat format_from_path(const std::string& path) {
+  if (path == kStandardStream)
+    throw InputError("-", "a standard stream has no extension to give its format");
   std::string ext = fs::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return std::tolower(c); });
-  if (ext == ".off") return MeshFormat::Off;
-  if (ext == ".obj") return MeshFormat::Obj;
-  if (ext == ".stl") return MeshFormat::Stl;
-  if (ext == ".ply") return MeshFormat::Ply;
-  throw InputError(path, "unknown mesh format '" + ext + "' (expected .off, .obj, .stl or .ply)");
+  MeshFormat format;
+  if (ext.size() < 2 || !lookup_format(ext.substr(1), format))
+    throw InputError(path, "unknown mesh format '" + ext + "' " + kExpected);
+  if (!format_available(format))
+    throw InputError(path,
+                     "3MF is not available: this morphex was built without lib3mf "
+                     "(install lib3mf-dev and reconfigure)");
+  return format;
+}
+
+MeshFormat format_from_name(const std::string& name) {
+  MeshFormat format;
+  if (!lookup_format(name, format))
+    throw InputError(name, "unknown mesh format '." + name + "' " + kExpected);
+  return format;
+}
+
+bool format_available(MeshFormat format) {
+  return format != MeshFormat::ThreeMf || detail::have_3mf();
+}
+
+bool format_readable(MeshFormat format) {
+  return format != MeshFormat::Glb;
+}
+
+MeshFormat detect_format(const std::string& content, const std::string& name) {
+  if (content.size() >= 84) {
+    std::uint32_t n = 0;
+    std::memcpy(&n, content.data() + 80, 4);
+    if (content.size() == 84 + std::uint64_t(n) * 50) return MeshFormat::Stl;
+  }
+  if (content.compare(0, 5, "solid") == 0) return MeshFormat::Stl;
+  if (content.compare(0, 4, "PK\x03\x04") == 0) return MeshFormat::ThreeMf;
+  if (content.compare(0, 3, "ply") == 0) return MeshFormat::Ply;
+  // OFF: the first token after blank lines and '#' comments is OFF (or COFF, NOFF, ...).
+  std::size_t pos = 0;
+  while (pos < content.size()) {
+    pos = content.find_first_not_of(" \t\r\n", pos);
+    if (pos == std::string::npos || content[pos] != '#') break;
+    pos = content.find('\n', pos);
+  }
+  if (pos != std::string::npos && pos < content.size()) {
+    const std::size_t end = std::min(content.find_first_of(" \t\r\n", pos), content.size());
+    const std::string token = content.substr(pos, end - pos);
+    if (token.size() >= 3 && token.compare(token.size() - 3, 3, "OFF") == 0) return MeshFormat::Off;
+  }
+  throw InputError(name, "cannot tell the mesh format from the first bytes " +
+                             detail::shown(content.substr(0, 16)) +
+                             ": standard input takes OFF, STL (ASCII or binary), PLY or 3MF");
 }
 
 namespace {
 
 std::atomic<std::uint64_t> max_file_bytes{InputLimits().max_file_bytes};
 std::atomic<std::uint64_t> max_faces{InputLimits().max_faces};
+
+// Reads a whole stream under the size limit, in chunks: a device or pipe (mesh:path=/dev/zero,
+// <(cmd), standard input) has no size to check beforehand and may never end.
+std::string read_stream(std::istream& in, const std::string& name) {
+  std::string content;
+  std::array<char, 1 << 16> chunk;
+  while (in.read(chunk.data(), chunk.size()) || in.gcount() > 0) {
+    content.append(chunk.data(), static_cast<std::size_t>(in.gcount()));
+    if (content.size() > max_file_bytes)
+      throw InputError(name, "file too large: more than " + std::to_string(max_file_bytes.load()) +
+                                 " bytes (raise the limit with --max-input-mb)");
+  }
+  if (in.bad()) throw InputError(name, std::string("cannot read: ") + std::strerror(errno));
+  return content;
+}
 
 std::string read_file(const std::string& path) {
   std::error_code ec;
@@ -44,18 +131,22 @@ std::string read_file(const std::string& path) {
                                "; raise it with --max-input-mb)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, std::string("cannot open file: ") + std::strerror(errno));
-  // Read in chunks under the same limit: a device or pipe (mesh:path=/dev/zero, <(cmd)) has no
-  // size to check beforehand and may never end.
-  std::string content;
-  std::array<char, 1 << 16> chunk;
-  while (in.read(chunk.data(), chunk.size()) || in.gcount() > 0) {
-    content.append(chunk.data(), static_cast<std::size_t>(in.gcount()));
-    if (content.size() > max_file_bytes)
-      throw InputError(path, "file too large: more than " + std::to_string(max_file_bytes.load()) +
-                                 " bytes (raise the limit with --max-input-mb)");
-  }
-  if (in.bad()) throw InputError(path, std::string("cannot read file: ") + std::strerror(errno));
-  return content;
+  return read_stream(in, path);
+}
+
+// Standard input, whose format has to be read from its content.
+Mesh read_standard_input() {
+  const std::string name = name_of(kStandardStream);
+  const std::string content = read_stream(std::cin, name);
+  if (content.find_first_not_of(" \t\r\n") == std::string::npos)
+    throw InputError(name, "empty input: nothing was piped into standard input");
+  return read_mesh_from_string(content, detect_format(content, name), name);
+}
+
+void check_face_limit(const Mesh& mesh, const std::string& name) {
+  if (mesh.num_triangles() > max_faces)
+    throw InputError(name, "too many faces: " + std::to_string(mesh.num_triangles()) + " (limit " +
+                               std::to_string(max_faces.load()) + "; raise it with --max-faces)");
 }
 
 }  // namespace
@@ -72,21 +163,31 @@ Mesh read_mesh_from_string(const std::string& content, MeshFormat format, const 
       return detail::read_stl(content, name);
     case MeshFormat::Ply:
       return detail::read_ply(content, name);
+    case MeshFormat::ThreeMf:
+      return detail::read_3mf(content, name);
+    case MeshFormat::Glb:
+      break;
   }
-  throw InputError(name, "unknown format");
+  throw InputError(name,
+                   "glb files are written for viewers, not read: give OFF, OBJ, STL, PLY or 3MF");
 }
 
 Mesh read_mesh(const std::string& path) {
   // What is wrong with the path itself comes first: "unknown mesh format ''" would mislead.
   std::error_code error;
-  if (path == "-") throw InputError(path, "standard input is not read: give a mesh file");
+  if (path == kStandardStream) {
+    Mesh mesh = read_standard_input();
+    check_face_limit(mesh, name_of(path));
+    return mesh;
+  }
   if (fs::is_directory(path, error)) throw InputError(path, "is a directory, not a mesh file");
   if (!fs::exists(path, error)) throw InputError(path, "cannot open file: no such file");
   const MeshFormat format = format_from_path(path);
+  if (!format_readable(format))
+    throw InputError(path,
+                     "glb files are written for viewers, not read: give OFF, OBJ, STL, PLY or 3MF");
   Mesh mesh = read_mesh_from_string(read_file(path), format, path);
-  if (mesh.num_triangles() > max_faces)
-    throw InputError(path, "too many faces: " + std::to_string(mesh.num_triangles()) + " (limit " +
-                               std::to_string(max_faces.load()) + "; raise it with --max-faces)");
+  check_face_limit(mesh, path);
   return mesh;
 }
 
@@ -107,27 +208,69 @@ std::string provenance_line(const std::string& provenance) {
   return line;
 }
 
-void write_mesh(const Mesh& mesh, const std::string& path, const WriteOptions& options) {
-  const std::string note = provenance_line(options.provenance);
-  const MeshFormat format = format_from_path(path);
+namespace {
+
+// What the format cannot hold is refused before anything is written: --exact for a plain format,
+// and vertices that rounding would merge or faces it would flatten. 3MF is checked by write_3mf
+// on what lib3mf's text keeps.
+void check_writable(const Mesh& mesh, MeshFormat format, const WriteOptions& options,
+                    const std::string& name) {
   if (options.exact && format != MeshFormat::Off)
-    throw InputError(path, "the exact format is OFF: use a .off output with --exact");
-  write_file_atomically(path, [&](std::ostream& out) {
-    switch (format) {
-      case MeshFormat::Off:
-        detail::write_off(mesh, out, options.exact, note);
-        break;
-      case MeshFormat::Obj:
-        detail::write_obj(mesh, out, note);
-        break;
-      case MeshFormat::Stl:
-        detail::write_stl(mesh, out, note);
-        break;
-      case MeshFormat::Ply:
-        detail::write_ply(mesh, out, note);
-        break;
-    }
-  });
+    throw InputError(name, "the exact format is OFF: use a .off output with --exact");
+  if (options.exact || format == MeshFormat::ThreeMf) return;
+  const bool floats = format == MeshFormat::Stl || format == MeshFormat::Glb;
+  check_representable(mesh, floats, name);
+}
+
+void emit(const Mesh& mesh, std::ostream& out, MeshFormat format, const WriteOptions& options,
+          const std::string& name) {
+  const std::string note = provenance_line(options.provenance);
+  switch (format) {
+    case MeshFormat::Off:
+      detail::write_off(mesh, out, options.exact, note);
+      break;
+    case MeshFormat::Obj:
+      detail::write_obj(mesh, out, note);
+      break;
+    case MeshFormat::Stl:
+      detail::write_stl(mesh, out, note);
+      break;
+    case MeshFormat::Ply:
+      detail::write_ply(mesh, out, note);
+      break;
+    case MeshFormat::ThreeMf:
+      detail::write_3mf(mesh, out, note, name);
+      break;
+    case MeshFormat::Glb:
+      detail::write_glb(mesh, out, note);
+      break;
+  }
+}
+
+}  // namespace
+
+void write_mesh(const Mesh& mesh, std::ostream& out, MeshFormat format,
+                const WriteOptions& options) {
+  const std::string name = "<stdout>";
+  check_writable(mesh, format, options, name);
+  // Composed in memory, then written at once: a failure midway leaves nothing on the stream.
+  std::ostringstream text;
+  emit(mesh, text, format, options, name);
+  const std::string bytes = std::move(text).str();
+  out.write(bytes.data(), std::streamsize(bytes.size()));
+  out.flush();
+  if (!out) throw std::runtime_error(name + ": write failed");
+}
+
+void write_mesh(const Mesh& mesh, const std::string& path, const WriteOptions& options) {
+  if (path == kStandardStream) {
+    if (!format_available(options.stream_format)) format_from_path("<stdout>.3mf");  // says why
+    write_mesh(mesh, std::cout, options.stream_format, options);
+    return;
+  }
+  const MeshFormat format = format_from_path(path);
+  check_writable(mesh, format, options, path);
+  write_file_atomically(path, [&](std::ostream& out) { emit(mesh, out, format, options, path); });
 }
 
 }  // namespace morphex

@@ -127,9 +127,11 @@ Mesh close_valid(const Mesh& a, const std::vector<SePart>& parts, MinkowskiStats
 }
 
 template <class Body>
-Mesh timed(const Mesh& a, MorphologyStats* stats, Body&& body, bool validate = true) {
+Mesh timed(const Mesh& a, const StructuringElement& se, MorphologyStats* stats, Body&& body,
+           bool validate = true) {
   const auto start = std::chrono::steady_clock::now();
   if (validate) detail::require_valid(a, "input");
+  if (validate) check_structuring_element_scale(se, a);
   MinkowskiStats minkowski;
   Mesh result = body(minkowski);
   make_exact(result);
@@ -145,39 +147,39 @@ Mesh timed(const Mesh& a, MorphologyStats* stats, Body&& body, bool validate = t
 }  // namespace
 
 Mesh dilation(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
-  return timed(a, stats, [&](MinkowskiStats& s) { return dilate_valid(a, parts_of(se), s); });
+  return timed(a, se, stats, [&](MinkowskiStats& s) { return dilate_valid(a, parts_of(se), s); });
 }
 
 Mesh erosion(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
-  return timed(a, stats, [&](MinkowskiStats& s) { return erode_valid(a, parts_of(se), s); });
+  return timed(a, se, stats, [&](MinkowskiStats& s) { return erode_valid(a, parts_of(se), s); });
 }
 
 Mesh dilation_of_valid(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
   return timed(
-      a, stats, [&](MinkowskiStats& s) { return dilate_valid(a, parts_of(se), s); }, false);
+      a, se, stats, [&](MinkowskiStats& s) { return dilate_valid(a, parts_of(se), s); }, false);
 }
 
 Mesh erosion_of_valid(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
   return timed(
-      a, stats, [&](MinkowskiStats& s) { return erode_valid(a, parts_of(se), s); }, false);
+      a, se, stats, [&](MinkowskiStats& s) { return erode_valid(a, parts_of(se), s); }, false);
 }
 
 Mesh opening(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
-  return timed(a, stats, [&](MinkowskiStats& s) { return open_valid(a, parts_of(se), s); });
+  return timed(a, se, stats, [&](MinkowskiStats& s) { return open_valid(a, parts_of(se), s); });
 }
 
 Mesh closing(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
-  return timed(a, stats, [&](MinkowskiStats& s) { return close_valid(a, parts_of(se), s); });
+  return timed(a, se, stats, [&](MinkowskiStats& s) { return close_valid(a, parts_of(se), s); });
 }
 
 Mesh opening_of_valid(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
   return timed(
-      a, stats, [&](MinkowskiStats& s) { return open_valid(a, parts_of(se), s); }, false);
+      a, se, stats, [&](MinkowskiStats& s) { return open_valid(a, parts_of(se), s); }, false);
 }
 
 Mesh closing_of_valid(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
   return timed(
-      a, stats, [&](MinkowskiStats& s) { return close_valid(a, parts_of(se), s); }, false);
+      a, se, stats, [&](MinkowskiStats& s) { return close_valid(a, parts_of(se), s); }, false);
 }
 
 Mesh apply_morphology(MorphologyOp op, const Mesh& a, const StructuringElement& se,

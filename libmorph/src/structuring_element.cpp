@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -64,6 +65,10 @@ class ParameterReader {
       fail(key, "expected a number, got " + value);
     }
     if (positive && x <= 0) fail(key, "expected a positive number, got " + value);
+    // Sizes a double cannot hold have no shape morphex can build in reasonable time.
+    const double d = std::abs(CGAL::to_double(x));
+    if (!std::isfinite(d) || (x != 0 && d < std::numeric_limits<double>::min()))
+      fail(key, value + " is outside the range of doubles (about 1e-308 to 1e308)");
     return x;
   }
 
@@ -282,6 +287,40 @@ Mesh convex_hull(const std::vector<Point>& points) {
 
 bool is_convex(const Mesh& solid) {
   return signed_volume(convex_hull(solid.points)) == signed_volume(solid);
+}
+
+void check_structuring_element_scale(const StructuringElement& se, const Mesh& a) {
+  if (a.empty() || se.mesh.empty()) return;
+  const auto box_of = [](const Mesh& m) {
+    CGAL::Bbox_3 box;
+    for (const Point& p : m.points) box += p.bbox();
+    return box;
+  };
+  const CGAL::Bbox_3 mesh_box = box_of(a), se_box = box_of(se.mesh);
+  double size = 0, smallest = std::numeric_limits<double>::infinity(), extent = 0;
+  for (int i = 0; i < 3; ++i) {
+    size = std::max(size, mesh_box.max(i) - mesh_box.min(i));
+    smallest = std::min(smallest, se_box.max(i) - se_box.min(i));
+    extent = std::max({extent, std::abs(se_box.min(i)), std::abs(se_box.max(i))});
+  }
+  if (!(size > 0) || !std::isfinite(size)) return;
+  const auto text = [](double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.3g", v);
+    return std::string(buffer);
+  };
+  if (smallest < 1e-12 * size)
+    throw StructuringElementError(
+        se.shape, "size",
+        "a side of " + text(smallest) + " is below 1e-12 of the mesh's size (" + text(size) +
+            "): exact results would need numbers (and time) out of all proportion; scale the "
+            "element up or the mesh down");
+  if (extent > 1e12 * size)
+    throw StructuringElementError(
+        se.shape, "size",
+        "an extent of " + text(extent) + " is above 1e12 times the mesh's size (" + text(size) +
+            "): the mesh would vanish into the element and no plain format could hold the "
+            "result; scale the element down or the mesh up");
 }
 
 }  // namespace morphex

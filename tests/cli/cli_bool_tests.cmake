@@ -67,5 +67,5 @@ morphex_cli_test(threads_zero 2 "expected a positive number of threads, got '0'"
   --threads 0 check ${data}/unit_cube.off)
 morphex_cli_test(bool_unknown_output_format 2 "--output: unknown mesh format '.xyz'"
   bool union ${data}/unit_cube.off ${data}/unit_cube.off -o ${out}/never.xyz)
-morphex_cli_test(dilate_unknown_output_format 2 "--output: unknown mesh format '.glb'"
-  dilate ${data}/unit_cube.off --se cube:r=1 -o ${out}/never.glb)
+morphex_cli_test(dilate_unknown_output_format 2 "--output: unknown mesh format '.wrl'"
+  dilate ${data}/unit_cube.off --se cube:r=1 -o ${out}/never.wrl)

@@ -34,3 +34,11 @@ morphex_cli_test(validate_unused_set 2 "--set nosuch: the pipeline uses no"
 # one parser for run, validate and index: an empty name is refused everywhere
 morphex_cli_test(validate_bad_set 2 "--set =1/2: expected name=value"
   validate ${pipelines}/grow.json --set =1/2)
+# validate looks at the files too (issue 23): a read of a missing file and a write whose folder
+# cannot be created are reported with their stage, before anything runs; paths with a deferred
+# ${input} are left to the run.
+morphex_cli_test(validate_missing_files 2
+  "pipeline\\[0\\].path: no such file '[^']*does_not_exist.off' \\(stage read#0\\).*pipeline\\[2\\].path: cannot create the folder [^ ]*unit_cube.off/out: [^ ]*unit_cube.off is not a folder \\(stage write#2\\)"
+  validate ${pipelines}/missing_files.json --set dir=${data})
+morphex_cli_test(validate_missing_input 2 "pipeline\\[0\\].path: no such file '[^']*nosuch.off'"
+  validate ${pipelines}/grow.json --set out_dir=${pipe_out} --input ${data}/nosuch.off)

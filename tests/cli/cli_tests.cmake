@@ -61,6 +61,12 @@ set_tests_properties(package.consumer_run PROPERTIES FIXTURES_REQUIRED consumer_
 include(cli/cli_bool_tests.cmake)
 include(cli/cli_pipeline_tests.cmake)
 include(cli/cli_retrieval_tests.cmake)
+include(cli/cli_io_tests.cmake)
+
+# Every sh block of README.md runs as written (scripts/readme-examples documents the markers).
+add_test(NAME readme.examples COMMAND ${PROJECT_SOURCE_DIR}/scripts/readme-examples
+  --build ${PROJECT_BINARY_DIR})
+set_tests_properties(readme.examples PROPERTIES TIMEOUT 180 DEPENDS cli.version)
 
 # 1,000 random Booleans with exact identities and validity, fixed seed (tools/stress.cpp).
 add_test(NAME stress.booleans_and_morphology COMMAND stress --seed 1 --count 1000
@@ -93,7 +99,8 @@ add_test(NAME bench.morph_smoke COMMAND bench_morph --se cube:r=1/4 --peer l-sha
 set_tests_properties(bench.morph_smoke PROPERTIES PASS_REGULAR_EXPRESSION "agree with minkowski_sum_3")
 # Paths that are not mesh files say so (not "unknown mesh format ''").
 morphex_cli_test(check_directory 2 "tests/data: is a directory, not a mesh file" check ${data})
-morphex_cli_test(check_stdin 2 "-: standard input is not read" check -)
+# `check -` reads standard input (tests/cli/cli_io_tests.cmake); nothing piped in is bad input.
+morphex_sh_test(check_stdin 2 "<stdin>: empty input" "${mx} check - < /dev/null")
 # Several files at once: one JSON line each, an unreadable one as an error object; worst exit code.
 morphex_cli_test(check_many_json 2
   "\"file\":\"[^\"]*unit_cube.off\".*\"valid\":true.*\"error\":\"[^\"]*does_not_exist.off: cannot open file.*\"valid\":false.*\"border_edges\":4"

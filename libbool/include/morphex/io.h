@@ -1,23 +1,43 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Mesh files: OFF (plain and exact), OBJ, STL (ASCII and binary), PLY (ASCII and binary).
-// Readers triangulate polygons and throw InputError naming the file, the problem and the line,
-// vertex or face. Writers are atomic: a temporary file in the target's directory, then rename.
+// Mesh files: OFF (plain and exact), OBJ, STL (ASCII and binary), PLY (ASCII and binary), 3MF
+// (when built with lib3mf) and glTF binary (.glb, written only, for viewers). The path "-" is
+// standard input or output. Readers triangulate polygons and throw InputError naming the file, the
+// problem and the line, vertex or face. Writers are atomic: a temporary file in the target's
+// directory, then rename; standard output gets the whole file at once, once it is complete.
 #pragma once
 
 #include <cstdint>
 #include <functional>
 #include <iosfwd>
+#include <stdexcept>
 #include <string>
 
 #include "morphex/mesh.h"
 
 namespace morphex {
 
-enum class MeshFormat { Off, Obj, Stl, Ply };
+enum class MeshFormat { Off, Obj, Stl, Ply, ThreeMf, Glb };
 
-// From the file extension (case-insensitive); throws InputError for an unknown one.
+// The path that means standard input (read_mesh) or standard output (write_mesh), named
+// "<stdin>" / "<stdout>" in messages.
+inline const std::string kStandardStream = "-";
+
+// From the file extension (case-insensitive); throws InputError for an unknown one, for .3mf when
+// morphex was built without lib3mf, and for "-" (a stream has no extension: see
+// format_from_name).
 MeshFormat format_from_path(const std::string& path);
+// From a format name as given on a command line ("off", "obj", "stl", "ply", "3mf", "glb").
+MeshFormat format_from_name(const std::string& name);
+// False for 3MF when morphex was built without lib3mf (option MORPHEX_3MF).
+bool format_available(MeshFormat format);
+// True for the formats that can be read (all but glb).
+bool format_readable(MeshFormat format);
+// The format of content without a file name (standard input), from its first bytes: binary STL
+// (its size matches the triangle count of its 84-byte header), "solid" (ASCII STL), an OFF header
+// (after '#' comments), "ply", or a ZIP archive (3MF). Throws InputError naming `name` otherwise.
+MeshFormat detect_format(const std::string& content, const std::string& name);
 
+// "-" reads standard input (under the input limits), the format detected from the content.
 Mesh read_mesh(const std::string& path);
 
 // Limits that protect a process from inputs it cannot hold: files larger than max_file_bytes are
@@ -41,12 +61,31 @@ struct WriteOptions {
   // morphex version as a comment where the format has one: OFF and OBJ '#', PLY "comment", binary
   // STL's 80-byte header (cut to fit). Empty: the version alone.
   std::string provenance;
+  // The format written to standard output (path "-"), which has no extension to choose it.
+  MeshFormat stream_format = MeshFormat::Off;
 };
 // The library's version ("0.1.0").
 const char* version();
 // The comment line a file written with `provenance` carries, without the format's comment marker.
 std::string provenance_line(const std::string& provenance);
+// Plain formats store doubles (OFF, OBJ, PLY) or floats (STL, 3MF, glb): written vertices are
+// rounded. When rounding would make two vertices one, flatten a face or overflow, the file would
+// re-read as another (invalid) mesh: write_mesh refuses with LossyOutputError instead.
+// "-" writes to standard output in options.stream_format.
 void write_mesh(const Mesh& mesh, const std::string& path, const WriteOptions& options = {});
+// The same into a stream: the whole file is composed in memory first, so a failure writes nothing.
+void write_mesh(const Mesh& mesh, std::ostream& out, MeshFormat format,
+                const WriteOptions& options = {});
+
+// A result that the chosen plain format cannot represent (see write_mesh). Not a morphex::Error:
+// the input was fine and the operation ran; the output format is what fails (exit 1).
+class LossyOutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+// Throws LossyOutputError, naming `name`, when `mesh` rounded to doubles (or to floats when
+// `to_float`) has non-finite coordinates, merges vertices or flattens a face.
+void check_representable(const Mesh& mesh, bool to_float, const std::string& name);
 
 // Writes through `writer` into a temporary file next to `path`, then renames it over `path`:
 // readers never see a half-written file and a failure leaves the old file untouched.

@@ -43,6 +43,14 @@ StructuringElement make_structuring_element(const std::string& shape, const SePa
 // Parses the text form, then make_structuring_element.
 StructuringElement parse_structuring_element(const std::string& text);
 
+// Refuses (StructuringElementError, key "size") an element whose size is out of proportion with
+// the mesh `a` it is applied to: a side below 1e-12 or an extent above 1e12 times the largest side
+// of a's bounding box. Exact arithmetic would carry such sizes, but at a cost that grows with the
+// ratio (a ball of radius 1e-300 on a unit cube runs for minutes) and into results no plain
+// format can hold (a unit cube dilated by 1e300 rounds to a degenerate one). Nothing for an empty
+// `a`. Called by the morphological operations that validate their input.
+void check_structuring_element_scale(const StructuringElement& se, const Mesh& a);
+
 // What each shape accepts, for --help, `morphex stages` and error messages.
 struct SeParameterInfo {
   std::string key, type, default_value, description;  // default empty when required

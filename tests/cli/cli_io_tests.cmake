@@ -1,0 +1,80 @@
+# Streams, 3MF, glb and outputs the plain formats cannot hold (issue 23, items 6, 7 and 8).
+set(io_out ${PROJECT_BINARY_DIR}/cli-io-out)
+file(MAKE_DIRECTORY ${io_out})
+set(mx $<TARGET_FILE:morphex>)
+# A shell pipeline (no ';' in SCRIPT: it separates CMake list items), its exit code and output
+# checked as morphex_cli_test does; the exit code is the last command's.
+function(morphex_sh_test name code regex script)
+  add_test(NAME cli.${name} COMMAND ${CMAKE_COMMAND} "-DCOMMAND=sh;-c;${script}"
+    -DEXPECT_CODE=${code} "-DEXPECT_REGEX=${regex}" -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/expect.cmake)
+endfunction()
+
+# `-` is standard input and output: OFF (exact or plain), binary STL, the format read from the
+# content; messages name <stdin>.
+morphex_sh_test(stdout_exact_off_to_check 0 "\"file\":\"<stdin>\".*\"valid\":true.*\"volume\":\"26/27\""
+  "${mx} bool difference ${data}/unit_cube.off ${data}/third_cube_exact.off -o - --exact | ${mx} check --json -")
+morphex_sh_test(stdout_stl_to_check 0 "<stdin>: valid closed solid.*volume 1 "
+  "${mx} bool union ${data}/unit_cube.off ${data}/unit_cube.off -o - --format stl | ${mx} check -")
+morphex_sh_test(stdin_to_stdout_dilate 0 "\"valid\":true.*\"volume\":\"27/8\""
+  "${mx} dilate - --se cube:r=1/4 -o - --exact < ${data}/unit_cube.off | ${mx} check --json -")
+morphex_sh_test(stdin_repair_stats 0 "\"reversed\":true.*\"volume\":\"1\""
+  "${mx} repair - -o ${io_out}/turned.off --stats - < ${data}/inward_cube.off")
+morphex_sh_test(stdin_ascii_stl 0 "<stdin>: valid closed solid"
+  "printf 'solid t\\nfacet normal 0 0 0\\nouter loop\\nvertex 0 0 0\\nvertex 0 1 0\\nvertex 1 0 0\\nendloop\\nendfacet\\nfacet normal 0 0 0\\nouter loop\\nvertex 0 0 0\\nvertex 0 0 1\\nvertex 0 1 0\\nendloop\\nendfacet\\nfacet normal 0 0 0\\nouter loop\\nvertex 0 0 0\\nvertex 1 0 0\\nvertex 0 0 1\\nendloop\\nendfacet\\nfacet normal 0 0 0\\nouter loop\\nvertex 1 0 0\\nvertex 0 1 0\\nvertex 0 0 1\\nendloop\\nendfacet\\nendsolid t\\n' | ${mx} check -")
+morphex_sh_test(stdin_empty 2 "morphex: <stdin>: empty input: nothing was piped into standard input"
+  "${mx} check - < /dev/null")
+morphex_sh_test(stdin_garbage 2 "<stdin>: cannot tell the mesh format from the first bytes 'hello.*standard input takes OFF, STL"
+  "echo hello | ${mx} check -")
+morphex_sh_test(stdin_garbage_bool 2 "<stdin>: cannot tell the mesh format"
+  "echo hello | ${mx} bool union - ${data}/unit_cube.off -o ${io_out}/never.off")
+morphex_cli_test(stdin_twice 2 "standard input can be read only once"
+  bool union - - -o ${io_out}/never.off)
+morphex_cli_test(stdout_and_stats_stdout 2 "--stats -: standard output carries the mesh"
+  bool union ${data}/unit_cube.off ${data}/unit_cube.off -o - --stats -)
+morphex_cli_test(format_needs_stdout 2 "--format stl: only for -o -"
+  bool union ${data}/unit_cube.off ${data}/unit_cube.off -o ${io_out}/never.off --format stl)
+morphex_cli_test(format_unknown 2 "--format: unknown mesh format '.xyz'"
+  bool union ${data}/unit_cube.off ${data}/unit_cube.off -o - --format xyz)
+morphex_cli_test(exact_needs_off_early 2 "never.stl: the exact format is OFF"
+  dilate ${data}/unit_cube.off --se ball:r=1/10,level=3 -o ${io_out}/never.stl --exact)
+
+# Sizes out of proportion are refused before any work; results a plain format cannot hold are
+# refused (exit 1: the operation ran) with the advice to write the exact format.
+morphex_cli_test(se_too_small 2
+  "--se ball:r=1e-300: ball: size: a side of [0-9.e-]+ is below 1e-12 of the mesh's size \\(1\\)"
+  dilate ${data}/unit_cube.off --se ball:r=1e-300 -o ${io_out}/never.off)
+set_tests_properties(cli.se_too_small PROPERTIES TIMEOUT 20)
+morphex_cli_test(se_too_large 2 "--se cube:r=1e300: cube: size: an extent of 1e\\+300 is above 1e12"
+  dilate ${data}/unit_cube.off --se cube:r=1e300 -o ${io_out}/never.off)
+# an exact integer of 311 digits: a number, but no double holds it
+string(REPEAT "0" 310 zeros)
+morphex_cli_test(se_beyond_doubles 2 "cube: r: 10+ is outside the range of doubles"
+  dilate ${data}/unit_cube.off --se cube:r=1${zeros} -o ${io_out}/never.off)
+morphex_cli_test(lossy_float_output 1
+  "lossy.stl: the result cannot be written as 32-bit floats \\(STL, glb\\): rounding makes vertices [0-9]+ and [0-9]+ one point. write the exact format instead \\(--exact with a .off output\\)"
+  dilate ${data}/unit_cube.off --se octahedron:r=1e-11 -o ${io_out}/lossy.stl)
+morphex_sh_test(lossy_output_leaves_no_file 0 "^exit 1, no file"
+  "${mx} dilate ${data}/unit_cube.off --se octahedron:r=1e-11 -o ${io_out}/lossy2.stl 2>/dev/null
+   status=$?
+   ls -a ${io_out} | grep -q lossy2 || echo \"exit $status, no file\"")
+
+# 3MF through lib3mf (optional at build time), glb written for viewers.
+if(MORPHEX_3MF)
+  morphex_cli_test(bool_to_3mf 0 "\"volume\":\"27/8\""
+    dilate ${data}/unit_cube.off --se cube:r=1/4 -o ${io_out}/dilated.3mf --stats -)
+  morphex_cli_test(check_3mf 0 "dilated.3mf: valid closed solid.*volume 27/8 "
+    check ${io_out}/dilated.3mf)
+  set_tests_properties(cli.check_3mf PROPERTIES DEPENDS cli.bool_to_3mf)
+  morphex_sh_test(stdout_3mf_to_check 0 "<stdin>: valid closed solid.*volume 1 "
+    "${mx} bool union ${data}/unit_cube.off ${data}/unit_cube.off -o - --format 3mf | ${mx} check -")
+  morphex_cli_test(lossy_3mf_output 1 "tiny.3mf: the result cannot be written as 3MF"
+    dilate ${data}/unit_cube.off --se octahedron:r=1e-9 -o ${io_out}/tiny.3mf)
+else()
+  morphex_cli_test(3mf_unavailable 2 "--output: 3MF is not available: this morphex was built without lib3mf"
+    bool union ${data}/unit_cube.off ${data}/unit_cube.off -o ${io_out}/never.3mf)
+endif()
+morphex_cli_test(bool_to_glb 0 "\"faces\":12"
+  bool union ${data}/unit_cube.off ${data}/unit_cube.off -o ${io_out}/cube.glb --stats -)
+morphex_cli_test(glb_is_not_read 2 "glb files are written for viewers, not read"
+  check ${io_out}/cube.glb)
+set_tests_properties(cli.glb_is_not_read PROPERTIES DEPENDS cli.bool_to_glb)
