@@ -186,7 +186,7 @@ std::vector<OptionInfo> describe_options() {
 // Reading, repairing and writing meshes.
 void add_io_stages(StageRegistry& r) {
   r.add({"read",
-         "read a closed mesh (OFF, OBJ, STL, PLY) and check that it is a valid solid (unless it "
+         "read a closed mesh (OFF, OBJ, STL, PLY, 3MF) and check that it is a valid solid (unless it "
          "goes only to repair stages)",
          0,
          {required("path", OptionType::Path, "mesh file")},
