@@ -231,26 +231,6 @@ Command add_ls_command(CLI::App& app) {
           }};
 }
 
-// The recorded paths that `key` names: a recorded path, a file's absolute path, or a unique name.
-std::vector<std::string> resolve_entry(const std::vector<IndexedMesh>& entries,
-                                       const std::string& key, std::string& problem) {
-  const std::string absolute = fs::absolute(key).lexically_normal().string();
-  std::vector<std::string> by_path, by_name;
-  for (const IndexedMesh& m : entries) {
-    if (m.path == key || m.path == absolute) by_path.push_back(m.path);
-    if (m.name == key) by_name.push_back(m.path);
-  }
-  if (!by_path.empty()) return by_path;
-  if (by_name.size() == 1) return by_name;
-  if (by_name.empty())
-    problem = key + ": no indexed mesh has this name or path";
-  else
-    problem = key + ": " + std::to_string(by_name.size()) +
-              " indexed meshes have this name (give the path): " + by_name[0] + ", " + by_name[1] +
-              (by_name.size() > 2 ? ", ..." : "");
-  return {};
-}
-
 Command add_rm_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("rm", "Remove meshes from a retrieval index");
   struct Args {
@@ -262,20 +242,8 @@ Command add_rm_command(CLI::App& app) {
   cmd->add_option("MESH", args->keys, "Names or paths of indexed meshes")->required();
   return {cmd, [args]() -> int {
             IndexDb db(args->db);
-            const std::vector<IndexedMesh> entries = db.load(false, {});
-            std::set<std::string> paths;
-            bool ok = true;
-            for (const std::string& key : args->keys) {  // every name checked before any removal
-              std::string problem;
-              for (const std::string& p : resolve_entry(entries, key, problem)) paths.insert(p);
-              if (!problem.empty()) {
-                print_error(args->db + ": " + problem);
-                ok = false;
-              }
-            }
-            if (!ok) return kBadInput;
-            for (const std::string& p : paths) db.remove(p);
-            std::cout << args->db << ": removed " << paths.size() << " meshes\n";
+            const std::size_t removed = remove_indexed(db, args->keys);  // all keys, or none
+            std::cout << args->db << ": removed " << removed << " meshes\n";
             return kSuccess;
           }};
 }

@@ -219,6 +219,44 @@ IndexSummary index_meshes(IndexDb& db, const IndexPipeline& pipeline,
   return summary;
 }
 
+namespace {
+
+// The recorded paths that `key` names, or "" and the problem in `problem`.
+std::vector<std::string> resolve_entry(const std::vector<IndexedMesh>& entries,
+                                       const std::string& key, std::string& problem) {
+  const std::string absolute = fs::absolute(key).lexically_normal().string();
+  std::vector<std::string> by_path, by_name;
+  for (const IndexedMesh& m : entries) {
+    if (m.path == key || m.path == absolute) by_path.push_back(m.path);
+    if (m.name == key) by_name.push_back(m.path);
+  }
+  if (!by_path.empty()) return by_path;
+  if (by_name.size() == 1) return by_name;
+  if (by_name.empty())
+    problem = key + ": no indexed mesh has this name or path";
+  else
+    problem = key + ": " + std::to_string(by_name.size()) +
+              " indexed meshes have this name (give the path): " + by_name[0] + ", " + by_name[1] +
+              (by_name.size() > 2 ? ", ..." : "");
+  return {};
+}
+
+}  // namespace
+
+std::size_t remove_indexed(IndexDb& db, const std::vector<std::string>& keys) {
+  const std::vector<IndexedMesh> entries = db.load(false, {});
+  std::set<std::string> paths;
+  std::string problems;
+  for (const std::string& key : keys) {
+    std::string problem;
+    for (const std::string& p : resolve_entry(entries, key, problem)) paths.insert(p);
+    if (!problem.empty()) problems += (problems.empty() ? "" : "; ") + problem;
+  }
+  if (!problems.empty()) throw InputError(db.path(), problems);
+  for (const std::string& p : paths) db.remove(p);
+  return paths.size();
+}
+
 std::vector<Neighbour> query_index(IndexDb& db, const std::string& target, std::size_t k,
                                    const std::string& kind, Metric metric, bool by_name) {
   const std::vector<IndexedMesh> meshes = db.load(true, {kind});

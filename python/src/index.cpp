@@ -66,12 +66,16 @@ class Index {
 
   py::dict add(const py::object& items, const std::optional<std::string>& name,
                const py::object& pipeline, const std::map<std::string, std::string>& variables,
-               bool repair, const std::optional<int>& threads);
+               bool repair, bool retry_failed, const std::optional<int>& threads);
   py::list query(const py::object& target, std::size_t k, const std::string& descriptor,
                  const std::string& metric, const std::optional<int>& threads);
   py::dict evaluate(const py::object& labels, const std::string& metric);
 
-  std::vector<IndexedMesh> load(bool only_ok = true) { return db().load(only_ok); }
+  std::vector<IndexedMesh> load(bool only_ok = true,
+                                const std::vector<std::string>& kinds = {"*"}) {
+    return db().load(only_ok, kinds);
+  }
+  std::size_t remove(const std::vector<std::string>& keys) { return remove_indexed(db(), keys); }
   const std::string& path() const { return path_; }
   void close() { db_.reset(); }
 
@@ -132,8 +136,9 @@ std::vector<IndexItem> Index::items(const py::object& objects,
       if (n.empty()) throw std::invalid_argument("a Mesh not read from a file needs a name=");
       out.push_back({temp.write(m.mesh, n), "mesh:" + n, n});
     } else {
-      const std::string p = to_path(h);
-      out.push_back({p, p, name ? *name : fs::path(p).stem().string()});
+      IndexItem item = index_item(to_path(h));  // recorded by absolute path, as `morphex index`
+      if (name) item.name = *name;
+      out.push_back(item);
     }
   }
   return out;
@@ -142,7 +147,7 @@ std::vector<IndexItem> Index::items(const py::object& objects,
 py::dict Index::add(const py::object& objects, const std::optional<std::string>& name,
                     const py::object& pipeline_arg,
                     const std::map<std::string, std::string>& variables, bool repair,
-                    const std::optional<int>& threads) {
+                    bool retry_failed, const std::optional<int>& threads) {
   const IndexPipeline pipeline = this->pipeline(pipeline_arg, variables, repair);
   TemporaryDirectory temp;
   const std::vector<IndexItem> list = items(objects, name, temp);
@@ -151,7 +156,9 @@ py::dict Index::add(const py::object& objects, const std::optional<std::string>&
     py::gil_scoped_release release;
     ThreadLimit limit(threads);
     try {
-      summary = index_meshes(db(), pipeline, list);
+      IndexOptions options;
+      options.retry_failed = retry_failed;
+      summary = index_meshes(db(), pipeline, list, {}, options);
     } catch (const mp::PipelineError& e) {
       throw std::invalid_argument(pipeline_problems(pipeline.name, e));
     }
@@ -159,6 +166,7 @@ py::dict Index::add(const py::object& objects, const std::optional<std::string>&
   py::dict out;
   out["indexed"] = summary.indexed;
   out["skipped"] = summary.skipped;
+  out["skipped_failed"] = summary.skipped_failed;
   out["failed"] = summary.errors.size();
   out["errors"] = std::map<std::string, std::string>(summary.errors.begin(), summary.errors.end());
   return out;
@@ -250,16 +258,18 @@ index built here and back). Index(path) opens it, creating it if missing. A cont
       .def("add", &Index::add, py::arg("meshes"), py::kw_only(), py::arg("name") = py::none(),
            py::arg("pipeline") = py::none(),
            py::arg("variables") = std::map<std::string, std::string>{}, py::arg("repair") = true,
-           py::arg("threads") = py::none(),
+           py::arg("retry_failed") = false, py::arg("threads") = py::none(),
            R"doc(Describes meshes into the index, as `morphex index`.
 
-meshes: a path, a Mesh, or an iterable of them. A path is recorded with its file stem as name;
+meshes: a path, a Mesh, or an iterable of them. A path is recorded by its absolute path, with its
+file stem as name;
 a Mesh as "mesh:<name>" (name=, else the stem of the file it was read from).
 pipeline: the descriptor pipeline (dict, JSON text or file; None: read then describe with the
 default settings); variables: its ${name} values; repair: repair meshes that are not valid solids
 first (recorded per mesh). Meshes already indexed with the same content and settings are
-skipped; one that fails is recorded with its error. Returns {'indexed', 'skipped', 'failed',
-'errors': {path: message}}.)doc")
+skipped; one that fails is recorded with its error and skipped on later calls unless
+retry_failed. Returns {'indexed', 'skipped', 'skipped_failed', 'failed', 'errors': {path:
+message}}.)doc")
       .def("query", &Index::query, py::arg("mesh"), py::arg("k") = 10,
            py::arg("descriptor") = default_descriptor_kind(), py::arg("metric") = "l1",
            py::kw_only(), py::arg("threads") = py::none(),
@@ -291,6 +301,35 @@ others. Returns {kind: {'nearest_neighbor', 'first_tier', 'second_tier', 'e_meas
             return out;
           },
           "{path: error} of the meshes that could not be indexed.")
+      .def(
+          "entries",
+          [](Index& index) {
+            py::list out;
+            for (const IndexedMesh& m : index.load(false, {})) {
+              py::dict e;
+              e["name"] = m.name;
+              e["path"] = m.path;
+              e["status"] = m.status;
+              e["error"] = m.error;
+              e["faces"] = m.faces;
+              e["volume"] = m.volume;
+              e["repaired"] = !m.repair.empty();
+              e["seconds"] = m.seconds;
+              e["settings"] = m.settings;
+              e["indexed_at"] = m.indexed_at;
+              out.append(e);
+            }
+            return out;
+          },
+          "Every entry, as `morphex ls --json`: a list of dicts (name, path, status, error, "
+          "faces, volume, repaired, seconds, settings, indexed_at), by name.")
+      .def(
+          "remove",
+          [](Index& index, const std::vector<std::string>& keys) { return index.remove(keys); },
+          py::arg("keys"),
+          "Removes the meshes named by recorded path, file path or unique name, as `morphex rm`; "
+          "raises ValueError, removing nothing, when a key names no mesh or several. Returns how "
+          "many were removed.")
       .def("descriptors", &stored_descriptors, py::arg("name"),
            "The stored vectors of an indexed mesh (by name or path): {kind: numpy array}.")
       .def("__len__", [](Index& index) { return index.load().size(); })

@@ -42,7 +42,8 @@ def test_index_add_query_evaluate(tmp_path):
     paths = sorted(str(p) for p in (tmp_path / "meshes").glob("*.off"))
     with morphex.Index(tmp_path / "index.sqlite") as index:
         summary = index.add(paths, pipeline=fast_pipeline(), threads=2)
-        assert summary == {"indexed": 6, "skipped": 0, "failed": 0, "errors": {}}
+        assert summary == {"indexed": 6, "skipped": 0, "skipped_failed": 0, "failed": 0,
+                           "errors": {}}
         assert len(index) == 6 and "bar-1" in index and sorted(index.names()) == sorted(labels)
         # the scaled, moved copy is the nearest neighbour, at distance ~0; the query itself is
         # left out when given by name
@@ -70,6 +71,17 @@ def test_index_add_query_evaluate(tmp_path):
         result = index.add(bad, pipeline=fast_pipeline())
         assert result["failed"] == 1 and str(bad) in result["errors"]
         assert str(bad) in index.failed() and len(index) == 6
+        # the failure is kept and skipped until retry_failed
+        assert index.add(bad, pipeline=fast_pipeline())["skipped_failed"] == 1
+        assert index.add(bad, pipeline=fast_pipeline(), retry_failed=True)["failed"] == 1
+        entries = {e["name"]: e for e in index.entries()}
+        assert entries["broken"]["status"] == "failed" and entries["broken"]["error"]
+        assert entries["bar-1"]["path"] == str((tmp_path / "meshes" / "bar-1.off").resolve())
+        assert entries["bar-1"]["faces"] > 0 and not entries["bar-1"]["repaired"]
+        # remove: an unknown key removes nothing; a name and a path remove their entries
+        with pytest.raises(ValueError, match="nosuch: no indexed mesh"):
+            index.remove(["broken", "nosuch"])
+        assert index.remove(["broken", str(bad)]) == 1 and not index.failed()
         extra = morphex.box((0, 0, 0), (1, 1, 5))
         assert index.add(extra, name="long-bar", pipeline=fast_pipeline())["indexed"] == 1
         assert index.query("long-bar", k=1)[0][0] in ("bar-1", "bar-2")

@@ -87,6 +87,12 @@ IndexSummary index_meshes(IndexDb& db, const IndexPipeline& pipeline,
                           const std::vector<IndexItem>& items, const IndexCallback& on_mesh = {},
                           const IndexOptions& options = {});
 
+// Removes the meshes that `keys` name: a recorded path, a file's path (made absolute) or the name
+// of exactly one indexed mesh. Every key is resolved before anything is removed: a key that names
+// no mesh, or a name that several meshes share, throws InputError naming the index and each such
+// key, and nothing is removed. Returns how many entries were removed.
+std::size_t remove_indexed(IndexDb& db, const std::vector<std::string>& keys);
+
 struct Neighbour {
   std::string name, path;
   double distance = 0;
