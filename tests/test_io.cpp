@@ -11,6 +11,7 @@
 #include <iterator>
 #include <sstream>
 
+#include "morphex/check.h"
 #include "morphex/generators.h"
 #include "morphex/io.h"
 
@@ -139,6 +140,23 @@ TEST(Io, AsciiStl) {
   const Mesh m = read_mesh_from_string(stl, MeshFormat::Stl, "t.stl");
   EXPECT_EQ(m.points.size(), 4u);
   EXPECT_EQ(signed_volume(m), FT(1) / 6);
+}
+
+// -0 and 0 are one coordinate: the tetrahedron's corner written as "-0 0 -0" in one facet and
+// "0 0 0" in the others is one vertex, and the mesh is closed.
+TEST(Io, AsciiStlMergesNegativeZero) {
+  const std::string stl =
+      "solid t\nfacet normal 0 0 -1\nouter loop\nvertex -0 0 -0\nvertex 0 1 0\nvertex 1 0 "
+      "0\nendloop\nendfacet\n"
+      "facet normal 0 -1 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 0 "
+      "1\nendloop\nendfacet\n"
+      "facet normal -1 0 0\nouter loop\nvertex 0 -0 0\nvertex 0 0 1\nvertex 0 1 "
+      "0\nendloop\nendfacet\n"
+      "facet normal 1 1 1\nouter loop\nvertex 1 0 0\nvertex 0 1 0\nvertex 0 0 "
+      "1\nendloop\nendfacet\nendsolid t\n";
+  const Mesh m = read_mesh_from_string(stl, MeshFormat::Stl, "t.stl");
+  EXPECT_EQ(m.points.size(), 4u);
+  EXPECT_TRUE(check_mesh(m).valid_solid());
 }
 
 TEST(Io, ObjNegativeIndicesSlashesAndQuads) {

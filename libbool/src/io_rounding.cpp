@@ -15,19 +15,6 @@ namespace morphex {
 namespace detail {
 namespace {
 
-struct PointHash {
-  std::size_t operator()(const std::array<double, 3>& p) const {
-    std::size_t h = 1469598103934665603ULL;
-    for (double c : p) {
-      std::uint64_t bits;
-      c += 0.0;  // +0 and -0 are one position
-      std::memcpy(&bits, &c, 8);
-      h = (h ^ bits) * 1099511628211ULL;
-    }
-    return h;
-  }
-};
-
 [[noreturn]] void refuse(const std::string& name, const std::string& format,
                          const std::string& problem) {
   throw LossyOutputError(name + ": the result cannot be written as " + format + ": " + problem +
@@ -39,7 +26,7 @@ struct PointHash {
 void check_rounded(const Mesh& exact, const DoubleMesh& rounded, const std::string& name,
                    const std::string& format) {
   using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-  std::unordered_map<std::array<double, 3>, std::size_t, PointHash> seen;
+  std::unordered_map<std::array<double, 3>, std::size_t, DoublePointHash> seen;
   seen.reserve(rounded.points.size());
   for (std::size_t v = 0; v < rounded.points.size(); ++v) {
     const auto& p = rounded.points[v];

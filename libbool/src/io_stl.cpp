@@ -11,18 +11,6 @@ namespace morphex::detail {
 
 namespace {
 
-struct DoublesHash {
-  std::size_t operator()(const std::array<double, 3>& p) const {
-    std::size_t h = 1469598103934665603ULL;
-    for (double c : p) {
-      std::uint64_t bits;
-      std::memcpy(&bits, &c, 8);
-      h = (h ^ bits) * 1099511628211ULL;
-    }
-    return h;
-  }
-};
-
 // One vertex per distinct coordinate triple, in order of first appearance.
 class SoupIndexer {
  public:
@@ -37,7 +25,7 @@ class SoupIndexer {
 
  private:
   Mesh& mesh_;
-  std::unordered_map<std::array<double, 3>, VertexIndex, DoublesHash> index_;
+  std::unordered_map<std::array<double, 3>, VertexIndex, DoublePointHash> index_;
 };
 
 double finite(double d, const std::string& name, const std::string& where) {

@@ -4,7 +4,10 @@
 // plain files need, and the wording of located errors.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <iosfwd>
 #include <string>
 #include <string_view>
@@ -86,5 +89,20 @@ void add_polygon(Mesh& mesh, const std::vector<VertexIndex>& polygon, const std:
 
 // Appends the shortest decimal that reads back as exactly `value`.
 void append_double(std::string& out, double value);
+
+// A hash of coordinate triples for maps keyed by position. +0 and -0 hash alike, as == treats
+// them as one value (a hash that told them apart would keep one position twice).
+struct DoublePointHash {
+  std::size_t operator()(const std::array<double, 3>& p) const {
+    std::size_t h = 1469598103934665603ULL;
+    for (double c : p) {
+      c += 0.0;  // -0 + 0 = +0
+      std::uint64_t bits;
+      std::memcpy(&bits, &c, 8);
+      h = (h ^ bits) * 1099511628211ULL;
+    }
+    return h;
+  }
+};
 
 }  // namespace morphex::detail
