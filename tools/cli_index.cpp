@@ -118,6 +118,10 @@ int run_index(const IndexArgs& args, const IndexPipeline& pipeline, bool threads
                   " processes but MPI sees one (with srun, pass --mpi=pmix or --mpi=pmi2)");
       return kBadInput;
     }
+    if (session.size() == 1) {  // mpirun -n 1: a single process describes meshes in parallel
+      IndexDb db(args.db);
+      return print_summary(args, index_meshes(db, pipeline, items, on_mesh, options));
+    }
     // The ranks on one node share its cores, unless --threads says otherwise.
     std::optional<tbb::global_control> share;
     if (!threads_given)

@@ -39,6 +39,12 @@ echo "$out" | grep -q "indexed 8 meshes (4 already up to date, 0 failed)" || fai
 [ "$(rows "$dir/one.sqlite")" = "$(rows "$dir/resume.sqlite")" ] || fail "the resumed index differs"
 out=$(mpi "$morphex" index "$dir/coll/*.off" --db "$dir/resume.sqlite" --pipeline "$pipeline" --quiet)
 echo "$out" | grep -q "indexed 0 meshes (12 already up to date, 0 failed)" || fail "re-run: $out"
+# One MPI process stores what a plain run stores (it takes the single-process path).
+out=$(ASAN_OPTIONS="${ASAN_OPTIONS:-}:detect_leaks=0" "$mpiexec" -n 1 "$morphex" index "$dir/coll/*.off" \
+  --db "$dir/single.sqlite" --pipeline "$pipeline" --quiet) || fail "mpirun -n 1: $out"
+echo "$out" | grep -q "indexed 12 meshes (0 already up to date, 0 failed)" || fail "-n 1: $out"
+[ "$(rows "$dir/one.sqlite")" = "$(rows "$dir/single.sqlite")" ] || fail "the -n 1 index differs"
+
 # An index rank 0 cannot open stops every rank (none is left waiting) with the error.
 out=$(timeout 120 env ASAN_OPTIONS="${ASAN_OPTIONS:-}:detect_leaks=0" "$mpiexec" --oversubscribe -n 3 "$morphex" index "$dir/coll/*.off" \
   --db "$dir/no/such/folder/x.sqlite" --pipeline "$pipeline" --quiet 2>&1)
