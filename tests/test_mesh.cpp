@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
+
 #include "morphex/mesh.h"
 
 using namespace morphex;
@@ -52,6 +55,53 @@ TEST(Volume, ReversedOrientationIsNegative) {
   Mesh m = unit_cube();
   for (Triangle& t : m.triangles) std::swap(t[1], t[2]);
   EXPECT_EQ(signed_volume(m), FT(-1));
+}
+
+namespace {
+// The volume by the definition, in exact rationals: an independent computation for the tests.
+FT volume_by_rationals(const Mesh& m) {
+  FT six = 0;
+  for (const Triangle& t : m.triangles) {
+    const Point &a = m.points[t[0]], &b = m.points[t[1]], &c = m.points[t[2]];
+    six += CGAL::determinant(a.x(), a.y(), a.z(), b.x(), b.y(), b.z(), c.x(), c.y(), c.z());
+  }
+  return six / 6;
+}
+
+// Random triangles (not a closed mesh: the sum is what is tested) over double coordinates with
+// mantissas of every length and exponents spread over `spread` binary orders.
+Mesh random_double_triangles(unsigned seed, int spread, std::size_t faces) {
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::uniform_int_distribution<int> exponent(-spread / 2, spread / 2);
+  Mesh m;
+  for (std::size_t i = 0; i < 3 * faces; ++i) {
+    double c[3];
+    for (double& x : c) x = random() % 7 == 0 ? 0.0 : std::ldexp(unit(random), exponent(random));
+    m.points.emplace_back(c[0], c[1], c[2]);
+  }
+  for (VertexIndex i = 0; i < 3 * faces; i += 3) m.triangles.push_back({i, i + 1, i + 2});
+  return m;
+}
+}  // namespace
+
+// Double coordinates take the fixed-size integer sum (exponents up to 100 bits apart), others the
+// rational one; both must equal the definition exactly, signs and tiny or huge scales included.
+TEST(Volume, EqualsTheRationalSumForEveryScale) {
+  for (int spread : {0, 10, 40, 90, 150}) {
+    for (unsigned seed = 1; seed <= 4; ++seed) {
+      const Mesh m = random_double_triangles(seed * 100 + unsigned(spread), spread, 2000);
+      EXPECT_EQ(signed_volume(m), volume_by_rationals(m)) << "spread " << spread;
+    }
+  }
+  Mesh extreme = random_double_triangles(7, 0, 10);
+  extreme.points[0] = Point(std::ldexp(1.0, 99), 0.75, -1);  // 2^99 and 2^-2: 101 bits apart
+  extreme.points[1] = Point(std::ldexp(-1.0, 1000), std::ldexp(1.0, -1070), 3);
+  EXPECT_EQ(signed_volume(extreme), volume_by_rationals(extreme));
+  Mesh thirds = random_double_triangles(8, 20, 50);  // constructed (non-double) coordinates
+  for (Point& p : thirds.points) p = Point(p.x() / 3, p.y(), p.z() * 5 / 7);
+  EXPECT_EQ(signed_volume(thirds), volume_by_rationals(thirds));
+  EXPECT_EQ(signed_volume(Mesh{}), FT(0));
 }
 
 TEST(DoubleMesh, RoundTripIsLosslessForDoubles) {

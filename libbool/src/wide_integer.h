@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Signed integers of a fixed number of 64-bit limbs (two's complement, least significant limb
+// first), for exact sums of products of integers of about a hundred bits without GMP.
+//
+// The exact volume of a mesh with double coordinates is a sum of determinants of integers once
+// the coordinates are scaled to a common power of two. mpq arithmetic spent most of its time in
+// gcds and allocation; these fixed-size numbers need neither. Sizes are chosen by the caller so
+// that nothing overflows (results are truncated to N limbs): see volume.cpp for the bounds.
+#pragma once
+
+#include <gmpxx.h>
+
+#include <cstdint>
+
+namespace morphex::detail {
+
+template <int N>
+struct WideInt {
+  std::uint64_t limb[N] = {};
+
+  static WideInt of(__int128 v) {
+    WideInt w;
+    const auto u = static_cast<unsigned __int128>(v);
+    w.limb[0] = std::uint64_t(u);
+    if constexpr (N > 1) w.limb[1] = std::uint64_t(u >> 64);
+    const std::uint64_t fill = v < 0 ? ~std::uint64_t(0) : 0;
+    for (int i = 2; i < N; ++i) w.limb[i] = fill;
+    return w;
+  }
+  bool negative() const { return limb[N - 1] >> 63; }
+
+  WideInt& operator+=(const WideInt& o) {
+    unsigned __int128 carry = 0;
+    for (int i = 0; i < N; ++i) {
+      carry += static_cast<unsigned __int128>(limb[i]) + o.limb[i];
+      limb[i] = std::uint64_t(carry);
+      carry >>= 64;
+    }
+    return *this;
+  }
+  WideInt operator-() const {
+    WideInt r;
+    unsigned __int128 carry = 1;  // ~x + 1
+    for (int i = 0; i < N; ++i) {
+      carry += static_cast<unsigned __int128>(~limb[i]);
+      r.limb[i] = std::uint64_t(carry);
+      carry >>= 64;
+    }
+    return r;
+  }
+  WideInt& operator-=(const WideInt& o) { return *this += -o; }
+
+  // Widened (sign-extended) to M >= N limbs.
+  template <int M>
+  WideInt<M> widen() const {
+    WideInt<M> r;
+    const std::uint64_t fill = negative() ? ~std::uint64_t(0) : 0;
+    for (int i = 0; i < M; ++i) r.limb[i] = i < N ? limb[i] : fill;
+    return r;
+  }
+
+  mpz_class to_mpz() const {
+    const WideInt magnitude = negative() ? -*this : *this;
+    mpz_class z;
+    mpz_import(z.get_mpz_t(), N, -1, sizeof(std::uint64_t), 0, 0, magnitude.limb);
+    return negative() ? mpz_class(-z) : z;
+  }
+};
+
+// a * b truncated to N limbs: exact when the product fits in N limbs with its sign.
+template <int N, int A, int B>
+WideInt<N> multiply(const WideInt<A>& a, const WideInt<B>& b) {
+  const bool negative = a.negative() != b.negative();
+  const WideInt<A> ma = a.negative() ? -a : a;
+  const WideInt<B> mb = b.negative() ? -b : b;
+  WideInt<N> r;
+  for (int i = 0; i < A && i < N; ++i) {
+    unsigned __int128 carry = 0;
+    for (int j = 0; j < B && i + j < N; ++j) {
+      carry += static_cast<unsigned __int128>(ma.limb[i]) * mb.limb[j] + r.limb[i + j];
+      r.limb[i + j] = std::uint64_t(carry);
+      carry >>= 64;
+    }
+    if (i + B < N) r.limb[i + B] = std::uint64_t(carry);
+  }
+  return negative ? -r : r;
+}
+
+}  // namespace morphex::detail
