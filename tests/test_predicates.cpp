@@ -125,6 +125,62 @@ TEST(PointIndex, EqualPositionsShareOneIdWhateverTheirConstruction) {
 
 // The point table's predicates on ids (intervals, then homogeneous integers) against CGAL's on
 // the same points, among them constructions (edge/plane crossings kept as recipes, lazy).
+// When every input is a double the table decides most signs by plain double arithmetic and an
+// error bound (static_filter.h). Its answers must be CGAL's exact ones on general points, on
+// points a rounding away from a plane or line, exactly on axis-parallel and tilted planes, and at
+// magnitudes where the bound stops holding (the filter must then leave the decision to later
+// stages).
+TEST(PointTable, StaticFiltersAgreeWithCgalOnDoubles) {
+  std::mt19937 random(16);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::uniform_int_distribution<int> small(-4, 4), kind(0, 4);
+  for (const double scale : {1.0, 1e-150, 1e150, 3e-5, 7e4}) {
+    Mesh m;
+    auto add = [&](double x, double y, double z) {
+      m.points.emplace_back(x * scale, y * scale, z * scale);
+    };
+    for (int i = 0; i < 400; ++i) {
+      switch (kind(random)) {
+        case 0:  // on the plane z = 1/4
+          add(unit(random), unit(random), 0.25);
+          break;
+        case 1:  // on the tilted plane x + 2y - z = 0, small integers: exactly representable
+          add(small(random), small(random), 0),
+              m.points.back() = Point(m.points.back().x(), m.points.back().y(),
+                                      m.points.back().x() + 2 * m.points.back().y());
+          break;
+        case 2: {  // one rounding away from the plane x + y + z = 1
+          const double x = unit(random), y = unit(random);
+          add(x, y, std::nextafter(1 - x - y, 2.0));
+          break;
+        }
+        default:
+          add(unit(random), unit(random), unit(random));
+      }
+    }
+    detail::PointTable table(m, m, true);
+    for (int i = 0; i < 6000; ++i) {
+      const auto id = [&] {
+        return detail::PointId(std::uniform_int_distribution<int>(0, 399)(random));
+      };
+      const detail::PointId p = id(), q = id(), r = id(), t = id();
+      ASSERT_EQ(table.orientation(p, q, r, t),
+                CGAL::orientation(m.points[p], m.points[q], m.points[r], m.points[t]))
+          << "scale " << scale << " case " << i;
+      const int dropped = i % 3;
+      const auto project = [&](detail::PointId v) {
+        const Point& x = m.points[v];
+        return dropped == 0   ? Kernel::Point_2(x.y(), x.z())
+               : dropped == 1 ? Kernel::Point_2(x.x(), x.z())
+                              : Kernel::Point_2(x.x(), x.y());
+      };
+      ASSERT_EQ(table.orientation_2(dropped, p, q, r),
+                CGAL::orientation(project(p), project(q), project(r)))
+          << "scale " << scale << " case " << i;
+    }
+  }
+}
+
 TEST(PointTable, PredicatesAndConstructionsAgreeWithCgal) {
   RandomPoints random(15);
   Mesh a, b;

@@ -13,6 +13,7 @@
 #include "filtered.h"
 #include "fixed_integer.h"
 #include "morphex/union_find.h"
+#include "static_filter.h"
 
 namespace morphex::detail {
 
@@ -187,6 +188,21 @@ PointTable::PointTable(const Mesh& a, const Mesh& b, bool same_mesh)
       input_exact_(new std::atomic<Homogeneous*>[num_inputs_]()) {
   mesh_[0] = &a;
   mesh_[1] = same_mesh ? &a : &b;
+  input_xyz_.resize(num_inputs_);
+  std::atomic<bool> all_doubles{true};
+  tbb::parallel_for(tbb::blocked_range<PointId>(0, num_inputs_, 4096),
+                    [&](const tbb::blocked_range<PointId>& range) {
+                      for (PointId i = range.begin(); i != range.end(); ++i) {
+                        const Point& p = input(i);
+                        if (!has_double_coordinates(p)) {
+                          all_doubles = false;
+                          return;
+                        }
+                        const auto& a = CGAL::approx(p);
+                        input_xyz_[i] = {a.x().inf(), a.y().inf(), a.z().inf()};
+                      }
+                    });
+  if (!all_doubles) input_xyz_ = {};
 }
 
 PointTable::~PointTable() {
@@ -292,6 +308,11 @@ PointId PointTable::add_explicit(const Point& p) {
 CGAL::Uncertain<CGAL::Sign> PointTable::orientation_filter(PointId p, PointId q, PointId r,
                                                            PointId s) const {
   if (p == q || p == r || p == s || q == r || q == s || r == s) return CGAL::ZERO;
+  if (!input_xyz_.empty() && p < num_inputs_ && q < num_inputs_ && r < num_inputs_ &&
+      s < num_inputs_)
+    if (const auto o =
+            static_orientation(input_xyz_[p], input_xyz_[q], input_xyz_[r], input_xyz_[s]))
+      return CGAL::Sign(*o);
   IntervalStage rounding;
   const ApproxPoint &ap = approx(p), &aq = approx(q), &ar = approx(r), &as = approx(s);
   return CGAL::orientationC3(ap.x(), ap.y(), ap.z(), aq.x(), aq.y(), aq.z(), ar.x(), ar.y(), ar.z(),
@@ -318,6 +339,9 @@ CGAL::Sign PointTable::plane_side(const Plane& plane, PointId s) const {
 CGAL::Sign PointTable::orientation_2(int dropped, PointId p, PointId q, PointId r) const {
   if (p == q || q == r || p == r) return CGAL::ZERO;
   const int u = dropped == 0 ? 1 : 0, v = dropped == 2 ? 1 : 2;
+  if (!input_xyz_.empty() && p < num_inputs_ && q < num_inputs_ && r < num_inputs_)
+    if (const auto o = static_orientation_2(u, v, input_xyz_[p], input_xyz_[q], input_xyz_[r]))
+      return CGAL::Sign(*o);
   {
     IntervalStage rounding;
     const ApproxPoint &ap = approx(p), &aq = approx(q), &ar = approx(r);

@@ -217,6 +217,9 @@ class PointTable {
   std::deque<ApproxPoint> approx_;
   std::deque<Point> explicit_;
   std::unique_ptr<std::atomic<Homogeneous*>[]> input_exact_;
+  // The inputs' coordinates side by side when every one is a double (empty otherwise), for the
+  // static filters that precede the interval stage (static_filter.h).
+  std::vector<std::array<double, 3>> input_xyz_;
   mutable std::deque<std::atomic<Homogeneous*>> constructed_exact_;
 };
 
