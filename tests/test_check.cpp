@@ -292,3 +292,39 @@ TEST(Check, SelfIntersectionsAgreeWithCgalOnRandomContacts) {
   EXPECT_GT(intersecting, 40);
   EXPECT_LT(intersecting, tested - 40);
 }
+
+// Pairs of triangles with one common vertex, half of them in one plane (axis-parallel or tilted,
+// on a small grid, so that side rays are often collinear): whether they meet beyond the vertex
+// agrees with CGAL's self-intersection test, which treats vertex-sharing triangles by index.
+TEST(Check, TrianglesSharingAVertexAgreeWithCgal) {
+  std::mt19937 random(23);
+  auto pick = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(random); };
+  int coplanar = 0, intersecting = 0, tested = 0;
+  for (int i = 0; i < 600; ++i) {
+    const int plane = pick(0, 2);  // 0: z = 0, 1: z = x + 2y, 2: anywhere
+    auto point = [&]() {
+      const int x = pick(-3, 3), y = pick(-3, 3);
+      return plane == 0   ? Point(x, y, 0)
+             : plane == 1 ? Point(x, y, x + 2 * y)
+                          : Point(x, y, pick(-3, 3));
+    };
+    Mesh m;
+    for (int k = 0; k < 5; ++k) m.points.push_back(point());
+    m.triangles = {{0, 1, 2}, {0, 3, 4}};
+    bool usable = true;  // distinct positions, proper triangles
+    for (int u = 0; u < 5; ++u)
+      for (int v = u + 1; v < 5; ++v) usable = usable && m.points[u] != m.points[v];
+    usable = usable && !CGAL::collinear(m.points[0], m.points[1], m.points[2]) &&
+             !CGAL::collinear(m.points[0], m.points[3], m.points[4]);
+    if (!usable) continue;
+    const bool ours = check_mesh(m, kValidityOnly).self_intersections > 0;
+    ASSERT_EQ(ours, cgal_self_intersects(m)) << "case " << i;
+    ++tested;
+    intersecting += ours;
+    coplanar += plane < 2;
+  }
+  EXPECT_GT(tested, 300);
+  EXPECT_GT(coplanar, 150);
+  EXPECT_GT(intersecting, 50);
+  EXPECT_LT(intersecting, tested - 50);
+}

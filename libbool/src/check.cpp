@@ -56,17 +56,43 @@ class TrianglePairs {
       const int dropped = table_.dominant_axis(p, q, rf);
       return table_.orientation_2(dropped, p, q, rf) == table_.orientation_2(dropped, p, q, rg);
     }
-    if (shared == 1) {
-      // Anything beyond the common vertex reaches the edge opposite it in one of the triangles.
-      return segment_meets_triangle(a[(sa + 1) % 3], a[(sa + 2) % 3], b) ||
-             segment_meets_triangle(b[(sb + 1) % 3], b[(sb + 2) % 3], a);
-    }
+    if (shared == 1) return improper_at_vertex(a, sa, b, sb);
     return triangles_meet(a, b);
   }
 
  private:
   std::array<PointId, 3> ids(const Triangle& t) const {
     return {position_[t[0]], position_[t[1]], position_[t[2]]};
+  }
+
+  // Triangles a and b with one common position, a[sa] = b[sb], meet beyond it.
+  bool improper_at_vertex(const std::array<PointId, 3>& a, int sa, const std::array<PointId, 3>& b,
+                          int sb) const {
+    const PointId v = a[sa], a1 = a[(sa + 1) % 3], a2 = a[(sa + 2) % 3], b1 = b[(sb + 1) % 3],
+                  b2 = b[(sb + 2) % 3];
+    const CGAL::Sign o1 = table_.orientation(b[0], b[1], b[2], a1),
+                     o2 = table_.orientation(b[0], b[1], b[2], a2);
+    // a meets b's plane at v alone: nothing more of a can be in b.
+    if (o1 != CGAL::ZERO && o1 == o2) return false;
+    if (o1 == CGAL::ZERO && o2 == CGAL::ZERO) return coplanar_wedges_overlap(v, a1, a2, b1, b2);
+    // Anything beyond the common vertex reaches the edge opposite it in one of the triangles.
+    return segment_meets_triangle(a1, a2, b) || segment_meets_triangle(b1, b2, a);
+  }
+
+  // Coplanar triangles (v, a1, a2) and (v, b1, b2), both proper, meet beyond v exactly when their
+  // angles at v overlap: near v each triangle is its angle, and two convex angles that share
+  // more than their apex share a side ray of one of them. A few orientations instead of nine
+  // segment tests, which matters in fans of long thin facets (every pair shares the apex).
+  bool coplanar_wedges_overlap(PointId v, PointId a1, PointId a2, PointId b1, PointId b2) const {
+    const int d = table_.dominant_axis(v, a1, a2);
+    const CGAL::Sign turn_a = table_.orientation_2(d, v, a1, a2),
+                     turn_b = table_.orientation_2(d, v, b1, b2);
+    // The ray from v through x lies in the closed angle p v q (turning `turn` from p to q).
+    auto in_angle = [&](PointId p, PointId q, CGAL::Sign turn, PointId x) {
+      return table_.orientation_2(d, v, p, x) != -turn && table_.orientation_2(d, v, x, q) != -turn;
+    };
+    return in_angle(a1, a2, turn_a, b1) || in_angle(a1, a2, turn_a, b2) ||
+           in_angle(b1, b2, turn_b, a1) || in_angle(b1, b2, turn_b, a2);
   }
 
   // Closed triangles a and b (no common position) meet.
