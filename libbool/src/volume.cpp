@@ -52,22 +52,30 @@ Exact rational_volume_times_6(const Mesh& mesh) {
   return sum_balanced(terms);
 }
 
-// Bounds: coordinates below 2^100 in magnitude; a 2x2 minor below 2^201 fits 4 signed limbs; a
-// determinant below 3 * 2^301 and a sum of up to 2^32 of them below 2^336 fit 6 signed limbs.
-constexpr int kMaxBits = 100;
-using Coordinate = detail::WideInt<2>;
-using Minor = detail::WideInt<4>;
-using Sum = detail::WideInt<6>;
-
-// The mesh's coordinates as integers times 2^exponent, when every coordinate is a double and
-// they span at most kMaxBits bits.
-struct IntegerCoordinates {
-  std::vector<std::array<Coordinate, 3>> points;
-  int exponent = 0;
+// The widths of one exact sum: coordinates below 2^Bits in magnitude, 2x2 minors below
+// 2^(2 Bits + 1), determinants below 3 * 2^(3 Bits + 1), and a sum of up to 2^32 of them below
+// 2^(3 Bits + 35), each with a sign bit to spare in its limbs.
+template <int Bits, int CoordinateLimbs, int MinorLimbs, int SumLimbs>
+struct Widths {
+  static_assert(Bits + 1 <= 64 * CoordinateLimbs && 2 * Bits + 2 <= 64 * MinorLimbs &&
+                3 * Bits + 36 <= 64 * SumLimbs);
+  static constexpr int kBits = Bits;
+  using Coordinate = detail::WideInt<CoordinateLimbs>;
+  using Minor = detail::WideInt<MinorLimbs>;
+  using Sum = detail::WideInt<SumLimbs>;
 };
+// Two sizes: most meshes fit the first; coordinates computed in double (a cosine of 1e-16 beside
+// a radius of 10) need the second.
+using NarrowWidths = Widths<100, 2, 4, 6>;
+using WideWidths = Widths<160, 3, 6, 9>;
 
-std::optional<IntegerCoordinates> integer_coordinates(const Mesh& mesh) {
-  int lowest = INT_MAX, highest = INT_MIN;  // exponents of the lowest set bit and the top bound
+// The spread of the mesh's double coordinates: exponents of the lowest set bit and of the bound
+// above the largest magnitude; nullopt when some coordinate is not a double.
+struct Spread {
+  int lowest = INT_MAX, highest = INT_MIN;
+};
+std::optional<Spread> double_spread(const Mesh& mesh) {
+  Spread s;
   for (const Point& p : mesh.points) {
     if (!has_double_coordinates(p)) return std::nullopt;
     const auto& a = CGAL::approx(p);
@@ -76,64 +84,86 @@ std::optional<IntegerCoordinates> integer_coordinates(const Mesh& mesh) {
       int top = 0;
       const double fraction =
           std::frexp(x, &top);  // |x| = |fraction| 2^top, |fraction| in [0.5, 1)
-      const auto mantissa = static_cast<std::int64_t>(std::ldexp(std::fabs(fraction), 53));
-      lowest = std::min(lowest, top - 53 + __builtin_ctzll(std::uint64_t(mantissa)));
-      highest = std::max(highest, top);
+      const auto mantissa = static_cast<std::uint64_t>(std::ldexp(std::fabs(fraction), 53));
+      s.lowest = std::min(s.lowest, top - 53 + __builtin_ctzll(mantissa));
+      s.highest = std::max(s.highest, top);
     }
   }
-  IntegerCoordinates out;
-  out.points.resize(mesh.points.size());
-  if (lowest == INT_MAX) return out;  // every coordinate is zero
-  if (highest - lowest > kMaxBits) return std::nullopt;
-  out.exponent = lowest;
-  for (std::size_t v = 0; v < mesh.points.size(); ++v) {
-    const auto& a = CGAL::approx(mesh.points[v]);
-    const double xyz[3] = {a.x().inf(), a.y().inf(), a.z().inf()};
-    // x 2^-lowest is an integer below 2^kMaxBits: exact as a double and as an __int128.
-    for (int k = 0; k < 3; ++k)
-      out.points[v][k] = Coordinate::of(static_cast<__int128>(std::ldexp(xyz[k], -lowest)));
-  }
-  return out;
+  return s;
 }
 
-Sum determinant(const std::array<Coordinate, 3>& a, const std::array<Coordinate, 3>& b,
-                const std::array<Coordinate, 3>& c) {
+// A coordinate times 2^-lowest: an integer below 2^Bits, that is its odd mantissa shifted left.
+template <class Coordinate>
+Coordinate scaled_integer(double x, int lowest) {
+  if (x == 0) return {};
+  int top = 0;
+  const double fraction = std::frexp(std::fabs(x), &top);
+  const auto mantissa = static_cast<std::uint64_t>(std::ldexp(fraction, 53));  // exact
+  const int zeros = __builtin_ctzll(mantissa);
+  const auto odd = static_cast<std::int64_t>(mantissa >> zeros);
+  // x = odd 2^(top - 53 + zeros), and lowest is the least such exponent: the shift is >= 0.
+  return Coordinate::of(x < 0 ? -odd : odd).shifted_left(top - 53 + zeros - lowest);
+}
+
+template <class W>
+typename W::Sum determinant(const std::array<typename W::Coordinate, 3>& a,
+                            const std::array<typename W::Coordinate, 3>& b,
+                            const std::array<typename W::Coordinate, 3>& c) {
   using detail::multiply;
-  Sum d;
+  constexpr int kMinor = W::Minor::kLimbs, kSum = W::Sum::kLimbs;
+  typename W::Sum d;
   for (int k = 0; k < 3; ++k) {
     const int i = (k + 1) % 3, j = (k + 2) % 3;
-    Minor minor = multiply<4>(b[i], c[j]);
-    minor -= multiply<4>(b[j], c[i]);
-    d += multiply<6>(a[k], minor);
+    typename W::Minor minor = multiply<kMinor>(b[i], c[j]);
+    minor -= multiply<kMinor>(b[j], c[i]);
+    d += multiply<kSum>(a[k], minor);
   }
   return d;
 }
 
-std::optional<Exact> integer_volume_times_6(const Mesh& mesh) {
-  if (mesh.triangles.size() >= (std::size_t(1) << 32)) return std::nullopt;
-  const std::optional<IntegerCoordinates> ints = integer_coordinates(mesh);
-  if (!ints) return std::nullopt;
-  tbb::combinable<Sum> partial;
+template <class W>
+Exact integer_volume_times_6(const Mesh& mesh, int lowest) {
+  using Coordinate = typename W::Coordinate;
+  std::vector<std::array<Coordinate, 3>> points(mesh.points.size());
+  tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t v) {
+    const auto& a = CGAL::approx(mesh.points[v]);
+    points[v] = {scaled_integer<Coordinate>(a.x().inf(), lowest),
+                 scaled_integer<Coordinate>(a.y().inf(), lowest),
+                 scaled_integer<Coordinate>(a.z().inf(), lowest)};
+  });
+  tbb::combinable<typename W::Sum> partial;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.triangles.size(), 4096),
                     [&](const tbb::blocked_range<std::size_t>& range) {
-                      Sum& sum = partial.local();
+                      typename W::Sum& sum = partial.local();
                       for (std::size_t f = range.begin(); f != range.end(); ++f) {
                         const Triangle& t = mesh.triangles[f];
-                        sum +=
-                            determinant(ints->points[t[0]], ints->points[t[1]], ints->points[t[2]]);
+                        sum += determinant<W>(points[t[0]], points[t[1]], points[t[2]]);
                       }
                     });
-  Sum total;
-  partial.combine_each([&](const Sum& s) { total += s; });
-  // Each determinant is a product of three coordinates: scale by 2^(3 exponent).
+  typename W::Sum total;
+  partial.combine_each([&](const typename W::Sum& s) { total += s; });
+  // Each determinant is a product of three coordinates: scale by 2^(3 lowest).
   mpq_class volume(total.to_mpz());
-  const long shift = 3L * ints->exponent;
+  const long shift = 3L * lowest;
   if (shift >= 0)
     mpz_mul_2exp(volume.get_num_mpz_t(), volume.get_num_mpz_t(), shift);
   else
     mpz_mul_2exp(volume.get_den_mpz_t(), volume.get_den_mpz_t(), -shift);
   volume.canonicalize();
   return Exact(volume);
+}
+
+// The exact sum by integers when the coordinates allow it.
+std::optional<Exact> integer_volume_times_6(const Mesh& mesh) {
+  if (mesh.triangles.size() >= (std::size_t(1) << 32)) return std::nullopt;
+  const std::optional<Spread> spread = double_spread(mesh);
+  if (!spread) return std::nullopt;
+  if (spread->lowest == INT_MAX) return Exact(0);  // every coordinate is zero
+  const int bits = spread->highest - spread->lowest;
+  if (bits <= NarrowWidths::kBits)
+    return integer_volume_times_6<NarrowWidths>(mesh, spread->lowest);
+  if (bits <= WideWidths::kBits) return integer_volume_times_6<WideWidths>(mesh, spread->lowest);
+  return std::nullopt;
 }
 
 }  // namespace

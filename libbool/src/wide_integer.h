@@ -16,6 +16,7 @@ namespace morphex::detail {
 
 template <int N>
 struct WideInt {
+  static constexpr int kLimbs = N;
   std::uint64_t limb[N] = {};
 
   static WideInt of(__int128 v) {
@@ -49,6 +50,19 @@ struct WideInt {
     return r;
   }
   WideInt& operator-=(const WideInt& o) { return *this += -o; }
+
+  // this * 2^bits, 0 <= bits < 64 N (truncated to N limbs).
+  WideInt shifted_left(int bits) const {
+    WideInt r;
+    const int limbs = bits / 64, rest = bits % 64;
+    for (int i = N - 1; i >= limbs; --i) {
+      const std::uint64_t low = limb[i - limbs];
+      const std::uint64_t below =
+          i - limbs - 1 >= 0 && rest > 0 ? limb[i - limbs - 1] >> (64 - rest) : 0;
+      r.limb[i] = (rest > 0 ? low << rest : low) | below;
+    }
+    return r;
+  }
 
   // Widened (sign-extended) to M >= N limbs.
   template <int M>
