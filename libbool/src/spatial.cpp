@@ -137,34 +137,68 @@ Kernel::Triangle_3 triangle_of(const Mesh& mesh, std::uint32_t t) {
   return {mesh.points[f[0]], mesh.points[f[1]], mesh.points[f[2]]};
 }
 
+namespace {
+constexpr std::size_t kGrain = 8192;
+
+std::vector<FloatBox> vertex_boxes_of(const Mesh& mesh) {
+  std::vector<FloatBox> boxes(mesh.num_vertices());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, boxes.size(), kGrain),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t v = r.begin(); v < r.end(); ++v)
+                        boxes[v] = FloatBox::of(mesh.points[v]);
+                    });
+  return boxes;
+}
+
+FloatBox triangle_box(const Mesh& mesh, const std::vector<FloatBox>& vertex_boxes,
+                      std::uint32_t t) {
+  const Triangle& f = mesh.triangles[t];
+  FloatBox b = vertex_boxes[f[0]];
+  b += vertex_boxes[f[1]];
+  b += vertex_boxes[f[2]];
+  return b;
+}
+}  // namespace
+
 TriangleTree::TriangleTree(const Mesh& mesh) {
   const std::uint32_t n = std::uint32_t(mesh.num_triangles());
   if (n == 0) return;
-  constexpr std::size_t kGrain = 8192;
-  std::vector<FloatBox> vertex_boxes(mesh.num_vertices());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, vertex_boxes.size(), kGrain),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t v = r.begin(); v < r.end(); ++v)
-                        vertex_boxes[v] = FloatBox::of(mesh.points[v]);
-                    });
+  const std::vector<FloatBox> vertex_boxes = vertex_boxes_of(mesh);
   boxes_.resize(n);
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, kGrain),
                     [&](const tbb::blocked_range<std::uint32_t>& r) {
-                      for (std::uint32_t t = r.begin(); t < r.end(); ++t) {
-                        const Triangle& f = mesh.triangles[t];
-                        FloatBox b = vertex_boxes[f[0]];
-                        b += vertex_boxes[f[1]];
-                        b += vertex_boxes[f[2]];
-                        boxes_[t] = b;
+                      for (std::uint32_t t = r.begin(); t < r.end(); ++t)
+                        boxes_[t] = triangle_box(mesh, vertex_boxes, t);
+                    });
+  build(boxes_, nullptr);
+}
+
+TriangleTree::TriangleTree(const Mesh& mesh, const std::vector<std::uint32_t>& subset) {
+  if (subset.empty()) return;
+  // Boxes of the subset's vertices only: the subset may be a small part of a large mesh.
+  std::vector<FloatBox> boxes(subset.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, subset.size(), kGrain),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                        const Triangle& f = mesh.triangles[subset[i]];
+                        FloatBox b = FloatBox::of(mesh.points[f[0]]);
+                        b += FloatBox::of(mesh.points[f[1]]);
+                        b += FloatBox::of(mesh.points[f[2]]);
+                        boxes[i] = b;
                       }
                     });
+  build(std::move(boxes), &subset);
+}
+
+void TriangleTree::build(std::vector<FloatBox> boxes, const std::vector<std::uint32_t>* ids) {
+  const std::uint32_t n = std::uint32_t(boxes.size());
   FloatBox frame;
-  for (const FloatBox& b : vertex_boxes) frame += b;
+  for (const FloatBox& b : boxes) frame += b;
   std::vector<std::uint64_t> keyed(n);
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, kGrain),
                     [&](const tbb::blocked_range<std::uint32_t>& r) {
                       for (std::uint32_t t = r.begin(); t < r.end(); ++t)
-                        keyed[t] = (std::uint64_t(morton_code_30(boxes_[t], frame)) << 32) | t;
+                        keyed[t] = (std::uint64_t(morton_code_30(boxes[t], frame)) << 32) | t;
                     });
   radix_sort_by_key(keyed);
   order_.resize(n);
@@ -172,8 +206,9 @@ TriangleTree::TriangleTree(const Mesh& mesh) {
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, kGrain),
                     [&](const tbb::blocked_range<std::uint32_t>& r) {
                       for (std::uint32_t i = r.begin(); i < r.end(); ++i) {
-                        order_[i] = std::uint32_t(keyed[i]);
-                        sorted_boxes_[i] = boxes_[order_[i]];
+                        const std::uint32_t position = std::uint32_t(keyed[i]);
+                        order_[i] = ids ? (*ids)[position] : position;
+                        sorted_boxes_[i] = boxes[position];
                       }
                     });
 

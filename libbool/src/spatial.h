@@ -51,6 +51,9 @@ struct FloatBox {
 class TriangleTree {
  public:
   explicit TriangleTree(const Mesh& mesh);
+  // Over the triangles `subset` of mesh only; traversals report the mesh's triangle indices.
+  // box() and float_box() are not available on such a tree.
+  TriangleTree(const Mesh& mesh, const std::vector<std::uint32_t>& subset);
 
   // Calls f(triangle index) for every triangle whose box overlaps `box`.
   template <class F>
@@ -81,9 +84,10 @@ class TriangleTree {
   void for_each_self_pair(Visit&& visit) const;
   std::size_t self_pair_tasks() const;
 
+  // The box of triangle t (a tree over the whole mesh).
   CGAL::Bbox_3 box(std::uint32_t t) const { return boxes_[t].bbox(); }
   const FloatBox& float_box(std::uint32_t t) const { return boxes_[t]; }
-  std::size_t size() const { return boxes_.size(); }
+  std::size_t size() const { return order_.size(); }
 
   static constexpr std::uint32_t kLeafSize = 4;
 
@@ -128,6 +132,8 @@ class TriangleTree {
       }
     }
   }
+  // Sorts the boxes of `ids` (the triangles' boxes, in that order) and builds the levels.
+  void build(std::vector<FloatBox> boxes, const std::vector<std::uint32_t>* ids);
   bool ray_may_hit(const FloatBox& box, const CGAL::Bbox_3& origin,
                    const std::array<double, 3>& direction) const;
   // The level whose nodes are the parallel tasks of a traversal of the whole tree.
