@@ -3,12 +3,16 @@
 // each kind of defect is detected and described; CGAL's self-intersection test is the oracle.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <mutex>
 #include <random>
 
+#include "check_planar.h"
 #include "morphex/check.h"
 #include "morphex/generators.h"
 #include "peers.h"
+#include "point_index.h"
+#include "point_table.h"
 #include "spatial.h"
 
 using namespace morphex;
@@ -327,4 +331,127 @@ TEST(Check, TrianglesSharingAVertexAgreeWithCgal) {
   EXPECT_GT(coplanar, 150);
   EXPECT_GT(intersecting, 50);
   EXPECT_LT(intersecting, tested - 50);
+}
+
+namespace {
+// Every improper pair by testing all pairs with triangles_intersect_improperly (CGAL's triangle
+// predicates, an implementation independent of the check's).
+std::vector<std::pair<std::uint32_t, std::uint32_t>> improper_pairs_by_brute_force(const Mesh& m) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  for (std::uint32_t i = 0; i < m.num_triangles(); ++i)
+    for (std::uint32_t j = i + 1; j < m.num_triangles(); ++j)
+      if (triangles_intersect_improperly(m, i, j)) pairs.emplace_back(i, j);
+  return pairs;
+}
+
+// The verified flat patches of a mesh, as the check computes them.
+detail::PlanarPatches planar_patches_of(const Mesh& m) {
+  const detail::PointTable table(m, m, true);
+  std::vector<detail::PointId> position(m.num_vertices());
+  detail::PositionIndex index;
+  for (VertexIndex v = 0; v < m.num_vertices(); ++v)
+    position[v] = index.find_or_insert(m.points[v], v);
+  const std::vector<std::uint8_t> degenerate(m.num_triangles(), 0);
+  std::map<std::uint64_t, std::vector<std::uint32_t>> uses;
+  for (std::uint32_t f = 0; f < m.num_triangles(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const VertexIndex a = m.triangles[f][k], b = m.triangles[f][(k + 1) % 3];
+      uses[(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b)].push_back(f);
+    }
+  detail::ManifoldEdges manifold;
+  for (const auto& [key, faces] : uses)
+    if (faces.size() == 2) manifold.push_back({key, {faces[0], faces[1]}});
+  return detail::verified_planar_patches(m, table, position, degenerate, manifold, 16);
+}
+}  // namespace
+
+// Fans of long thin facets are proved embedded as whole patches; once a cap is broken (a rim
+// vertex moved or two swapped in its plane) or other solids pierce, touch or overlap it, the
+// improper pairs the check lists are exactly those of all pairs tested one by one.
+TEST(Check, FlatFansAgreeWithBruteForce) {
+  const Mesh fan = make_fan_prism(40, 2.0, 1.0);
+  EXPECT_EQ(planar_patches_of(fan).patches.size(), 2u);  // both caps, proved
+  EXPECT_TRUE(check_mesh(fan).valid_solid());
+  std::mt19937 random(29);
+  auto pick = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(random); };
+  int broken = 0, intersecting = 0;
+  for (int i = 0; i < 80; ++i) {
+    const int n = pick(17, 36);
+    Mesh m = make_fan_prism(n, 2.0, 1.0);
+    const int kind = pick(0, 4);
+    if (kind == 0) {  // a bottom rim vertex moved inward, in the plane
+      const VertexIndex v = VertexIndex(pick(1, n - 1));
+      const FT shrink = FT(pick(1, 9)) / 10;
+      m.points[v] = Point(m.points[v].x() * shrink, m.points[v].y() * shrink, 0);
+    } else if (kind == 1) {  // two bottom rim vertices swapped
+      std::swap(m.points[std::size_t(pick(1, n - 1))], m.points[std::size_t(pick(1, n - 1))]);
+    } else {  // a tetrahedron or another fan prism through, onto or beside the bottom cap
+      const Mesh other = kind == 4 ? make_fan_prism(pick(17, 24), 1.0, 1.0)
+                                   : transformed(make_tetrahedron(),
+                                                 Transformation(CGAL::SCALING, FT(pick(1, 4)) / 2));
+      const FT z = kind == 2 ? FT(pick(-2, 0)) / 2 : kind == 3 ? FT(0) : FT(pick(-1, 1)) / 2;
+      m = concatenate(m, translated(other, Vector(FT(pick(-6, 6)) / 4, FT(pick(-6, 6)) / 4, z)));
+    }
+    CheckOptions options;
+    options.list_self_intersections = true;
+    const MeshReport r = check_mesh(m, options);
+    const auto expected = improper_pairs_by_brute_force(m);
+    ASSERT_EQ(r.self_intersecting_pairs, expected) << "case " << i << " kind " << kind;
+    ASSERT_EQ(r.self_intersections, expected.size());
+    if (!expected.empty()) ASSERT_EQ(r.first_self_intersection, expected.front());
+    intersecting += !expected.empty();
+    broken += kind < 2;
+  }
+  EXPECT_GT(intersecting, 30);
+  EXPECT_LT(intersecting, 75);
+  EXPECT_GT(broken, 15);
+}
+
+namespace {
+// A flat fan around a centre whose rim goes around `turns` times: every triangle turns one way.
+Mesh wound_fan(int n, int turns) {
+  DoubleMesh d;
+  d.points.push_back({0, 0, 0});
+  for (int i = 0; i < n; ++i) {
+    const double a = 6.283185307179586 * turns * i / n;
+    d.points.push_back({std::cos(a), std::sin(a), 0});
+  }
+  for (VertexIndex i = 0; i < VertexIndex(n); ++i)
+    d.triangles.push_back({0, 1 + i, 1 + (i + 1) % VertexIndex(n)});
+  return from_double(d);
+}
+
+// A flat strip along a spiral of `turns` turns, narrowing less per turn than its width: every
+// vertex star is proper, but the strip's border crosses itself.
+Mesh spiral_strip(int n, double turns) {
+  DoubleMesh d;
+  for (int i = 0; i <= n; ++i) {
+    const double a = 6.283185307179586 * turns * i / n, r = 2 - 0.05 * a;
+    d.points.push_back({r * std::cos(a), r * std::sin(a), 0});
+    d.points.push_back({(r + 0.5) * std::cos(a), (r + 0.5) * std::sin(a), 0});
+  }
+  for (VertexIndex i = 0; i < VertexIndex(n); ++i) {
+    const VertexIndex in = 2 * i, out = in + 1;
+    d.triangles.push_back({in, in + 2, out});
+    d.triangles.push_back({out, in + 2, out + 2});
+  }
+  return from_double(d);
+}
+}  // namespace
+
+// Flat patches whose triangles all turn one way and still overlap: a fan wound twice (its centre
+// star wraps twice) and a spiral strip (its border crosses itself). Neither may be taken as
+// embedded; their improper pairs are those of all pairs tested one by one.
+TEST(Check, WoundFansAndSpiralStripsAreNotTakenAsEmbedded) {
+  EXPECT_EQ(planar_patches_of(wound_fan(41, 1)).patches.size(), 1u);
+  EXPECT_EQ(planar_patches_of(spiral_strip(60, 0.9)).patches.size(), 1u);
+  for (const Mesh& m : {wound_fan(41, 2), wound_fan(61, 3), spiral_strip(60, 1.5),
+                        spiral_strip(90, 2.2)}) {
+    EXPECT_TRUE(planar_patches_of(m).patches.empty());
+    CheckOptions options;
+    options.list_self_intersections = true;
+    const auto expected = improper_pairs_by_brute_force(m);
+    EXPECT_FALSE(expected.empty());
+    EXPECT_EQ(check_mesh(m, options).self_intersecting_pairs, expected);
+  }
 }

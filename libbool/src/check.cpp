@@ -12,6 +12,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "check_planar.h"
 #include "morphex/union_find.h"
 #include "point_index.h"
 #include "point_table.h"
@@ -21,8 +22,10 @@
 namespace morphex {
 
 namespace {
+using detail::inside_2;
 using detail::PointId;
 using detail::PointTable;
+using detail::segments_meet_2;
 
 using EdgeKey = std::uint64_t;
 EdgeKey key(VertexIndex a, VertexIndex b) {
@@ -112,8 +115,8 @@ class TrianglePairs {
     const int d = table_.dominant_axis(a[0], a[1], a[2]);
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
-        if (segments_meet_2(d, a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3])) return true;
-    return inside_2(d, a, b[0]) || inside_2(d, b, a[0]);
+        if (segments_meet_2(table_, d, a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3])) return true;
+    return inside_2(table_, d, a, b[0]) || inside_2(table_, d, b, a[0]);
   }
 
   // The closed segment ab meets the closed triangle t (a, b not corners of t by position).
@@ -124,8 +127,8 @@ class TrianglePairs {
     if (oa == CGAL::ZERO && ob == CGAL::ZERO) {
       const int d = table_.dominant_axis(t[0], t[1], t[2]);
       for (int j = 0; j < 3; ++j)
-        if (segments_meet_2(d, a, b, t[j], t[(j + 1) % 3])) return true;
-      return inside_2(d, t, a);
+        if (segments_meet_2(table_, d, a, b, t[j], t[(j + 1) % 3])) return true;
+      return inside_2(table_, d, t, a);
     }
     // ab crosses or touches the plane: the point is in t when ab sees t's edges all one way.
     const CGAL::Sign s0 = table_.orientation(a, b, t[0], t[1]),
@@ -134,32 +137,6 @@ class TrianglePairs {
     const bool no_positive = s0 != CGAL::POSITIVE && s1 != CGAL::POSITIVE && s2 != CGAL::POSITIVE;
     const bool no_negative = s0 != CGAL::NEGATIVE && s1 != CGAL::NEGATIVE && s2 != CGAL::NEGATIVE;
     return no_positive || no_negative;
-  }
-
-  // Closed segments pq and rs of one plane, seen along `d`, meet.
-  bool segments_meet_2(int d, PointId p, PointId q, PointId r, PointId s) const {
-    const CGAL::Sign o1 = table_.orientation_2(d, p, q, r), o2 = table_.orientation_2(d, p, q, s);
-    const CGAL::Sign o3 = table_.orientation_2(d, r, s, p), o4 = table_.orientation_2(d, r, s, q);
-    if (o1 * o2 < 0 && o3 * o4 < 0) return true;              // a proper crossing
-    auto on_segment = [&](PointId a, PointId b, PointId x) {  // x collinear with ab
-      for (int axis = 0; axis < 3; ++axis) {
-        const auto ab = table_.compare(axis, a, b);
-        if (ab == CGAL::EQUAL) continue;
-        const auto ax = table_.compare(axis, a, x), xb = table_.compare(axis, x, b);
-        return (ax == CGAL::EQUAL || ax == ab) && (xb == CGAL::EQUAL || xb == ab);
-      }
-      return table_.equal(a, x);
-    };
-    return (o1 == CGAL::ZERO && on_segment(p, q, r)) || (o2 == CGAL::ZERO && on_segment(p, q, s)) ||
-           (o3 == CGAL::ZERO && on_segment(r, s, p)) || (o4 == CGAL::ZERO && on_segment(r, s, q));
-  }
-
-  // x is in the closed triangle t of its plane, seen along `d`.
-  bool inside_2(int d, const std::array<PointId, 3>& t, PointId x) const {
-    const CGAL::Sign turn = table_.orientation_2(d, t[0], t[1], t[2]);
-    for (int i = 0; i < 3; ++i)
-      if (table_.orientation_2(d, t[i], t[(i + 1) % 3], x) == -turn) return false;
-    return true;
   }
 
   const PointTable& table_;
@@ -191,7 +168,7 @@ std::vector<std::uint8_t> find_degenerate_faces(const Mesh& mesh, const PointTab
 }
 
 // For each manifold edge (two uses), its two faces, sorted by edge key.
-using ManifoldEdges = std::vector<std::pair<EdgeKey, std::array<std::uint32_t, 2>>>;
+using detail::ManifoldEdges;
 
 // Edges by vertex index: sorted records (edge, face, direction), one run per edge. Counts border
 // and non-manifold edges and misoriented pairs, and joins the faces of every edge in `components`.
@@ -242,53 +219,27 @@ ManifoldEdges check_edges(const Mesh& mesh, UnionFind& components, MeshReport& r
 // Non-manifold vertices: the faces around a vertex must form one fan through manifold edges.
 void check_vertex_fans(const Mesh& mesh, const ManifoldEdges& manifold, MeshReport& r) {
   const std::size_t nf = mesh.num_triangles(), nv = mesh.num_vertices();
-  std::vector<std::uint32_t> start(nv + 1, 0);
-  for (const Triangle& t : mesh.triangles)
-    for (VertexIndex v : t) ++start[v + 1];
-  std::partial_sum(start.begin(), start.end(), start.begin());
-  std::vector<std::uint32_t> faces_at(3 * nf), fill(start.begin(), start.end() - 1);
-  for (std::uint32_t f = 0; f < nf; ++f)
-    for (VertexIndex v : mesh.triangles[f]) faces_at[fill[v]++] = f;
-  auto mate = [&](VertexIndex a, VertexIndex b, std::uint32_t f) -> std::uint32_t {
-    const auto it = std::lower_bound(manifold.begin(), manifold.end(), key(a, b),
-                                     [](const auto& entry, EdgeKey k) { return entry.first < k; });
-    if (it == manifold.end() || it->first != key(a, b)) return UINT32_MAX;
-    return it->second[0] == f ? it->second[1] : it->second[0];
+  // Corners 3 f + k, joined across every manifold edge at their vertex: one set per fan. (A
+  // corner repeated in a degenerate face is joined through its first occurrence only.)
+  auto corner = [&](std::uint32_t f, VertexIndex v) {
+    const Triangle& t = mesh.triangles[f];
+    return std::uint32_t(3 * f + (t[0] == v ? 0 : t[1] == v ? 1 : 2));
   };
+  UnionFind fans(3 * nf);
+  for (const auto& [edge, faces] : manifold) {
+    for (const VertexIndex v : {VertexIndex(edge >> 32), VertexIndex(edge & 0xffffffffu)})
+      fans.join(corner(faces[0], v), corner(faces[1], v));
+  }
+  std::vector<std::uint32_t> fan_of(nv, UINT32_MAX);
   std::vector<std::uint8_t> bad(nv, 0);
-  tbb::parallel_for(VertexIndex(0), VertexIndex(nv), [&](VertexIndex v) {
-    const std::uint32_t begin = start[v], end = start[v + 1], n = end - begin;
-    if (n < 2) return;
-    // Walk the fan from the first face across manifold edges at v; all faces must be reached.
-    std::vector<std::uint8_t> seen(n, 0);
-    std::vector<std::uint32_t> stack{0};
-    seen[0] = 1;
-    std::uint32_t reached = 1;
-    auto local = [&](std::uint32_t face) -> std::uint32_t {
-      for (std::uint32_t i = 0; i < n; ++i)
-        if (faces_at[begin + i] == face) return i;
-      return UINT32_MAX;
-    };
-    while (!stack.empty()) {
-      const Triangle& t = mesh.triangles[faces_at[begin + stack.back()]];
-      const std::uint32_t f = faces_at[begin + stack.back()];
-      stack.pop_back();
-      for (int k = 0; k < 3; ++k) {
-        if (t[k] != v) continue;
-        for (const VertexIndex w : {t[(k + 1) % 3], t[(k + 2) % 3]}) {
-          const std::uint32_t g = mate(v, w, f);
-          if (g == UINT32_MAX) continue;
-          const std::uint32_t i = local(g);
-          if (i != UINT32_MAX && !seen[i]) {
-            seen[i] = 1;
-            ++reached;
-            stack.push_back(i);
-          }
-        }
-      }
-    }
-    bad[v] = reached < n;
-  });
+  for (std::uint32_t c = 0; c < 3 * nf; ++c) {
+    const VertexIndex v = mesh.triangles[c / 3][c % 3];
+    const std::uint32_t fan = fans.find(c);
+    if (fan_of[v] == UINT32_MAX)
+      fan_of[v] = fan;
+    else if (fan_of[v] != fan)
+      bad[v] = 1;
+  }
   for (VertexIndex v = 0; v < nv; ++v)
     if (bad[v]) {
       ++r.non_manifold_vertices;
@@ -330,36 +281,20 @@ long total_genus(const Mesh& mesh, const std::vector<std::uint32_t>& component_o
   return genus;
 }
 
-// Self-intersections: the tree against itself; each pair once (i < j), tested exactly.
-void find_self_intersections(const Mesh& mesh, const PointTable& table,
-                             const std::vector<std::uint8_t>& degenerate,
-                             const CheckOptions& options, MeshReport& r) {
-  // Vertices by position: coincident ones (separated features) are one position.
-  std::vector<PointId> position(mesh.num_vertices());
-  {
-    detail::PositionIndex index;
-    for (VertexIndex v = 0; v < mesh.num_vertices(); ++v)
-      position[v] = index.find_or_insert(mesh.points[v], v);
+// Improper pairs found by one task: how many, the first (smallest (i, j)) and, when listed, all.
+struct Found {
+  std::size_t count = 0;
+  std::pair<std::uint32_t, std::uint32_t> first{UINT32_MAX, UINT32_MAX};
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> all;
+  void add(std::uint32_t i, std::uint32_t j, bool list) {
+    const auto pair = std::make_pair(std::min(i, j), std::max(i, j));
+    ++count;
+    first = std::min(first, pair);
+    if (list) all.push_back(pair);
   }
-  const TriangleTree tree(mesh);
-  const TrianglePairs test(table, position);
-  // Per task: how many pairs meet improperly, and the first of them (smallest (i, j)).
-  struct Found {
-    std::size_t count = 0;
-    std::pair<std::uint32_t, std::uint32_t> first{UINT32_MAX, UINT32_MAX};
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> all;  // when listed
-  };
-  std::vector<Found> found(tree.self_pair_tasks());
-  tree.for_each_self_pair<detail::UpwardRounding>(
-      [&](std::size_t task, std::uint32_t i, std::uint32_t j) {
-        if (degenerate[i] || degenerate[j]) return;
-        if (!test.improper(mesh.triangles[i], mesh.triangles[j])) return;
-        Found& f = found[task];
-        ++f.count;
-        const auto pair = std::make_pair(std::min(i, j), std::max(i, j));
-        f.first = std::min(f.first, pair);
-        if (options.list_self_intersections) f.all.push_back(pair);
-      });
+};
+
+void report(const std::vector<Found>& found, MeshReport& r) {
   for (const Found& f : found) {
     r.self_intersections += f.count;
     if (f.count > 0 && (!r.first_self_intersection || f.first < *r.first_self_intersection))
@@ -367,6 +302,81 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
     r.self_intersecting_pairs.insert(r.self_intersecting_pairs.end(), f.all.begin(), f.all.end());
   }
   std::sort(r.self_intersecting_pairs.begin(), r.self_intersecting_pairs.end());
+}
+
+// Patches of at least this many triangles are proved embedded as a whole (check_planar.h);
+// smaller flat regions are cheaper to test pair by pair.
+constexpr std::size_t kMinPlanarPatch = 16;
+
+// The triangles that may meet patch `p` improperly: those near its box that meet its plane
+// elsewhere than in its vertices and edges, outside it and outside the patches before it (whose
+// own candidates included p's triangles).
+std::vector<std::uint32_t> patch_candidates(const Mesh& mesh, const PointTable& table,
+                                            const std::vector<PointId>& position,
+                                            const detail::PlanarPatches& planar,
+                                            const TriangleTree& rest, std::size_t p) {
+  const detail::PlanarPatch& patch = planar.patches[p];
+  std::vector<std::uint32_t> out;
+  auto consider = [&](std::uint32_t t) {
+    const Triangle& f = mesh.triangles[t];
+    if (!detail::meets_patch_only_at_its_features(table, patch,
+                                                  {position[f[0]], position[f[1]], position[f[2]]}))
+      out.push_back(t);
+  };
+  const detail::UpwardRounding rounding;
+  rest.for_each_overlap(patch.box, consider);
+  const FloatBox box = FloatBox::of(patch.box);
+  for (std::size_t q = p + 1; q < planar.patches.size(); ++q) {
+    if (!FloatBox::of(planar.patches[q].box).overlaps(box)) continue;
+    for (const std::uint32_t t : planar.patches[q].triangles) {
+      FloatBox tb;
+      for (const VertexIndex v : mesh.triangles[t]) tb += FloatBox::of(mesh.points[v]);
+      if (tb.overlaps(box)) consider(t);
+    }
+  }
+  return out;
+}
+
+// Self-intersections: flat patches proved embedded, the other triangles by their tree against
+// itself, and each patch against the triangles that reach its plane; each pair is tested
+// exactly, once (i < j).
+void find_self_intersections(const Mesh& mesh, const PointTable& table,
+                             const std::vector<std::uint8_t>& degenerate,
+                             const ManifoldEdges& manifold, const CheckOptions& options,
+                             MeshReport& r) {
+  // Vertices by position: coincident ones (separated features) are one position.
+  std::vector<PointId> position(mesh.num_vertices());
+  {
+    detail::PositionIndex index;
+    for (VertexIndex v = 0; v < mesh.num_vertices(); ++v)
+      position[v] = index.find_or_insert(mesh.points[v], v);
+  }
+  const detail::PlanarPatches planar =
+      detail::verified_planar_patches(mesh, table, position, degenerate, manifold, kMinPlanarPatch);
+  std::vector<std::uint32_t> others;
+  for (std::uint32_t t = 0; t < mesh.num_triangles(); ++t)
+    if (planar.patch_of[t] < 0 && !degenerate[t]) others.push_back(t);
+  const TriangleTree tree =
+      planar.patches.empty() ? TriangleTree(mesh) : TriangleTree(mesh, others);
+  const TrianglePairs test(table, position);
+  const bool list = options.list_self_intersections;
+  std::vector<Found> found(tree.self_pair_tasks() + planar.patches.size());
+  tree.for_each_self_pair<detail::UpwardRounding>(
+      [&](std::size_t task, std::uint32_t i, std::uint32_t j) {
+        if (test.improper(mesh.triangles[i], mesh.triangles[j])) found[task].add(i, j, list);
+      });
+  tbb::parallel_for(std::size_t(0), planar.patches.size(), [&](std::size_t p) {
+    const std::vector<std::uint32_t> candidates =
+        patch_candidates(mesh, table, position, planar, tree, p);
+    if (candidates.empty()) return;
+    const auto pairs = TriangleTree::overlapping_pairs(
+        TriangleTree(mesh, planar.patches[p].triangles), TriangleTree(mesh, candidates));
+    const detail::UpwardRounding rounding;
+    Found& f = found[tree.self_pair_tasks() + p];
+    for (const auto& [i, j] : pairs)
+      if (test.improper(mesh.triangles[i], mesh.triangles[j])) f.add(i, j, list);
+  });
+  report(found, r);
 }
 
 // The mesh's shells as separate meshes, by component.
@@ -445,7 +455,7 @@ MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
   if (options.volume) r.volume = signed_volume(mesh);
   r.genus = total_genus(mesh, component_of, r);
   if (options.self_intersections && mesh.num_triangles() > 1)
-    find_self_intersections(mesh, table, degenerate, options, r);
+    find_self_intersections(mesh, table, degenerate, manifold, options, r);
   r.outward = is_outward(mesh, component_of, options, r);
   return r;
 }

@@ -135,6 +135,26 @@ Mesh make_cylinder(int segments, double radius, double h) {
   return from_double(d);
 }
 
+Mesh make_fan_prism(int n, double radius, double height) {
+  DoubleMesh d;
+  const double tau = 6.283185307179586;
+  for (int level = 0; level < 2; ++level)
+    for (int i = 0; i < n; ++i)
+      d.points.push_back(
+          {radius * std::cos(tau * i / n), radius * std::sin(tau * i / n), level * height});
+  const VertexIndex top = VertexIndex(n);
+  for (VertexIndex i = 0; i < VertexIndex(n); ++i) {
+    const VertexIndex j = (i + 1) % VertexIndex(n);
+    d.triangles.push_back({i, j, top + j});
+    d.triangles.push_back({i, top + j, top + i});
+  }
+  for (VertexIndex k = 1; k + 1 < VertexIndex(n); ++k) {
+    d.triangles.push_back({0, k + 1, k});                // bottom, facing down
+    d.triangles.push_back({top, top + k, top + k + 1});  // top
+  }
+  return from_double(d);
+}
+
 namespace {
 std::pair<Mesh, Mesh> unit_cube_and_shift(int dx, int dy, int dz) {
   const Mesh a = make_box(Point(0, 0, 0), Point(1, 1, 1));

@@ -23,6 +23,10 @@ Mesh make_icosahedron();
 Mesh make_icosphere(int level, const FT& radius);
 Mesh make_torus(int major_segments, int minor_segments, double major_radius, double minor_radius);
 Mesh make_cylinder(int segments, double radius, double half_height);
+// A prism over the regular `segments`-gon of `radius` in z = 0, height `height`, whose caps are
+// fans from the polygon's first vertex, as CAD exporters triangulate flat faces: long thin facets
+// that all meet at one vertex.
+Mesh make_fan_prism(int segments, double radius, double height);
 
 // Unit cubes [0,1]^3 and a translated copy touching it along a face, an edge, a vertex.
 std::pair<Mesh, Mesh> make_cubes_sharing_face();

@@ -1,0 +1,307 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Coplanar patches proved embedded in their plane (see check_planar.h for the argument).
+#include "check_planar.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <optional>
+
+#include "morphex/union_find.h"
+
+namespace morphex::detail {
+namespace {
+
+std::uint64_t edge_key(PointId a, PointId b) {
+  return (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+}
+
+std::array<PointId, 3> corners(const Mesh& mesh, const std::vector<PointId>& position,
+                               std::uint32_t f) {
+  const Triangle& t = mesh.triangles[f];
+  return {position[t[0]], position[t[1]], position[t[2]]};
+}
+
+// Faces joined across manifold edges when they lie in one plane on either side of the edge (the
+// same turn seen along the plane's dominant axis).
+UnionFind coplanar_neighbours(const Mesh& mesh, const PointTable& table,
+                              const std::vector<PointId>& position,
+                              const std::vector<std::uint8_t>& degenerate,
+                              const ManifoldEdges& links) {
+  std::vector<std::uint8_t> join(links.size());
+  tbb::parallel_for(std::size_t(0), links.size(), [&](std::size_t l) {
+    const auto [fi, gi] = links[l].second;
+    if (degenerate[fi] || degenerate[gi]) return;
+    const UpwardRounding rounding;
+    const auto f = corners(mesh, position, fi), g = corners(mesh, position, gi);
+    for (int k = 0; k < 3; ++k) {
+      const PointId x = g[k];
+      if (x == f[0] || x == f[1] || x == f[2]) continue;
+      if (table.orientation(f[0], f[1], f[2], x) != CGAL::ZERO) return;
+      const int d = table.dominant_axis(f[0], f[1], f[2]);
+      join[l] =
+          table.orientation_2(d, f[0], f[1], f[2]) == table.orientation_2(d, g[0], g[1], g[2]);
+    }
+  });
+  UnionFind patches(mesh.num_triangles());
+  for (std::size_t l = 0; l < links.size(); ++l)
+    if (join[l]) patches.join(links[l].second[0], links[l].second[1]);
+  return patches;
+}
+
+// What one patch's proof needs: its plane's projection and turn.
+struct Projection {
+  const PointTable& table;
+  int dropped;
+  CGAL::Sign turn;  // of every triangle, seen along `dropped`
+  CGAL::Sign orient(PointId p, PointId q, PointId r) const {
+    return CGAL::Sign(turn * table.orientation_2(dropped, p, q, r));
+  }
+};
+
+// The corner of a triangle at `apex`: the angle from the ray to `start` to the ray to `end`.
+struct Wedge {
+  PointId apex, start, end;
+  bool operator<(const Wedge& o) const { return apex != o.apex ? apex < o.apex : start < o.start; }
+};
+
+// The ray apex -> x lies in the half-open angle [start, end) of w.
+bool in_wedge(const Projection& p, const Wedge& w, PointId x) {
+  return p.orient(w.apex, w.start, x) != CGAL::NEGATIVE &&
+         p.orient(w.apex, x, w.end) == CGAL::POSITIVE;
+}
+
+// The rays apex -> p and apex -> q point the same way.
+bool same_direction(const Projection& p, PointId apex, PointId a, PointId b) {
+  if (p.orient(apex, a, b) != CGAL::ZERO) return false;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (axis == p.dropped) continue;
+    const auto ca = p.table.compare(axis, apex, a);
+    if (ca != CGAL::EQUAL) return ca == p.table.compare(axis, apex, b);
+  }
+  return false;
+}
+
+// The corners at one vertex (sorted by start) chain into one fan that wraps exactly once
+// (a cycle: an interior vertex) or less than once (a chain: a border vertex).
+bool star_wraps_at_most_once(const Projection& p, const Wedge* begin, const Wedge* end) {
+  const std::size_t m = std::size_t(end - begin);
+  auto by_start = [&](PointId s) -> const Wedge* {
+    const Wedge key{begin->apex, s, 0};
+    const Wedge* w = std::lower_bound(begin, end, key);
+    return w != end && w->start == s ? w : nullptr;
+  };
+  for (const Wedge* w = begin; w + 1 < end; ++w)
+    if (w->start == (w + 1)->start) return false;  // two corners on one side of an edge
+  // A chain starts at the corner whose start ray ends no other corner.
+  std::vector<PointId> ends;
+  ends.reserve(m);
+  for (const Wedge* w = begin; w != end; ++w) ends.push_back(w->end);
+  std::sort(ends.begin(), ends.end());
+  // Two corners ending on one ray: each corner then has at most one successor and predecessor.
+  if (std::adjacent_find(ends.begin(), ends.end()) != ends.end()) return false;
+  const Wedge* first = begin;
+  int chain_starts = 0;
+  for (const Wedge* w = begin; w != end; ++w)
+    if (!std::binary_search(ends.begin(), ends.end(), w->start)) {
+      first = w;
+      ++chain_starts;
+    }
+  if (chain_starts > 1) return false;
+  const bool cycle = chain_starts == 0;
+  const Wedge* w = first;
+  for (std::size_t visited = 1;; ++visited) {
+    const Wedge* next = by_start(w->end);
+    if (!next || next == first) {
+      if (visited != m || (cycle && next != first)) return false;  // several fans
+      if (!cycle && same_direction(p, first->apex, w->end, first->start)) return false;
+      return true;
+    }
+    // Past the first corner, no corner may hold the first ray: the fan would wrap again.
+    if (in_wedge(p, *next, first->start)) return false;
+    w = next;
+  }
+}
+}  // namespace
+
+bool segments_meet_2(const PointTable& table, int d, PointId p, PointId q, PointId r, PointId s) {
+  const CGAL::Sign o1 = table.orientation_2(d, p, q, r), o2 = table.orientation_2(d, p, q, s);
+  const CGAL::Sign o3 = table.orientation_2(d, r, s, p), o4 = table.orientation_2(d, r, s, q);
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;              // a proper crossing
+  auto on_segment = [&](PointId a, PointId b, PointId x) {  // x collinear with ab
+    for (int axis = 0; axis < 3; ++axis) {
+      const auto ab = table.compare(axis, a, b);
+      if (ab == CGAL::EQUAL) continue;
+      const auto ax = table.compare(axis, a, x), xb = table.compare(axis, x, b);
+      return (ax == CGAL::EQUAL || ax == ab) && (xb == CGAL::EQUAL || xb == ab);
+    }
+    return table.equal(a, x);
+  };
+  return (o1 == CGAL::ZERO && on_segment(p, q, r)) || (o2 == CGAL::ZERO && on_segment(p, q, s)) ||
+         (o3 == CGAL::ZERO && on_segment(r, s, p)) || (o4 == CGAL::ZERO && on_segment(r, s, q));
+}
+
+bool inside_2(const PointTable& table, int d, const std::array<PointId, 3>& t, PointId x) {
+  const CGAL::Sign turn = table.orientation_2(d, t[0], t[1], t[2]);
+  for (int i = 0; i < 3; ++i)
+    if (table.orientation_2(d, t[i], t[(i + 1) % 3], x) == -turn) return false;
+  return true;
+}
+
+namespace {
+
+// The border of the patch (its edges used once) is one closed polygon that meets itself only
+// where consecutive edges share a vertex.
+bool border_is_one_simple_polygon(const Projection& p, std::vector<std::array<PointId, 2>> border) {
+  if (border.size() < 3) return false;
+  std::sort(border.begin(), border.end());
+  for (std::size_t i = 0; i + 1 < border.size(); ++i)
+    if (border[i][0] == border[i + 1][0]) return false;  // two border edges leave one vertex
+  // One cycle: follow the edges from the first.
+  std::size_t length = 0;
+  PointId at = border[0][1];
+  for (; length < border.size(); ++length) {
+    const auto next = std::lower_bound(border.begin(), border.end(), std::array<PointId, 2>{at, 0});
+    if (next == border.end() || (*next)[0] != at) return false;
+    at = (*next)[1];
+    if (at == border[0][1]) break;
+  }
+  if (length + 1 != border.size()) return false;
+  // Non-consecutive edges must not meet: a sweep over their boxes along one axis.
+  const int u = p.dropped == 0 ? 1 : 0, v = p.dropped == 2 ? 1 : 2;
+  struct Extent {
+    double lo[2], hi[2];
+    std::size_t edge;
+  };
+  std::vector<Extent> extents;
+  extents.reserve(border.size());
+  for (std::size_t e = 0; e < border.size(); ++e) {
+    const auto& a = p.table.approx(border[e][0]);
+    const auto& b = p.table.approx(border[e][1]);
+    Extent x{};
+    x.edge = e;
+    for (int k = 0; k < 2; ++k) {
+      const int axis = k == 0 ? u : v;
+      x.lo[k] = std::min(a.cartesian(axis).inf(), b.cartesian(axis).inf());
+      x.hi[k] = std::max(a.cartesian(axis).sup(), b.cartesian(axis).sup());
+    }
+    extents.push_back(x);
+  }
+  std::sort(extents.begin(), extents.end(),
+            [](const Extent& a, const Extent& b) { return a.lo[0] < b.lo[0]; });
+  for (std::size_t i = 0; i < extents.size(); ++i)
+    for (std::size_t j = i + 1; j < extents.size() && extents[j].lo[0] <= extents[i].hi[0]; ++j) {
+      if (extents[j].lo[1] > extents[i].hi[1] || extents[i].lo[1] > extents[j].hi[1]) continue;
+      const auto& e = border[extents[i].edge];
+      const auto& f = border[extents[j].edge];
+      if (e[0] == f[1] || e[1] == f[0]) continue;  // consecutive: the star proof covers them
+      if (segments_meet_2(p.table, p.dropped, e[0], e[1], f[0], f[1])) return false;
+    }
+  return true;
+}
+
+// The proof of check_planar.h for one patch, and its vertex and edge lists when it holds.
+std::optional<PlanarPatch> prove_embedded(const Mesh& mesh, const PointTable& table,
+                                          const std::vector<PointId>& position,
+                                          std::vector<std::uint32_t> triangles) {
+  PlanarPatch patch;
+  patch.plane = corners(mesh, position, triangles[0]);
+  const auto& s = patch.plane;
+  const int dropped = table.dominant_axis(s[0], s[1], s[2]);
+  const Projection p{table, dropped, table.orientation_2(dropped, s[0], s[1], s[2])};
+  if (p.turn == CGAL::ZERO) return std::nullopt;
+  std::vector<Wedge> wedges;
+  wedges.reserve(3 * triangles.size());
+  std::vector<std::array<PointId, 2>> directed;
+  directed.reserve(3 * triangles.size());
+  for (const std::uint32_t f : triangles) {
+    const auto c = corners(mesh, position, f);
+    if (p.orient(c[0], c[1], c[2]) != CGAL::POSITIVE) return std::nullopt;
+    for (int k = 0; k < 3; ++k) {
+      wedges.push_back({c[k], c[(k + 1) % 3], c[(k + 2) % 3]});
+      directed.push_back({c[k], c[(k + 1) % 3]});
+    }
+  }
+  std::sort(wedges.begin(), wedges.end());
+  for (std::size_t i = 0; i < wedges.size();) {
+    std::size_t j = i + 1;
+    while (j < wedges.size() && wedges[j].apex == wedges[i].apex) ++j;
+    if (!star_wraps_at_most_once(p, wedges.data() + i, wedges.data() + j)) return std::nullopt;
+    patch.vertices.push_back(wedges[i].apex);
+    i = j;
+  }
+  // The border: directed edges whose reverse is not in the patch.
+  std::vector<std::array<PointId, 2>> border;
+  for (const auto& e : directed) patch.edges.push_back(edge_key(e[0], e[1]));
+  std::sort(directed.begin(), directed.end());
+  for (const auto& e : directed)
+    if (!std::binary_search(directed.begin(), directed.end(), std::array<PointId, 2>{e[1], e[0]}))
+      border.push_back(e);
+  if (!border_is_one_simple_polygon(p, std::move(border))) return std::nullopt;
+  std::sort(patch.edges.begin(), patch.edges.end());
+  patch.edges.erase(std::unique(patch.edges.begin(), patch.edges.end()), patch.edges.end());
+  for (const PointId v : patch.vertices) patch.box += table.approx(v).bbox();
+  patch.triangles = std::move(triangles);
+  return patch;
+}
+
+}  // namespace
+
+PlanarPatches verified_planar_patches(const Mesh& mesh, const PointTable& table,
+                                      const std::vector<PointId>& position,
+                                      const std::vector<std::uint8_t>& degenerate,
+                                      const ManifoldEdges& manifold, std::size_t min_triangles) {
+  PlanarPatches out;
+  const std::uint32_t nf = std::uint32_t(mesh.num_triangles());
+  out.patch_of.assign(nf, -1);
+  UnionFind joined = coplanar_neighbours(mesh, table, position, degenerate, manifold);
+  std::vector<std::uint32_t> root(nf), size(nf, 0);
+  for (std::uint32_t f = 0; f < nf; ++f) {
+    root[f] = std::uint32_t(joined.find(f));
+    ++size[root[f]];
+  }
+  std::vector<std::vector<std::uint32_t>> groups;
+  std::vector<std::int32_t> group_of_root(nf, -1);
+  for (std::uint32_t f = 0; f < nf; ++f) {
+    if (degenerate[f] || size[root[f]] < min_triangles) continue;
+    if (group_of_root[root[f]] < 0) {
+      group_of_root[root[f]] = std::int32_t(groups.size());
+      groups.emplace_back();
+    }
+    groups[std::size_t(group_of_root[root[f]])].push_back(f);
+  }
+  std::vector<std::optional<PlanarPatch>> proved(groups.size());
+  tbb::parallel_for(std::size_t(0), groups.size(), [&](std::size_t g) {
+    const UpwardRounding rounding;
+    proved[g] = prove_embedded(mesh, table, position, std::move(groups[g]));
+  });
+  for (auto& patch : proved) {
+    if (!patch) continue;
+    for (const std::uint32_t f : patch->triangles)
+      out.patch_of[f] = std::int32_t(out.patches.size());
+    out.patches.push_back(std::move(*patch));
+  }
+  return out;
+}
+
+bool meets_patch_only_at_its_features(const PointTable& table, const PlanarPatch& patch,
+                                      const std::array<PointId, 3>& t) {
+  const auto& s = patch.plane;
+  bool above = false, below = false;
+  PointId on[3];
+  int count = 0;
+  for (const PointId x : t) {
+    const CGAL::Sign o = table.orientation(s[0], s[1], s[2], x);
+    above |= o == CGAL::POSITIVE;
+    below |= o == CGAL::NEGATIVE;
+    if (o == CGAL::ZERO) on[count++] = x;
+  }
+  if (above && below) return false;  // t crosses the plane
+  if (count == 3) return false;      // t lies in the plane
+  for (int k = 0; k < count; ++k)
+    if (!std::binary_search(patch.vertices.begin(), patch.vertices.end(), on[k])) return false;
+  return count < 2 ||
+         std::binary_search(patch.edges.begin(), patch.edges.end(), edge_key(on[0], on[1]));
+}
+
+}  // namespace morphex::detail

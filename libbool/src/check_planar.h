@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Flat regions for the self-intersection check: coplanar patches whose triangles provably meet
+// one another only at their common edges and vertices, so that their pairs need no test.
+//
+// Why: a flat face triangulated with long thin facets (a fan from one vertex, as CAD exporters
+// write caps and plates) has triangles whose boxes all overlap one another and the features near
+// the face, so that a box traversal meets a quadratic number of pairs. A patch is instead proved
+// embedded in its plane as a whole: the triangles turn one way, every vertex star wraps once
+// (interior) or less than once (border), and the border is one simple closed polygon. A locally
+// injective map of a disc whose border is simple is injective, so no two triangles of the patch
+// overlap. Triangles outside the patch are then tested against it only when they meet its plane
+// elsewhere than in its own vertices and edges.
+#pragma once
+
+#include <CGAL/Bbox_3.h>
+
+#include <array>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "morphex/mesh.h"
+#include "point_table.h"
+
+namespace morphex::detail {
+
+// For each edge of the mesh used by exactly two faces (by vertex index), its key and the faces.
+using ManifoldEdges = std::vector<std::pair<std::uint64_t, std::array<std::uint32_t, 2>>>;
+
+struct PlanarPatch {
+  std::array<PointId, 3> plane;          // a triangle of the patch, spanning its plane
+  std::vector<std::uint32_t> triangles;  // mesh triangle indices
+  std::vector<PointId> vertices;         // its positions, sorted
+  std::vector<std::uint64_t> edges;      // its edges (min << 32 | max over positions), sorted
+  CGAL::Bbox_3 box;
+};
+
+struct PlanarPatches {
+  std::vector<PlanarPatch> patches;
+  std::vector<std::int32_t> patch_of;  // by triangle: its verified patch, or -1
+};
+
+// Patches of at least `min_triangles` non-degenerate triangles joined across manifold edges
+// where they lie in one plane on either side of the edge (positions as given by `position`),
+// kept when proved embedded.
+PlanarPatches verified_planar_patches(const Mesh& mesh, const PointTable& table,
+                                      const std::vector<PointId>& position,
+                                      const std::vector<std::uint8_t>& degenerate,
+                                      const ManifoldEdges& manifold, std::size_t min_triangles);
+
+// Triangle t (by positions) meets the patch's plane at most in one vertex or one edge of the
+// patch: then it meets no triangle of the patch improperly.
+bool meets_patch_only_at_its_features(const PointTable& table, const PlanarPatch& patch,
+                                      const std::array<PointId, 3>& t);
+
+// Closed segments pq and rs of one plane, seen along `dropped`, meet.
+bool segments_meet_2(const PointTable& table, int dropped, PointId p, PointId q, PointId r,
+                     PointId s);
+// x is in the closed triangle t of its plane, seen along `dropped`.
+bool inside_2(const PointTable& table, int dropped, const std::array<PointId, 3>& t, PointId x);
+
+}  // namespace morphex::detail
