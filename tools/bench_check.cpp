@@ -1,0 +1,142 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// bench_check: the validity check per million facets, on real meshes and on generated inputs with
+// long thin facets, at several thread counts, beside CGAL's self-intersection test.
+//
+//   bench_check [--threads 1,2,4] [--runs K] [--no-peer] [--json FILE] INPUT...
+// INPUT is a mesh file or a generated shape:
+//   fan-prism:N   a prism over a regular N-gon whose caps are fans from one vertex (CAD-style
+//                 flat faces of long thin facets all meeting at one vertex)
+//   cylinder:N    a prism whose caps are fans from their centres
+//   icosphere:L   the icosphere of level L (20 4^L facets)
+// Columns: `morphex check` as the command runs it (exact volume included) on one thread; the
+// check the Boolean runs on its inputs (validity only) at each thread count, with the speed-up
+// over one thread; CGAL's does_self_intersect (one thread, Epeck) as a peer. Times are medians of
+// K runs (default 3) after a warm-up; seconds per million facets beside them.
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "morphex/check.h"
+#include "morphex/generators.h"
+#include "morphex/io.h"
+#include "morphex/stopwatch.h"
+#include "peers.h"
+
+using namespace morphex;
+
+namespace {
+
+template <class Body>
+double median_seconds(int runs, Body&& body) {
+  body();  // warm-up
+  std::vector<double> times;
+  for (int i = 0; i < runs; ++i) {
+    const Stopwatch start;
+    body();
+    times.push_back(start.seconds());
+  }
+  std::sort(times.begin(), times.end());
+  return times[times.size() / 2];
+}
+
+Mesh input_mesh(const std::string& spec) {
+  const auto colon = spec.find(':');
+  const std::string kind = spec.substr(0, colon);
+  const int n = colon == std::string::npos ? 0 : std::stoi(spec.substr(colon + 1));
+  if (kind == "fan-prism") return make_fan_prism(n, 10.0, 5.0);
+  if (kind == "cylinder") return make_cylinder(n, 10.0, 2.5);
+  if (kind == "icosphere") return make_icosphere(n, FT(1));
+  return read_mesh(spec);
+}
+
+std::vector<int> parse_list(const std::string& text) {
+  std::vector<int> out;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) out.push_back(std::max(1, std::stoi(item)));
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int runs = 3;
+  bool peer = true;
+  std::vector<int> threads{1, 2, 4};
+  std::string json_path;
+  std::vector<std::string> inputs;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--runs" && i + 1 < argc)
+      runs = std::max(1, std::stoi(argv[++i]));
+    else if (arg == "--threads" && i + 1 < argc)
+      threads = parse_list(argv[++i]);
+    else if (arg == "--no-peer")
+      peer = false;
+    else if (arg == "--json" && i + 1 < argc)
+      json_path = argv[++i];
+    else if (arg.rfind("--", 0) == 0) {
+      std::cerr << "bench_check: unknown option " << arg << '\n';
+      return 2;
+    } else
+      inputs.push_back(arg);
+  }
+  if (inputs.empty()) inputs = {"fan-prism:7000", "cylinder:7000", "icosphere:7"};
+  nlohmann::json rows = nlohmann::json::array();
+  std::cout << std::left << std::setw(26) << "input" << std::right << std::setw(9) << "facets"
+            << std::setw(10) << "check" << std::setw(8) << "s/M";
+  for (const int t : threads) std::cout << std::setw(9) << ("valid " + std::to_string(t) + "t");
+  std::cout << std::setw(9) << "s/M 1t" << std::setw(9) << "x 2t" << std::setw(10) << "CGAL"
+            << std::setw(7) << "valid\n";
+  for (const std::string& spec : inputs) {
+    Mesh mesh;
+    try {
+      mesh = input_mesh(spec);
+    } catch (const std::exception& e) {
+      std::cerr << "bench_check: skipping " << spec << ": " << e.what() << '\n';
+      continue;
+    }
+    const double facets = double(mesh.num_triangles()), per_million = 1e6 / facets;
+    nlohmann::json row{{"input", spec}, {"facets", mesh.num_triangles()}};
+    bool valid = false;
+    double full = 0;
+    {
+      const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+      full = median_seconds(runs, [&] { valid = check_mesh(mesh).valid_solid(); });
+    }
+    row["check_seconds"] = full;
+    row["valid"] = valid;
+    std::map<int, double> validity;
+    for (const int t : threads) {
+      const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, t);
+      validity[t] = median_seconds(runs, [&] { check_mesh(mesh, kValidityOnly); });
+      row["validity_seconds"][std::to_string(t)] = validity[t];
+    }
+    double cgal = 0;
+    if (peer) {
+      const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+      cgal = median_seconds(1, [&] { peers::cgal_does_self_intersect(mesh); });
+      row["cgal_self_intersection_seconds"] = cgal;
+    }
+    const std::string name = spec.substr(spec.find_last_of('/') + 1);
+    std::cout << std::left << std::setw(26) << name.substr(0, 25) << std::right << std::setw(9)
+              << mesh.num_triangles() << std::fixed << std::setprecision(3) << std::setw(10) << full
+              << std::setprecision(2) << std::setw(8) << full * per_million << std::setprecision(3);
+    for (const int t : threads) std::cout << std::setw(9) << validity[t];
+    const double first = validity[threads.front()];
+    std::cout << std::setprecision(2) << std::setw(9) << first * per_million << std::setw(9)
+              << (validity.count(2) ? first / validity[2] : 0.0) << std::setprecision(3)
+              << std::setw(10) << (peer ? cgal : 0.0) << std::setw(7) << (valid ? "yes" : "NO")
+              << '\n';
+    rows.push_back(row);
+  }
+  if (!json_path.empty()) std::ofstream(json_path) << rows.dump(2) << '\n';
+  return 0;
+}
