@@ -181,9 +181,15 @@ void TriangleTree::for_each_self_pair(Visit&& visit) const {
                                                             (na.index + 1) * kLeafSize),
                             b_end = std::min<std::uint32_t>(std::uint32_t(order_.size()),
                                                             (nb.index + 1) * kLeafSize);
-        for (std::uint32_t i = na.index * kLeafSize; i < a_end; ++i)
-          for (std::uint32_t j = std::max(i + 1, nb.index * kLeafSize); j < b_end; ++j)
-            if (sorted_boxes_[i].overlaps(sorted_boxes_[j])) visit(task, order_[i], order_[j]);
+        // One box against the four of the other leaf at once; positions up to i are dropped (each
+        // pair once, i < j).
+        const std::uint32_t b_first = nb.index * kLeafSize;
+        for (std::uint32_t i = na.index * kLeafSize; i < a_end; ++i) {
+          std::uint32_t hits = leaf_overlaps(nb.index, sorted_boxes_[i]);
+          if (i + 1 > b_first) hits &= i + 1 - b_first >= 32 ? 0u : ~0u << (i + 1 - b_first);
+          for (std::uint32_t j = b_first; hits != 0 && j < b_end; ++j, hits >>= 1)
+            if (hits & 1u) visit(task, order_[i], order_[j]);
+        }
         continue;
       }
       Node kids[2];
