@@ -2,7 +2,11 @@
 // Step 2: candidate triangle pairs. When the meshes are of comparable size, a tree on each and
 // one traversal of both together, which prunes the parts of either mesh far from the other at
 // once; when one mesh is much smaller (a coarse box against a fine sphere), the seed's tree on
-// the smaller mesh alone, queried with the boxes of the other.
+// the smaller mesh alone, queried with the boxes of the other, where a box is kept only when the
+// large facet's plane may cross it (a coarse facet's box holds many fine triangles its plane
+// does not reach: they are not worth the exact tests of step 3).
+#include <CGAL/FPU.h>
+#include <CGAL/Interval_nt.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
@@ -10,6 +14,36 @@
 #include "spatial.h"
 
 namespace morphex::detail {
+namespace {
+
+using Interval = CGAL::Interval_nt<false>;  // the caller rounds upward
+
+// A triangle's plane n . x = d on intervals enclosing the exact one.
+struct IntervalPlane {
+  Interval n[3], d;
+};
+
+IntervalPlane plane_of(const Mesh& m, std::uint32_t t) {
+  const auto& a = CGAL::approx(m.points[m.triangles[t][0]]);
+  const auto& b = CGAL::approx(m.points[m.triangles[t][1]]);
+  const auto& c = CGAL::approx(m.points[m.triangles[t][2]]);
+  const auto n = CGAL::cross_product(b - a, c - a);
+  return {{n.x(), n.y(), n.z()}, n.x() * a.x() + n.y() * a.y() + n.z() * a.z()};
+}
+
+// The plane may meet the box: its signed distance at the box's centre, against the box's
+// half-extent measured along the normal, does not put the whole box on one side.
+bool plane_may_cross(const IntervalPlane& p, const FloatBox& box) {
+  Interval at_centre = -p.d, reach = 0;
+  for (int k = 0; k < 3; ++k) {
+    const Interval lo(box.lo[k]), hi(box.hi[k]);
+    at_centre += p.n[k] * ((lo + hi) / 2);
+    reach += CGAL::abs(p.n[k]) * ((hi - lo) / 2);
+  }
+  return !(at_centre.inf() > reach.sup() || at_centre.sup() < -reach.sup());
+}
+
+}  // namespace
 
 Pairs candidate_pairs(const Mesh& a, const Mesh& b) {
   if (a.empty() || b.empty()) return {};
@@ -35,18 +69,25 @@ Pairs candidate_pairs(const Mesh& a, const Mesh& b) {
   const Mesh& indexed = tree_on_a ? a : b;
   const Mesh& queries = tree_on_a ? b : a;
   const TriangleTree tree(indexed);
+  std::vector<IntervalPlane> planes(indexed.num_triangles());
+  {
+    const CGAL::Protect_FPU_rounding<true> upward;
+    for (std::uint32_t t = 0; t < planes.size(); ++t) planes[t] = plane_of(indexed, t);
+  }
   // Queries in blocks, each block's pairs in its own vector, concatenated in block order.
   constexpr std::uint32_t kBlock = 1024;
   const auto nq = std::uint32_t(queries.num_triangles());
   std::vector<Pairs> found((nq + kBlock - 1) / kBlock);
   tbb::parallel_for(std::uint32_t(0), std::uint32_t(found.size()), [&](std::uint32_t block) {
+    const CGAL::Protect_FPU_rounding<true> upward;
     for (std::uint32_t q = block * kBlock; q < std::min(nq, (block + 1) * kBlock); ++q) {
       const Triangle& f = queries.triangles[q];
       FloatBox box = FloatBox::of(queries.points[f[0]]);
       box += FloatBox::of(queries.points[f[1]]);
       box += FloatBox::of(queries.points[f[2]]);
       tree.for_each_overlap(box, [&](std::uint32_t t) {
-        found[block].emplace_back(tree_on_a ? t : q, tree_on_a ? q : t);
+        if (plane_may_cross(planes[t], box))
+          found[block].emplace_back(tree_on_a ? t : q, tree_on_a ? q : t);
       });
     }
   });
