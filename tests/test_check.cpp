@@ -445,8 +445,8 @@ Mesh spiral_strip(int n, double turns) {
 TEST(Check, WoundFansAndSpiralStripsAreNotTakenAsEmbedded) {
   EXPECT_EQ(planar_patches_of(wound_fan(41, 1)).patches.size(), 1u);
   EXPECT_EQ(planar_patches_of(spiral_strip(60, 0.9)).patches.size(), 1u);
-  for (const Mesh& m : {wound_fan(41, 2), wound_fan(61, 3), spiral_strip(60, 1.5),
-                        spiral_strip(90, 2.2)}) {
+  for (const Mesh& m :
+       {wound_fan(41, 2), wound_fan(61, 3), spiral_strip(60, 1.5), spiral_strip(90, 2.2)}) {
     EXPECT_TRUE(planar_patches_of(m).patches.empty());
     CheckOptions options;
     options.list_self_intersections = true;
@@ -454,4 +454,46 @@ TEST(Check, WoundFansAndSpiralStripsAreNotTakenAsEmbedded) {
     EXPECT_FALSE(expected.empty());
     EXPECT_EQ(check_mesh(m, options).self_intersecting_pairs, expected);
   }
+}
+
+namespace {
+// A cone over a regular n-gon of radius 2 in z = 0 winding `turns` times, apex at `apex`, with a
+// flat fan cap from the polygon's first vertex: long thin facets meeting at the apex.
+Mesh cone(int n, int turns, const Point& apex) {
+  DoubleMesh d;
+  for (int i = 0; i < n; ++i) {
+    const double a = 6.283185307179586 * turns * i / n;
+    d.points.push_back({2 * std::cos(a), 2 * std::sin(a), 0});
+  }
+  Mesh m = from_double(d);
+  m.points.push_back(apex);
+  const VertexIndex top = VertexIndex(n);
+  for (VertexIndex i = 0; i < top; ++i) m.triangles.push_back({i, (i + 1) % top, top});
+  for (VertexIndex k = 1; k + 1 < top; ++k) m.triangles.push_back({0, k + 1, k});
+  return m;
+}
+}  // namespace
+
+// Cones whose apex star is proved as a whole (projected along z it is one fan wrapping once),
+// and cones where it must not be: the apex below the cap (the sides cross it), on a rim vertex's
+// vertical, or the rim wound twice. Improper pairs are those of all pairs tested one by one.
+TEST(Check, ConeStarsAgreeWithBruteForce) {
+  const Mesh upright = cone(48, 1, Point(0, 0, 3));
+  EXPECT_TRUE(check_mesh(upright).valid_solid());
+  std::mt19937 random(31);
+  auto pick = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(random); };
+  int intersecting = 0;
+  for (int i = 0; i < 40; ++i) {
+    const int turns = pick(0, 5) == 0 ? 2 : 1;
+    const Point apex(FT(pick(-4, 4)) / 2, FT(pick(-4, 4)) / 2, FT(pick(-2, 6)) / 2);
+    const Mesh m = cone(2 * pick(17, 30) + 1, turns, apex);
+    CheckOptions options;
+    options.list_self_intersections = true;
+    const auto expected = improper_pairs_by_brute_force(m);
+    ASSERT_EQ(check_mesh(m, options).self_intersecting_pairs, expected)
+        << "case " << i << " turns " << turns << " apex " << apex;
+    intersecting += !expected.empty();
+  }
+  EXPECT_GT(intersecting, 8);
+  EXPECT_LT(intersecting, 36);
 }

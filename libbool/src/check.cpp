@@ -307,6 +307,9 @@ void report(const std::vector<Found>& found, MeshReport& r) {
 // Patches of at least this many triangles are proved embedded as a whole (check_planar.h);
 // smaller flat regions are cheaper to test pair by pair.
 constexpr std::size_t kMinPlanarPatch = 16;
+// Vertex stars of at least this many triangles (a cone's apex, a fan over a curved cap) are
+// proved as a whole, the same way.
+constexpr std::size_t kMinStar = 32;
 
 // The triangles that may meet patch `p` improperly: those near its box that meet its plane
 // elsewhere than in its vertices and edges, outside it and outside the patches before it (whose
@@ -319,8 +322,8 @@ std::vector<std::uint32_t> patch_candidates(const Mesh& mesh, const PointTable& 
   std::vector<std::uint32_t> out;
   auto consider = [&](std::uint32_t t) {
     const Triangle& f = mesh.triangles[t];
-    if (!detail::meets_patch_only_at_its_features(table, patch,
-                                                  {position[f[0]], position[f[1]], position[f[2]]}))
+    if (!patch.flat || !detail::meets_patch_only_at_its_features(
+                           table, patch, {position[f[0]], position[f[1]], position[f[2]]}))
       out.push_back(t);
   };
   const detail::UpwardRounding rounding;
@@ -351,8 +354,9 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
     for (VertexIndex v = 0; v < mesh.num_vertices(); ++v)
       position[v] = index.find_or_insert(mesh.points[v], v);
   }
-  const detail::PlanarPatches planar =
+  detail::PlanarPatches planar =
       detail::verified_planar_patches(mesh, table, position, degenerate, manifold, kMinPlanarPatch);
+  detail::add_proved_stars(mesh, table, position, degenerate, kMinStar, planar);
   std::vector<std::uint32_t> others;
   for (std::uint32_t t = 0; t < mesh.num_triangles(); ++t)
     if (planar.patch_of[t] < 0 && !degenerate[t]) others.push_back(t);

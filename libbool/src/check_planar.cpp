@@ -3,6 +3,7 @@
 #include "check_planar.h"
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <optional>
@@ -282,6 +283,81 @@ PlanarPatches verified_planar_patches(const Mesh& mesh, const PointTable& table,
     out.patches.push_back(std::move(*patch));
   }
   return out;
+}
+
+namespace {
+
+// The corners at one vertex, by start ray, if some coordinate projection turns them all one way
+// and wraps them at most once around it.
+bool star_is_embedded(const PointTable& table, std::vector<Wedge>& wedges) {
+  std::sort(wedges.begin(), wedges.end());
+  for (int dropped = 0; dropped < 3; ++dropped) {
+    const Wedge& w = wedges.front();
+    const CGAL::Sign turn = table.orientation_2(dropped, w.apex, w.start, w.end);
+    if (turn == CGAL::ZERO) continue;
+    const Projection p{table, dropped, turn};
+    const bool one_way = std::all_of(wedges.begin(), wedges.end(), [&](const Wedge& x) {
+      return p.orient(x.apex, x.start, x.end) == CGAL::POSITIVE;
+    });
+    if (one_way) return star_wraps_at_most_once(p, wedges.data(), wedges.data() + wedges.size());
+  }
+  return false;
+}
+
+}  // namespace
+
+void add_proved_stars(const Mesh& mesh, const PointTable& table,
+                      const std::vector<PointId>& position,
+                      const std::vector<std::uint8_t>& degenerate, std::size_t min_triangles,
+                      PlanarPatches& groups) {
+  // The corners of every proper triangle, by vertex position.
+  struct Corner {
+    PointId apex;
+    std::uint32_t face;
+    bool operator<(const Corner& o) const { return apex != o.apex ? apex < o.apex : face < o.face; }
+  };
+  std::vector<Corner> corners_at;
+  corners_at.reserve(3 * mesh.num_triangles());
+  for (std::uint32_t f = 0; f < mesh.num_triangles(); ++f)
+    if (!degenerate[f])
+      for (const VertexIndex v : mesh.triangles[f]) corners_at.push_back({position[v], f});
+  tbb::parallel_sort(corners_at.begin(), corners_at.end());
+  // Stars with at least min_triangles triangles outside the groups.
+  std::vector<std::pair<std::size_t, std::size_t>> stars;
+  for (std::size_t i = 0; i < corners_at.size();) {
+    std::size_t j = i + 1, outside = 0;
+    while (j < corners_at.size() && corners_at[j].apex == corners_at[i].apex) ++j;
+    for (std::size_t k = i; k < j; ++k) outside += groups.patch_of[corners_at[k].face] < 0;
+    if (outside >= min_triangles) stars.emplace_back(i, j);
+    i = j;
+  }
+  // Each star is proved whole (its triangles in groups too); any subset of it is then embedded.
+  std::vector<std::uint8_t> proved(stars.size(), 0);
+  tbb::parallel_for(std::size_t(0), stars.size(), [&](std::size_t s) {
+    const UpwardRounding rounding;
+    std::vector<Wedge> wedges;
+    for (std::size_t k = stars[s].first; k < stars[s].second; ++k) {
+      const auto c = corners(mesh, position, corners_at[k].face);
+      const int at = c[0] == corners_at[k].apex ? 0 : c[1] == corners_at[k].apex ? 1 : 2;
+      wedges.push_back({c[at], c[(at + 1) % 3], c[(at + 2) % 3]});
+    }
+    proved[s] = star_is_embedded(table, wedges);
+  });
+  for (std::size_t s = 0; s < stars.size(); ++s) {
+    if (!proved[s]) continue;
+    PlanarPatch group;
+    group.flat = false;
+    for (std::size_t k = stars[s].first; k < stars[s].second; ++k) {
+      const std::uint32_t f = corners_at[k].face;
+      if (groups.patch_of[f] >= 0) continue;  // claimed by an earlier group
+      group.triangles.push_back(f);
+      for (const VertexIndex v : mesh.triangles[f]) group.box += table.approx(position[v]).bbox();
+    }
+    if (group.triangles.size() < min_triangles) continue;
+    for (const std::uint32_t f : group.triangles)
+      groups.patch_of[f] = std::int32_t(groups.patches.size());
+    groups.patches.push_back(std::move(group));
+  }
 }
 
 bool meets_patch_only_at_its_features(const PointTable& table, const PlanarPatch& patch,

@@ -27,8 +27,12 @@ namespace morphex::detail {
 // For each edge of the mesh used by exactly two faces (by vertex index), its key and the faces.
 using ManifoldEdges = std::vector<std::pair<std::uint64_t, std::array<std::uint32_t, 2>>>;
 
+// A group of triangles proved to meet one another only at their common edges and vertices:
+// a flat patch, or (not flat) triangles of one vertex star that a coordinate projection maps
+// onto a fan without overlap (a cone's side: long thin facets meeting at its apex).
 struct PlanarPatch {
-  std::array<PointId, 3> plane;          // a triangle of the patch, spanning its plane
+  bool flat = true;
+  std::array<PointId, 3> plane;          // flat: a triangle of the patch, spanning its plane
   std::vector<std::uint32_t> triangles;  // mesh triangle indices
   std::vector<PointId> vertices;         // its positions, sorted
   std::vector<std::uint64_t> edges;      // its edges (min << 32 | max over positions), sorted
@@ -47,6 +51,15 @@ PlanarPatches verified_planar_patches(const Mesh& mesh, const PointTable& table,
                                       const std::vector<PointId>& position,
                                       const std::vector<std::uint8_t>& degenerate,
                                       const ManifoldEdges& manifold, std::size_t min_triangles);
+
+// Vertex stars of at least `min_triangles` triangles outside `groups` whose projection along
+// a coordinate axis is one fan turning one way and wrapping at most once: then no two of them
+// meet beyond their common vertex and edges. Their triangles outside earlier groups are appended
+// as groups with flat = false (`edges`, `vertices` and `plane` unused).
+void add_proved_stars(const Mesh& mesh, const PointTable& table,
+                      const std::vector<PointId>& position,
+                      const std::vector<std::uint8_t>& degenerate, std::size_t min_triangles,
+                      PlanarPatches& groups);
 
 // Triangle t (by positions) meets the patch's plane at most in one vertex or one edge of the
 // patch: then it meets no triangle of the patch improperly.
