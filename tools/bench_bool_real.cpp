@@ -13,6 +13,7 @@
 // does) at one thread.
 #include <tbb/global_control.h>
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -71,6 +72,11 @@ struct Input {
   std::size_t file_facets = 0;
   Run check;  // check_mesh on the file as read, one thread
 };
+
+// "bunny00 x armadillo": the row's name, which --only matches.
+std::string pair_name(const PairSpec& p) {
+  return p.a.substr(p.a.find(':') + 1) + " x " + p.b.substr(p.b.find(':') + 1);
+}
 
 std::string input_path(const std::string& source, const RealSetOptions& o) {
   const auto colon = source.find(':');
@@ -204,16 +210,51 @@ Run run_manifold_at(const Case& c, BooleanOp op, std::size_t threads, const Warm
 // One pair's runs: morphex alone (m), as the command line (cli), Manifold (mf), by threads.
 struct PairRuns {
   Run m1, cli1, mf1, m2, m4, mf2;
+  double other_cores = 0;  // CPU the rest of the machine used meanwhile (see CpuSample)
 };
+
+// The machine's busy CPU time (/proc/stat, every process of every user) and this process's with
+// its children's, at one moment. Between two samples, their difference over the wall time is how
+// many cores something else kept busy: on a shared machine that is what makes a 2-thread run no
+// faster than a 1-thread one, so each row reports it.
+struct CpuSample {
+  double machine = 0, ours = 0, wall = 0;  // seconds
+};
+
+CpuSample cpu_sample() {
+  CpuSample s;
+  std::ifstream stat("/proc/stat");
+  std::string cpu;
+  double user = 0, nice = 0, system = 0, idle = 0, iowait = 0, irq = 0, softirq = 0, steal = 0;
+  stat >> cpu >> user >> nice >> system >> idle >> iowait >> irq >> softirq >> steal;
+  s.machine = (user + nice + system + irq + softirq + steal) / double(sysconf(_SC_CLK_TCK));
+  for (const int who : {RUSAGE_SELF, RUSAGE_CHILDREN}) {
+    rusage r{};
+    getrusage(who, &r);
+    s.ours += double(r.ru_utime.tv_sec + r.ru_stime.tv_sec) +
+              double(r.ru_utime.tv_usec + r.ru_stime.tv_usec) / 1e6;
+  }
+  s.wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  return s;
+}
+
+double other_cores(const CpuSample& before, const CpuSample& after) {
+  const double wall = after.wall - before.wall;
+  if (wall <= 0) return 0;
+  return std::max(0.0, (after.machine - before.machine) - (after.ours - before.ours)) / wall;
+}
 
 PairRuns run_pair(const Case& c, BooleanOp op, const Warmup& warm) {
   PairRuns r;
+  const CpuSample before = cpu_sample();
   r.m1 = run_morphex_at(c, op, 1, false, warm);
   r.cli1 = run_morphex_at(c, op, 1, true, warm);
   r.mf1 = run_manifold_at(c, op, 1, warm);
   r.m2 = run_morphex_at(c, op, 2, false, warm);
   r.m4 = run_morphex_at(c, op, 4, false, warm);
   r.mf2 = run_manifold_at(c, op, 2, warm);
+  r.other_cores = other_cores(before, cpu_sample());
   return r;
 }
 
@@ -254,7 +295,7 @@ void print_header() {
             << std::setw(9) << "m 1t" << std::setw(9) << "cli 1t" << std::setw(9) << "Mf 1t"
             << std::setw(8) << "Mf/m" << std::setw(8) << "Mf/cli" << std::setw(9) << "m 2t"
             << std::setw(9) << "m 4t" << std::setw(9) << "Mf 2t" << std::setw(7) << "m 1>2"
-            << std::setw(10) << "vol rel"
+            << std::setw(10) << "vol rel" << std::setw(7) << "other"
             << "  agree\n";
 }
 
@@ -278,8 +319,8 @@ void print_row(const Case& c, const PairRuns& r) {
             << std::setw(9) << cell(r.m2, r.m2.seconds) << std::setw(9) << cell(r.m4, r.m4.seconds)
             << std::setw(9) << cell(r.mf2, r.mf2.seconds, true) << std::setw(7)
             << (r.m1.ok && r.m2.ok ? cell(r.m2, r.m1.seconds / r.m2.seconds) : "-") << std::setw(10)
-            << (volumes ? cell(r.mf1, relative_volume_difference(r.m1, r.mf1)) : "n/a") << "  "
-            << agreement << '\n';
+            << (volumes ? cell(r.mf1, relative_volume_difference(r.m1, r.mf1)) : "n/a")
+            << std::setw(7) << std::setprecision(2) << r.other_cores << "  " << agreement << '\n';
 }
 
 nlohmann::json json_row(const Case& c, const RealSetOptions& o, const PairRuns& r, const Input& a,
@@ -290,7 +331,8 @@ nlohmann::json json_row(const Case& c, const RealSetOptions& o, const PairRuns& 
                         {"facets_b", c.b.num_triangles()},
                         {"input_a", a.status},
                         {"input_b", b.status},
-                        {"morphex_exact_volumes_agree", morphex_agrees(r)}};
+                        {"morphex_exact_volumes_agree", morphex_agrees(r)},
+                        {"other_load_cores", r.other_cores}};
   auto put = [&](const char* key, const Run& run) {
     if (run.ok) {
       row[key] = run.seconds;
@@ -340,7 +382,7 @@ std::map<std::string, Input> prepare_inputs(const std::vector<PairSpec>& pairs,
       Input in = prepare_input(input_path(source, o), prepared);
       if (in.ok) in.check = time_check(in.path, warm);
       std::cout << "input " << std::left << std::setw(26) << source << std::right << std::setw(8)
-                << in.file_facets << " facets: " << in.status << '\n';
+                << in.file_facets << " facets: " << in.status << std::endl;  // progress, as it goes
       inputs.emplace(source, std::move(in));
     }
   return inputs;
@@ -364,16 +406,19 @@ void print_check_speeds(const std::map<std::string, Input>& inputs, nlohmann::js
 }
 
 void print_legend() {
-  std::cout << "m = morphex's operation on inputs taken as valid; cli = as `morphex bool` runs it "
-               "(input check + operation); Mf = Manifold "
-            << peers::manifold_version()
-            << " (floating point; \"n/a\": bench_bool built without it, see "
-               "tools/peers/build-manifold); Nt = N threads (this machine has "
-            << std::thread::hardware_concurrency()
-            << " cores). Mf/m, Mf/cli: Manifold's time over morphex's (above 1: morphex is "
-               "faster). m 1>2: morphex's 1- over 2-thread time. vol rel: |Manifold volume - exact "
-               "volume| / exact volume. agree: morphex's four runs give one exact volume. Seconds "
-               "are medians of repeated runs under half a second; no conversion is timed.\n";
+  std::cout
+      << "m = morphex's operation on inputs taken as valid; cli = as `morphex bool` runs it "
+         "(input check + operation); Mf = Manifold "
+      << peers::manifold_version()
+      << " (floating point; \"n/a\": bench_bool built without it, see "
+         "tools/peers/build-manifold); Nt = N threads (this machine has "
+      << std::thread::hardware_concurrency()
+      << " cores). Mf/m, Mf/cli: Manifold's time over morphex's (above 1: morphex is "
+         "faster). m 1>2: morphex's 1- over 2-thread time. vol rel: |Manifold volume - exact "
+         "volume| / exact volume. other: cores the rest of the machine kept busy during the pair "
+         "(above 0.2 the thread scaling is not trustworthy). agree: morphex's four runs give one "
+         "exact volume. Seconds "
+         "are medians of repeated runs under half a second; no conversion is timed.\n";
 }
 
 }  // namespace
@@ -381,7 +426,7 @@ void print_legend() {
 int run_real_set(const RealSetOptions& o) {
   std::vector<PairSpec> pairs;
   for (const PairSpec& p : kPairs)
-    if (o.only.empty() || (p.a + " x " + p.b).find(o.only) != std::string::npos) pairs.push_back(p);
+    if (o.only.empty() || pair_name(p).find(o.only) != std::string::npos) pairs.push_back(p);
   const std::filesystem::path scratch =
       std::filesystem::temp_directory_path() / ("morphex-bench-real-" + std::to_string(getpid()));
   std::filesystem::create_directories(scratch);
@@ -399,7 +444,7 @@ int run_real_set(const RealSetOptions& o) {
   print_header();
   for (const PairSpec& p : pairs) {
     const Input &a = inputs.at(p.a), &b = inputs.at(p.b);
-    const std::string name = p.a.substr(p.a.find(':') + 1) + " x " + p.b.substr(p.b.find(':') + 1);
+    const std::string name = pair_name(p);
     if (!a.ok || !b.ok) {
       std::cout << name << ": skipped (" << (a.ok ? b.status : a.status) << ")\n";
       continue;
@@ -407,6 +452,7 @@ int run_real_set(const RealSetOptions& o) {
     const Case c = make_pair_case(name, a, b, p.degrees);
     const PairRuns r = run_pair(c, o.op, warm);
     print_row(c, r);
+    std::cout << std::flush;  // a long run shows its rows as they come
     all_agree = all_agree && morphex_agrees(r);
     if (r.m1.ok && r.mf1.ok) ratios.push_back(r.mf1.seconds / r.m1.seconds);
     if (r.cli1.ok && r.mf1.ok) cli_ratios.push_back(r.mf1.seconds / r.cli1.seconds);
