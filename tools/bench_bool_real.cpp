@@ -43,16 +43,17 @@ struct PairSpec {
 
 // Large against large (over 100,000 facets together: the thread scaling), organic and CAD
 // meshes of a few thousand facets, a mesh against a rotated copy of itself, and coarse against
-// fine (12 and 44 facets against tens of thousands).
+// fine (12 and 44 facets against tens of thousands). ChineseDragon-10kv, lion and blade are open
+// (repair refuses them), hence not here.
 const std::vector<PairSpec> kPairs = {
     {"demo:bunny00", "demo:armadillo", 10},
     {"demo:refined_elephant", "demo:bunny00", 20},
     {"demo:bunny00", "demo:bunny00", 10},
     {"demo:armadillo", "demo:man", 15},
     {"demo:fandisk_large", "demo:bear", 25},
-    {"demo:ChineseDragon-10kv", "demo:lion", 30},
+    {"demo:homer", "demo:triceratops", 30},
     {"demo:camel", "demo:bull", 10},
-    {"demo:turbine", "demo:blade", 20},
+    {"demo:turbine", "demo:femur", 20},
     {"demo:cheese", "demo:fandisk", 15},
     {"demo:knot1", "demo:knot2", 10},
     {"demo:elephant", "demo:cow", 20},
