@@ -7,7 +7,8 @@
 //              [--no-peers]   (morphex alone, for profiling) [--threads N]
 //   bench_bool A B [--rotate DEG] [--translate X Y Z] [--op OP]      (one pair from files)
 //   bench_bool --set real [--op OP] [--demo-dir DIR] [--prusa-dir DIR] [--only SUBSTRING]
-//              [--json FILE]   (pairs of real meshes against Manifold: bench_bool_real.cpp)
+//              [--json FILE] [--busy-retries N]
+//              (pairs of real meshes against Manifold: bench_bool_real.cpp)
 //
 // Cases: icosphere pairs crossing each other from level 2 up to --max-level (a scaling curve),
 // dense intersections (a sphere against a slightly rotated copy), coplanar contacts (a box grid
@@ -94,6 +95,7 @@ struct Options {
   std::size_t nef_max_faces = 3000;
   std::string json_path, only, a_path, b_path;
   std::string set = "generated";  // or "real"
+  int busy_retries = 2;           // --set real only
   bool phases = false, peers_too = true;
   std::size_t threads = 0;  // 0: all cores
   std::string demo_dir, prusa_dir;
@@ -124,6 +126,8 @@ std::optional<Options> parse_arguments(int argc, char** argv) {
       o.json_path = next();
     else if (arg == "--demo-dir")
       o.demo_dir = next();
+    else if (arg == "--busy-retries")
+      o.busy_retries = std::stoi(next());
     else if (arg == "--prusa-dir")
       o.prusa_dir = next();
     else if (arg == "--set") {
@@ -378,7 +382,8 @@ int main(int argc, char** argv) {
   if (!options) return 2;
   const Options& o = *options;
   // The real set runs each engine at the thread counts it compares (1, 2, 4), set in each child.
-  if (o.set == "real") return run_real_set({o.op, o.json_path, o.only, o.demo_dir, o.prusa_dir});
+  if (o.set == "real")
+    return run_real_set({o.op, o.json_path, o.only, o.demo_dir, o.prusa_dir, o.busy_retries});
   const std::vector<Case> cases = make_cases(o);
 
   // Limits morphex's TBB phases; CGAL's corefinement and Nef run sequentially anyway.
