@@ -312,6 +312,8 @@ void print_row(const Case& c, const PairRuns& r) {
   facets << c.a.num_triangles() << "+" << c.b.num_triangles();
   const bool volumes = r.m1.ok && r.mf1.ok;
   std::string agreement = morphex_agrees(r) ? "exact" : "MORPHEX RUNS DIFFER OR FAILED";
+  std::ostringstream other;
+  other << std::fixed << std::setprecision(2) << r.other_cores;
   if (r.attempts > 1) agreement += " (" + std::to_string(r.attempts) + " attempts)";
   for (const Run* mf : {&r.mf1, &r.mf2})
     if (peers::kHaveManifold && !mf->ok) agreement += " (Manifold: " + mf->note + ")";
@@ -323,7 +325,7 @@ void print_row(const Case& c, const PairRuns& r) {
             << std::setw(9) << cell(r.mf2, r.mf2.seconds, true) << std::setw(7)
             << (r.m1.ok && r.m2.ok ? cell(r.m2, r.m1.seconds / r.m2.seconds) : "-") << std::setw(10)
             << (volumes ? cell(r.mf1, relative_volume_difference(r.m1, r.mf1)) : "n/a")
-            << std::setw(7) << std::setprecision(2) << r.other_cores << "  " << agreement << '\n';
+            << std::setw(7) << other.str() << "  " << agreement << '\n';
 }
 
 nlohmann::json json_row(const Case& c, const RealSetOptions& o, const PairRuns& r, const Input& a,
