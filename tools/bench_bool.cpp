@@ -6,6 +6,9 @@
 //              [--json FILE] [--demo-dir DIR] [--only SUBSTRING] [--phases]
 //              [--no-peers]   (morphex alone, for profiling) [--threads N]
 //   bench_bool A B [--rotate DEG] [--translate X Y Z] [--op OP]      (one pair from files)
+//   bench_bool --set real [--op OP] [--demo-dir DIR] [--prusa-dir DIR] [--only SUBSTRING]
+//              [--json FILE] [--busy-retries N]
+//              (pairs of real meshes against Manifold: bench_bool_real.cpp)
 //
 // Cases: icosphere pairs crossing each other from level 2 up to --max-level (a scaling curve),
 // dense intersections (a sphere against a slightly rotated copy), coplanar contacts (a box grid
@@ -15,10 +18,6 @@
 // own); exact volumes must agree. --phases adds
 // morphex's time per phase in the timed run (the profile that guides the speed work) to the table
 // and the JSON.
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <tbb/global_control.h>
 #include <chrono>
 #include <cmath>
@@ -33,6 +32,7 @@
 #include <string>
 #include <thread>
 
+#include "bench_bool_common.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
 #include "morphex/generators.h"
@@ -41,109 +41,9 @@
 #include "peers.h"
 
 using namespace morphex;
+using namespace morphex::bench;
 
 namespace {
-
-// Exact rotation about z then x by the rational angle whose half-tangent is near tan(deg/2).
-Transformation rational_rotation(double degrees) {
-  const FT t = FT(std::round(std::tan(degrees * 3.14159265358979 / 360) * 1000)) / 1000;
-  return half_tangent_rotation(0, t) * half_tangent_rotation(2, t);
-}
-
-struct Case {
-  std::string name;
-  Mesh a, b;
-};
-
-struct Run {
-  bool ok = false;
-  double seconds = 0, peak_mib = 0;
-  std::string volume;  // exact, as a rational string
-  std::string note;    // what the engine reported besides (morphex's phases)
-};
-
-// Resident memory of this process now (MiB), from /proc/self/statm.
-double resident_mib() {
-  std::ifstream statm("/proc/self/statm");
-  double total_pages = 0, resident_pages = 0;
-  statm >> total_pages >> resident_pages;
-  return resident_pages * double(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
-}
-
-// Set by an engine in the child: sent back after the volume.
-std::string child_note;
-
-// Times an operation in the steady state of its process: `once` runs it and returns its seconds.
-// An operation that takes over half a second runs once; a shorter one runs at least three times
-// and until a second has been spent (at most 31 runs), because a median of three millisecond runs
-// on a busy two-core machine still moves by a third between invocations. The median is reported.
-// Every engine gets the same treatment.
-template <class Once>
-double median_seconds(Once&& once) {
-  std::vector<double> runs{once()};
-  double spent = runs[0];
-  while (runs[0] < 0.5 && (runs.size() < 3 || (spent < 1.0 && runs.size() < 31))) {
-    runs.push_back(once());
-    spent += runs.back();
-  }
-  std::sort(runs.begin(), runs.end());
-  return runs[runs.size() / 2];
-}
-
-// Runs `engine` in a child process. The engine times the operation itself (not the volume it
-// then computes for the check); time, exact volume and the child's peak memory come back.
-template <class Engine>
-Run in_child(Engine&& engine) {
-  int fds[2];
-  if (pipe(fds) != 0) return {};
-  const pid_t pid = fork();
-  if (pid == 0) {
-    close(fds[0]);
-    const double inherited_mib = resident_mib();
-    std::string message;
-    try {
-      const std::optional<std::pair<double, FT>> result = engine();
-      message = result ? std::to_string(result->first) + " " + to_rational_string(result->second)
-                       : "failed";
-      if (result) {
-        // Peak memory above what the child inherited from the benchmark (the input meshes of
-        // every case): the engine's own.
-        rusage self{};
-        getrusage(RUSAGE_SELF, &self);
-        message = std::to_string(std::max(0.0, double(self.ru_maxrss) / 1024.0 - inherited_mib)) +
-                  " " + message;
-        if (!child_note.empty()) message += " " + child_note;
-      }
-    } catch (const std::exception& e) {
-      message = "failed";
-    }
-    [[maybe_unused]] auto w = write(fds[1], message.data(), message.size());
-    close(fds[1]);
-    _exit(0);
-  }
-  close(fds[1]);
-  std::string message;
-  char buffer[4096];
-  for (ssize_t n; (n = read(fds[0], buffer, sizeof buffer)) > 0;)
-    message.append(buffer, std::size_t(n));
-  close(fds[0]);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  Run run;
-  if (message.empty() || message == "failed") return run;
-  const auto first = message.find(' ');
-  run.peak_mib = std::stod(message.substr(0, first));
-  message.erase(0, first + 1);
-  const auto space = message.find(' ');
-  run.ok = true;
-  run.seconds = std::stod(message.substr(0, space));
-  run.volume = message.substr(space + 1);
-  if (const auto note = run.volume.find(' '); note != std::string::npos) {
-    run.note = run.volume.substr(note + 1);
-    run.volume.resize(note);
-  }
-  return run;
-}
 
 std::vector<Case> generated_cases(int max_level, const std::string& demo_dir) {
   std::vector<Case> cases;
@@ -194,9 +94,11 @@ struct Options {
   int max_level = 5;
   std::size_t nef_max_faces = 3000;
   std::string json_path, only, a_path, b_path;
+  std::string set = "generated";  // or "real"
+  int busy_retries = 2;           // --set real only
   bool phases = false, peers_too = true;
   std::size_t threads = 0;  // 0: all cores
-  std::string demo_dir;
+  std::string demo_dir, prusa_dir;
   double degrees = 0;
   Vector offset = Vector(0, 0, 0);
 };
@@ -207,6 +109,7 @@ std::optional<Options> parse_arguments(int argc, char** argv) {
   Options o;
   const char* home = std::getenv("HOME");
   o.demo_dir = std::string(home ? home : ".") + "/.cache/morphex/cgal-demo";
+  o.prusa_dir = std::string(home ? home : ".") + "/.cache/morphex/prusa-shapes";
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto next = [&]() -> std::string {
@@ -223,7 +126,15 @@ std::optional<Options> parse_arguments(int argc, char** argv) {
       o.json_path = next();
     else if (arg == "--demo-dir")
       o.demo_dir = next();
-    else if (arg == "--only")
+    else if (arg == "--busy-retries")
+      o.busy_retries = std::stoi(next());
+    else if (arg == "--prusa-dir")
+      o.prusa_dir = next();
+    else if (arg == "--set") {
+      o.set = next();
+      if (o.set != "generated" && o.set != "real")
+        throw std::invalid_argument("--set is generated or real, not " + o.set);
+    } else if (arg == "--only")
       o.only = next();
     else if (arg == "--phases")
       o.phases = true;
@@ -260,22 +171,6 @@ std::vector<Case> make_cases(const Options& o) {
   std::vector<Case> cases;
   cases.push_back({o.a_path + " vs " + b_path, read_mesh(o.a_path), b});
   return cases;
-}
-
-// Each child first runs its engine once on two small crossing cubes, untimed: one-time costs
-// (thread pool start, first allocations) are not part of the time per operation that a chain of
-// Booleans sees.
-struct Warmup {
-  Mesh a, b;
-};
-
-using Result = std::optional<std::pair<double, FT>>;
-
-// A forked child shares the parent's pages until it writes them, and copying a point handle
-// writes its reference count. Each child makes its inputs its own before any clock starts, as a
-// process that read them would have them (corefinement's input conversion does it anyway).
-void own_inputs(const Case& c) {
-  const Mesh a = c.a, b = c.b;
 }
 
 // morphex's phase times and counts, as the child sends them back in its note.
@@ -486,6 +381,9 @@ int main(int argc, char** argv) {
   const std::optional<Options> options = parse_arguments(argc, argv);
   if (!options) return 2;
   const Options& o = *options;
+  // The real set runs each engine at the thread counts it compares (1, 2, 4), set in each child.
+  if (o.set == "real")
+    return run_real_set({o.op, o.json_path, o.only, o.demo_dir, o.prusa_dir, o.busy_retries});
   const std::vector<Case> cases = make_cases(o);
 
   // Limits morphex's TBB phases; CGAL's corefinement and Nef run sequentially anyway.
