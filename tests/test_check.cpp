@@ -474,12 +474,27 @@ Mesh cone(int n, int turns, const Point& apex) {
 }
 }  // namespace
 
+// The cone's exact volume: a third of its base (n triangles from the centre, by the definition
+// on the generator's double coordinates) times its height.
+FT volume_of_fan_cone(int n, double radius, double height) {
+  const Mesh m = make_fan_cone(n, radius, height);
+  FT base = 0;
+  for (int i = 0; i < n; ++i) {
+    const Point &p = m.points[std::size_t(i)], &q = m.points[std::size_t((i + 1) % n)];
+    base += (p.x() * q.y() - p.y() * q.x()) / 2;
+  }
+  return base * FT(height) / 3;
+}
+
 // Cones whose apex star is proved as a whole (projected along z it is one fan wrapping once),
 // and cones where it must not be: the apex below the cap (the sides cross it), on a rim vertex's
 // vertical, or the rim wound twice. Improper pairs are those of all pairs tested one by one.
 TEST(Check, ConeStarsAgreeWithBruteForce) {
   const Mesh upright = cone(48, 1, Point(0, 0, 3));
   EXPECT_TRUE(check_mesh(upright).valid_solid());
+  const Mesh generated = make_fan_cone(500, 2.0, 1.0);
+  EXPECT_TRUE(check_mesh(generated).valid_solid());
+  EXPECT_EQ(check_mesh(generated).volume, volume_of_fan_cone(500, 2.0, 1.0));
   std::mt19937 random(31);
   auto pick = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(random); };
   int intersecting = 0;

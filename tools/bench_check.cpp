@@ -7,6 +7,7 @@
 //   fan-prism:N   a prism over a regular N-gon whose caps are fans from one vertex (CAD-style
 //                 flat faces of long thin facets all meeting at one vertex)
 //   cylinder:N    a prism whose caps are fans from their centres
+//   cone:N        a cone whose side triangles all meet at its apex, its base a fan from one vertex
 //   icosphere:L   the icosphere of level L (20 4^L facets)
 // Columns: `morphex check` as the command runs it (exact volume included) on one thread; the
 // check the Boolean runs on its inputs (validity only) at each thread count, with the speed-up
@@ -54,6 +55,7 @@ Mesh input_mesh(const std::string& spec) {
   const int n = colon == std::string::npos ? 0 : std::stoi(spec.substr(colon + 1));
   if (kind == "fan-prism") return make_fan_prism(n, 10.0, 5.0);
   if (kind == "cylinder") return make_cylinder(n, 10.0, 2.5);
+  if (kind == "cone") return make_fan_cone(n, 10.0, 5.0);
   if (kind == "icosphere") return make_icosphere(n, FT(1));
   return read_mesh(spec);
 }
@@ -89,7 +91,7 @@ int main(int argc, char** argv) {
     } else
       inputs.push_back(arg);
   }
-  if (inputs.empty()) inputs = {"fan-prism:7000", "cylinder:7000", "icosphere:7"};
+  if (inputs.empty()) inputs = {"fan-prism:7000", "cone:7000", "cylinder:7000", "icosphere:7"};
   nlohmann::json rows = nlohmann::json::array();
   std::cout << std::left << std::setw(26) << "input" << std::right << std::setw(9) << "facets"
             << std::setw(10) << "check" << std::setw(8) << "s/M";

@@ -155,6 +155,18 @@ Mesh make_fan_prism(int n, double radius, double height) {
   return from_double(d);
 }
 
+Mesh make_fan_cone(int n, double radius, double height) {
+  DoubleMesh d;
+  const double tau = 6.283185307179586;
+  for (int i = 0; i < n; ++i)
+    d.points.push_back({radius * std::cos(tau * i / n), radius * std::sin(tau * i / n), 0});
+  d.points.push_back({0, 0, height});
+  const VertexIndex apex = VertexIndex(n);
+  for (VertexIndex i = 0; i < apex; ++i) d.triangles.push_back({i, (i + 1) % apex, apex});
+  for (VertexIndex k = 1; k + 1 < apex; ++k) d.triangles.push_back({0, k + 1, k});
+  return from_double(d);
+}
+
 namespace {
 std::pair<Mesh, Mesh> unit_cube_and_shift(int dx, int dy, int dz) {
   const Mesh a = make_box(Point(0, 0, 0), Point(1, 1, 1));

@@ -27,6 +27,9 @@ Mesh make_cylinder(int segments, double radius, double half_height);
 // fans from the polygon's first vertex, as CAD exporters triangulate flat faces: long thin facets
 // that all meet at one vertex.
 Mesh make_fan_prism(int segments, double radius, double height);
+// A cone over the same polygon with its apex at height `height` above the centre, the base a fan
+// from the polygon's first vertex: long thin facets on the side too, all meeting at the apex.
+Mesh make_fan_cone(int segments, double radius, double height);
 
 // Unit cubes [0,1]^3 and a translated copy touching it along a face, an edge, a vertex.
 std::pair<Mesh, Mesh> make_cubes_sharing_face();
