@@ -512,3 +512,46 @@ TEST(Check, ConeStarsAgreeWithBruteForce) {
   EXPECT_GT(intersecting, 8);
   EXPECT_LT(intersecting, 36);
 }
+
+namespace {
+// A flat ring between a regular n-gon of radius 2 and one of radius `inner` centred at
+// (shift, 0), triangulated between them: a patch with a hole.
+Mesh flat_ring(int n, double inner, double shift) {
+  DoubleMesh d;
+  for (int i = 0; i < n; ++i) {
+    const double a = 6.283185307179586 * i / n;
+    d.points.push_back({2 * std::cos(a), 2 * std::sin(a), 0});
+    d.points.push_back({shift + inner * std::cos(a), inner * std::sin(a), 0});
+  }
+  for (VertexIndex i = 0; i < VertexIndex(n); ++i) {
+    const VertexIndex o = 2 * i, in = o + 1, o2 = 2 * ((i + 1) % VertexIndex(n)), in2 = o2 + 1;
+    d.triangles.push_back({o, o2, in});
+    d.triangles.push_back({in, o2, in2});
+  }
+  return from_double(d);
+}
+}  // namespace
+
+// A flat ring (two border polygons, the hole turning against the triangles) is proved embedded
+// as one patch, an off-centre hole still inside too; once the hole pokes out of the outer polygon
+// the ring is not one proved patch (its unfolded pieces may be), and the improper pairs are those
+// of all pairs tested one by one.
+TEST(Check, FlatPatchesWithHoles) {
+  for (const double shift : {0.0, 0.9}) {
+    const Mesh ring = flat_ring(20, 1.0, shift);
+    const auto patches = planar_patches_of(ring).patches;
+    ASSERT_EQ(patches.size(), 1u);
+    EXPECT_EQ(patches[0].triangles.size(), 40u);
+    EXPECT_EQ(check_mesh(ring).self_intersections, 0u);
+    EXPECT_TRUE(improper_pairs_by_brute_force(ring).empty());
+  }
+  for (const double shift : {1.5, 2.2}) {
+    const Mesh m = flat_ring(20, 1.0, shift);
+    for (const auto& patch : planar_patches_of(m).patches) EXPECT_LT(patch.triangles.size(), 40u);
+    CheckOptions options;
+    options.list_self_intersections = true;
+    const auto expected = improper_pairs_by_brute_force(m);
+    EXPECT_FALSE(expected.empty());
+    EXPECT_EQ(check_mesh(m, options).self_intersecting_pairs, expected);
+  }
+}

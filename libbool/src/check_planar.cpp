@@ -151,24 +151,36 @@ bool inside_2(const PointTable& table, int d, const std::array<PointId, 3>& t, P
 
 namespace {
 
-// The border of the patch (its edges used once) is one closed polygon that meets itself only
-// where consecutive edges share a vertex.
-bool border_is_one_simple_polygon(const Projection& p, std::vector<std::array<PointId, 2>> border) {
-  if (border.size() < 3) return false;
+// The border's cycles (vertex sequences), when every border vertex has one border edge out and
+// they chain into closed polygons.
+std::optional<std::vector<std::vector<PointId>>> border_cycles(
+    std::vector<std::array<PointId, 2>>& border) {
   std::sort(border.begin(), border.end());
   for (std::size_t i = 0; i + 1 < border.size(); ++i)
-    if (border[i][0] == border[i + 1][0]) return false;  // two border edges leave one vertex
-  // One cycle: follow the edges from the first.
-  std::size_t length = 0;
-  PointId at = border[0][1];
-  for (; length < border.size(); ++length) {
-    const auto next = std::lower_bound(border.begin(), border.end(), std::array<PointId, 2>{at, 0});
-    if (next == border.end() || (*next)[0] != at) return false;
-    at = (*next)[1];
-    if (at == border[0][1]) break;
+    if (border[i][0] == border[i + 1][0]) return std::nullopt;  // two border edges leave a vertex
+  std::vector<std::uint8_t> used(border.size(), 0);
+  std::vector<std::vector<PointId>> cycles;
+  for (std::size_t start = 0; start < border.size(); ++start) {
+    if (used[start]) continue;
+    std::vector<PointId> cycle;
+    std::size_t e = start;
+    while (!used[e]) {
+      used[e] = 1;
+      cycle.push_back(border[e][0]);
+      const auto next =
+          std::lower_bound(border.begin(), border.end(), std::array<PointId, 2>{border[e][1], 0});
+      if (next == border.end() || (*next)[0] != border[e][1]) return std::nullopt;
+      e = std::size_t(next - border.begin());
+    }
+    if (e != start || cycle.size() < 3) return std::nullopt;  // ran into another cycle
+    cycles.push_back(std::move(cycle));
   }
-  if (length + 1 != border.size()) return false;
-  // Non-consecutive edges must not meet: a sweep over their boxes along one axis.
+  return cycles;
+}
+
+// No two border edges meet, except consecutive ones at their common vertex (which the star
+// proof covers): a sweep over their boxes along one axis.
+bool border_edges_disjoint(const Projection& p, const std::vector<std::array<PointId, 2>>& border) {
   const int u = p.dropped == 0 ? 1 : 0, v = p.dropped == 2 ? 1 : 2;
   struct Extent {
     double lo[2], hi[2];
@@ -198,6 +210,61 @@ bool border_is_one_simple_polygon(const Projection& p, std::vector<std::array<Po
       if (e[0] == f[1] || e[1] == f[0]) continue;  // consecutive: the star proof covers them
       if (segments_meet_2(p.table, p.dropped, e[0], e[1], f[0], f[1])) return false;
     }
+  return true;
+}
+
+// +1 when the cycle turns as the patch's triangles do, -1 the other way: the turn at its
+// lowest vertex (by the two projected coordinates), which for a simple polygon is its own.
+int cycle_turn(const Projection& p, const std::vector<PointId>& cycle) {
+  const int u = p.dropped == 0 ? 1 : 0, v = p.dropped == 2 ? 1 : 2;
+  std::size_t low = 0;
+  for (std::size_t i = 1; i < cycle.size(); ++i) {
+    CGAL::Comparison_result c = p.table.compare(u, cycle[i], cycle[low]);
+    if (c == CGAL::EQUAL) c = p.table.compare(v, cycle[i], cycle[low]);
+    if (c == CGAL::SMALLER) low = i;
+  }
+  const std::size_t n = cycle.size();
+  return p.orient(cycle[(low + n - 1) % n], cycle[low], cycle[(low + 1) % n]);
+}
+
+// x (not on the cycle) lies inside it: the ray from x along +u crosses it an odd number of times.
+bool inside_cycle(const Projection& p, const std::vector<PointId>& cycle, PointId x) {
+  const int v = p.dropped == 2 ? 1 : 2;
+  bool inside = false;
+  for (std::size_t i = 0; i < cycle.size(); ++i) {
+    const PointId a = cycle[i], b = cycle[(i + 1) % cycle.size()];
+    const bool a_above = p.table.compare(v, a, x) == CGAL::LARGER,
+               b_above = p.table.compare(v, b, x) == CGAL::LARGER;
+    if (a_above == b_above) continue;
+    // The edge crosses the ray's line, to the right of x when x is on the left of an upward
+    // edge or on the right of a downward one (orientation_2 turns in the (u, v) plane).
+    const CGAL::Sign side = p.table.orientation_2(p.dropped, a, b, x);
+    if (b_above ? side == CGAL::POSITIVE : side == CGAL::NEGATIVE) inside = !inside;
+  }
+  return inside;
+}
+
+// The border is pairwise disjoint simple polygons whose windings add up to at most one
+// everywhere: the number of preimages of a locally injective map is that sum, so the patch is
+// embedded. One polygon turning with the triangles is the disc; holes turn the other way inside.
+bool border_bounds_an_embedded_patch(const Projection& p,
+                                     std::vector<std::array<PointId, 2>> border) {
+  constexpr std::size_t kMaxCycles = 64;  // nesting is tested cycle against cycle
+  if (border.size() < 3) return false;
+  const auto cycles = border_cycles(border);
+  if (!cycles || cycles->size() > kMaxCycles || !border_edges_disjoint(p, border)) return false;
+  std::vector<int> turn(cycles->size());
+  for (std::size_t i = 0; i < cycles->size(); ++i) {
+    turn[i] = cycle_turn(p, (*cycles)[i]);
+    if (turn[i] == 0) return false;
+  }
+  // Just inside cycle i the count is its own turn plus those of the cycles around it.
+  for (std::size_t i = 0; i < cycles->size(); ++i) {
+    int count = turn[i];
+    for (std::size_t j = 0; j < cycles->size(); ++j)
+      if (j != i && inside_cycle(p, (*cycles)[j], (*cycles)[i][0])) count += turn[j];
+    if (count < 0 || count > 1) return false;
+  }
   return true;
 }
 
@@ -238,7 +305,7 @@ std::optional<PlanarPatch> prove_embedded(const Mesh& mesh, const PointTable& ta
   for (const auto& e : directed)
     if (!std::binary_search(directed.begin(), directed.end(), std::array<PointId, 2>{e[1], e[0]}))
       border.push_back(e);
-  if (!border_is_one_simple_polygon(p, std::move(border))) return std::nullopt;
+  if (!border_bounds_an_embedded_patch(p, std::move(border))) return std::nullopt;
   std::sort(patch.edges.begin(), patch.edges.end());
   patch.edges.erase(std::unique(patch.edges.begin(), patch.edges.end()), patch.edges.end());
   for (const PointId v : patch.vertices) patch.box += table.approx(v).bbox();
