@@ -24,6 +24,7 @@
 #include <thread>
 
 #include "bench_bool_common.h"
+#include "bench_common.h"
 #include "manifold_peer.h"
 #include "morphex/check.h"
 #include "morphex/io.h"
@@ -91,12 +92,7 @@ std::string input_path(const std::string& source, const RealSetOptions& o) {
 Mesh normalized(const Mesh& m) {
   CGAL::Bbox_3 box;
   for (const Point& p : m.points) box += p.bbox();
-  const double diagonal =
-      std::sqrt(std::pow(box.xmax() - box.xmin(), 2) + std::pow(box.ymax() - box.ymin(), 2) +
-                std::pow(box.zmax() - box.zmin(), 2));
-  int exponent = 0;
-  std::frexp(diagonal, &exponent);  // diagonal = f 2^exponent, f in [1/2, 1)
-  const double scale = std::ldexp(1.0, 1 - exponent);
+  const double scale = bench::unit_diagonal_scale(m);
   auto centre = [&](double lo, double hi) {
     return -std::round((lo + hi) / 2 * scale * 1024) / 1024;
   };

@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_common.h"
 #include "morphex/check.h"
 #include "morphex/generators.h"
 #include "morphex/io.h"
@@ -36,18 +37,7 @@ using namespace morphex;
 
 namespace {
 
-template <class Body>
-double median_seconds(int runs, Body&& body) {
-  body();  // warm-up
-  std::vector<double> times;
-  for (int i = 0; i < runs; ++i) {
-    const Stopwatch start;
-    body();
-    times.push_back(start.seconds());
-  }
-  std::sort(times.begin(), times.end());
-  return times[times.size() / 2];
-}
+using bench::median_of_runs;
 
 Mesh input_mesh(const std::string& spec) {
   const auto colon = spec.find(':');
@@ -112,14 +102,14 @@ int main(int argc, char** argv) {
     double full = 0;
     {
       const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
-      full = median_seconds(runs, [&] { valid = check_mesh(mesh).valid_solid(); });
+      full = median_of_runs(runs, [&] { valid = check_mesh(mesh).valid_solid(); });
     }
     row["check_seconds"] = full;
     row["valid"] = valid;
     std::map<int, double> validity;
     for (const int t : threads) {
       const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, t);
-      validity[t] = median_seconds(runs, [&] { check_mesh(mesh, kValidityOnly); });
+      validity[t] = median_of_runs(runs, [&] { check_mesh(mesh, kValidityOnly); });
       row["validity_seconds"][std::to_string(t)] = validity[t];
     }
     double cgal = 0;
@@ -127,7 +117,7 @@ int main(int argc, char** argv) {
     if (peer) {
       const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
       bool cgal_says = false;
-      cgal = median_seconds(1, [&] { cgal_says = peers::cgal_does_self_intersect(mesh); });
+      cgal = median_of_runs(1, [&] { cgal_says = peers::cgal_does_self_intersect(mesh); });
       // CGAL tells contacts apart by vertex index, morphex by position: they may differ (by
       // design) only on meshes with coincident distinct vertices.
       const bool ours = check_mesh(mesh, kValidityOnly).self_intersections > 0;

@@ -23,6 +23,7 @@
 #include <optional>
 #include <sstream>
 
+#include "bench_common.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
 #include "morphex/generators.h"
@@ -62,14 +63,7 @@ Mesh load(const std::string& input) {
 // Scaled by the power of two that brings its bounding-box diagonal into [1, 2): an exact
 // scaling that keeps double coordinates doubles, so that one SE size fits every input.
 Mesh scaled_to_unit_diagonal(const Mesh& m) {
-  CGAL::Bbox_3 box;
-  for (const Point& p : m.points) box += p.bbox();
-  const double diagonal =
-      std::sqrt(std::pow(box.xmax() - box.xmin(), 2) + std::pow(box.ymax() - box.ymin(), 2) +
-                std::pow(box.zmax() - box.zmin(), 2));
-  int exponent = 0;
-  std::frexp(diagonal, &exponent);  // diagonal = f 2^exponent, f in [1/2, 1)
-  Mesh out = transformed(m, Transformation(CGAL::SCALING, FT(std::ldexp(1.0, 1 - exponent))));
+  Mesh out = transformed(m, Transformation(CGAL::SCALING, FT(bench::unit_diagonal_scale(m))));
   make_exact(out);
   return out;
 }

@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench_common.h"
 #include "morphex/check.h"
 #include "morphex/io.h"
 #include "morphex/repair.h"
@@ -28,18 +29,7 @@ using namespace morphex;
 
 namespace {
 
-template <class Body>
-double median_seconds(int runs, Body&& body) {
-  body();  // warm-up
-  std::vector<double> times;
-  for (int i = 0; i < runs; ++i) {
-    const Stopwatch start;
-    body();
-    times.push_back(start.seconds());
-  }
-  std::sort(times.begin(), times.end());
-  return times[times.size() / 2];
-}
+using bench::median_of_runs;
 
 }  // namespace
 
@@ -83,15 +73,15 @@ int main(int argc, char** argv) {
     }
     MeshReport report;
     const double check_seconds =
-        median_seconds(runs, [&] { report = check_mesh(mesh, kValidityOnly); });
+        median_of_runs(runs, [&] { report = check_mesh(mesh, kValidityOnly); });
     bool cgal_says = false;
     const double cgal_seconds =
-        median_seconds(runs, [&] { cgal_says = peers::cgal_does_self_intersect(mesh); });
+        median_of_runs(runs, [&] { cgal_says = peers::cgal_does_self_intersect(mesh); });
     RepairResult repaired;
     std::string outcome;
     double repair_seconds = 0;
     try {
-      repair_seconds = median_seconds(runs, [&] { repaired = repair_mesh(mesh); });
+      repair_seconds = median_of_runs(runs, [&] { repaired = repair_mesh(mesh); });
       outcome = check_mesh(repaired.mesh, kValidityOnly).valid_solid() ? "valid" : "INVALID";
     } catch (const InputError& e) {
       outcome = std::string("refused: ") + e.what();
