@@ -8,7 +8,10 @@
 #include <CGAL/FPU.h>
 #include <CGAL/Interval_nt.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/parallel_sort.h>
+
+#include <optional>
 
 #include "boolean_internal.h"
 #include "spatial.h"
@@ -63,8 +66,12 @@ Pairs candidate_pairs(const Mesh& a, const Mesh& b) {
         if (box_a[i].overlaps(box_b[j])) pairs.emplace_back(i, j);
     return pairs;
   }
-  if (std::max(na, nb) < 8 * std::min(na, nb))
-    return TriangleTree::overlapping_pairs(TriangleTree(a), TriangleTree(b));
+  if (std::max(na, nb) < 8 * std::min(na, nb)) {
+    // Both trees at once: the upper levels of a tree are built sequentially.
+    std::optional<TriangleTree> tree_a, tree_b;
+    tbb::parallel_invoke([&] { tree_a.emplace(a); }, [&] { tree_b.emplace(b); });
+    return TriangleTree::overlapping_pairs(*tree_a, *tree_b);
+  }
   const bool tree_on_a = na < nb;
   const Mesh& indexed = tree_on_a ? a : b;
   const Mesh& queries = tree_on_a ? b : a;
