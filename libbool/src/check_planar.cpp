@@ -383,6 +383,15 @@ void add_proved_stars(const Mesh& mesh, const PointTable& table,
     std::uint32_t face;
     bool operator<(const Corner& o) const { return apex != o.apex ? apex < o.apex : face < o.face; }
   };
+  // Most meshes have no vertex of that many triangles: a count by position settles it at once.
+  {
+    std::vector<std::uint32_t> degree(mesh.num_vertices(), 0);
+    bool any = false;
+    for (std::uint32_t f = 0; f < mesh.num_triangles() && !any; ++f)
+      if (!degenerate[f] && groups.patch_of[f] < 0)
+        for (const VertexIndex v : mesh.triangles[f]) any |= ++degree[position[v]] >= min_triangles;
+    if (!any) return;
+  }
   std::vector<Corner> corners_at;
   corners_at.reserve(3 * mesh.num_triangles());
   for (std::uint32_t f = 0; f < mesh.num_triangles(); ++f)
