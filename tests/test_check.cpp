@@ -150,6 +150,16 @@ TEST(Check, DegenerateFace) {
   const MeshReport r = check_mesh(m);
   EXPECT_EQ(r.degenerate_faces, 1u);
   EXPECT_EQ(r.first_degenerate_face, 12u);
+  // A degenerate face through the cube is reported as degenerate, not as crossing the faces
+  // it passes (its pairs are not tested: the triangle tests need proper triangles).
+  Mesh through = make_cube(FT(1));
+  through.points.push_back(Point(0, 0, -3));
+  through.points.push_back(Point(0, 0, 0));
+  through.points.push_back(Point(0, 0, 3));
+  through.triangles.push_back({8, 9, 10});
+  const MeshReport t = check_mesh(through);
+  EXPECT_EQ(t.degenerate_faces, 1u);
+  EXPECT_EQ(t.self_intersections, 0u);
   // a closed mesh whose first problem is a face with collinear corners
   Mesh flat = make_tetrahedron();
   flat.points[2] = Point(2, 0, 0);  // (0,0,0), (1,0,0), (2,0,0) collinear

@@ -367,6 +367,8 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
   std::vector<Found> found(tree.self_pair_tasks() + planar.patches.size());
   tree.for_each_self_pair<detail::UpwardRounding>(
       [&](std::size_t task, std::uint32_t i, std::uint32_t j) {
+        // Degenerate faces are reported on their own (the tree over all faces holds them).
+        if (degenerate[i] || degenerate[j]) return;
         if (test.improper(mesh.triangles[i], mesh.triangles[j])) found[task].add(i, j, list);
       });
   tbb::parallel_for(std::size_t(0), planar.patches.size(), [&](std::size_t p) {
