@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "check_planar.h"
+#include "check_stars.h"
 #include "morphex/union_find.h"
 #include "point_index.h"
 #include "point_table.h"
@@ -247,6 +248,32 @@ void check_vertex_fans(const Mesh& mesh, const ManifoldEdges& manifold, MeshRepo
     }
 }
 
+// Edges, fans and the local proofs of the stars in one pass by vertex (check_stars.h), or, when
+// some face repeats a vertex, by sorted edge records and fans over corners. Joins the faces of
+// every edge in `components`; `proved` gets the vertices whose stars are proved embedded.
+ManifoldEdges check_topology(const Mesh& mesh, const PointTable& table, bool prove,
+                             UnionFind& components, std::vector<std::uint8_t>& proved,
+                             MeshReport& r) {
+  for (const Triangle& t : mesh.triangles)
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
+      ManifoldEdges manifold = check_edges(mesh, components, r);
+      check_vertex_fans(mesh, manifold, r);
+      return manifold;
+    }
+  detail::VertexStars stars = detail::examine_vertex_stars(mesh, table, prove);
+  for (const auto& [edge, faces] : stars.manifold) components.join(faces[1], faces[0]);
+  for (const auto& [f, g] : stars.other_joins) components.join(f, g);
+  r.border_edges = stars.border_edges;
+  r.first_border_vertex = stars.first_border_vertex;
+  r.non_manifold_edges = stars.non_manifold_edges;
+  r.consistently_oriented = !stars.first_misoriented_face;
+  r.first_misoriented_face = stars.first_misoriented_face;
+  r.non_manifold_vertices = stars.non_manifold_vertices;
+  r.first_non_manifold_vertex = stars.first_non_manifold_vertex;
+  proved = std::move(stars.embedded);
+  return std::move(stars.manifold);
+}
+
 // Each face's component, numbered 0.. in face order; sets r.components.
 std::vector<std::uint32_t> number_components(UnionFind& components, std::size_t nf, MeshReport& r) {
   std::vector<std::uint32_t> component_of(nf), index(nf, UINT32_MAX);
@@ -345,12 +372,13 @@ std::vector<std::uint32_t> patch_candidates(const Mesh& mesh, const PointTable& 
 // exactly, once (i < j).
 void find_self_intersections(const Mesh& mesh, const PointTable& table,
                              const std::vector<std::uint8_t>& degenerate,
-                             const ManifoldEdges& manifold, const CheckOptions& options,
-                             MeshReport& r) {
+                             const ManifoldEdges& manifold, const std::vector<std::uint8_t>& proved,
+                             const CheckOptions& options, MeshReport& r) {
   // Vertices by position: coincident ones (separated features) are one position.
   std::vector<PointId> position(mesh.num_vertices());
   {
     detail::PositionIndex index;
+    index.reserve(mesh.num_vertices());
     for (VertexIndex v = 0; v < mesh.num_vertices(); ++v)
       position[v] = index.find_or_insert(mesh.points[v], v);
   }
@@ -364,11 +392,19 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
       planar.patches.empty() ? TriangleTree(mesh) : TriangleTree(mesh, others);
   const TrianglePairs test(table, position);
   const bool list = options.list_self_intersections;
+  // Triangles with a common vertex whose star is proved embedded near it meet properly (the
+  // neighbours of every triangle: most of the pairs the traversal meets).
+  auto share_proved_vertex = [&](const Triangle& f, const Triangle& g) {
+    for (const VertexIndex v : f)
+      if (proved[v] && (v == g[0] || v == g[1] || v == g[2])) return true;
+    return false;
+  };
   std::vector<Found> found(tree.self_pair_tasks() + planar.patches.size());
   tree.for_each_self_pair<detail::UpwardRounding>(
       [&](std::size_t task, std::uint32_t i, std::uint32_t j) {
         // Degenerate faces are reported on their own (the tree over all faces holds them).
         if (degenerate[i] || degenerate[j]) return;
+        if (!proved.empty() && share_proved_vertex(mesh.triangles[i], mesh.triangles[j])) return;
         if (test.improper(mesh.triangles[i], mesh.triangles[j])) found[task].add(i, j, list);
       });
   tbb::parallel_for(std::size_t(0), planar.patches.size(), [&](std::size_t p) {
@@ -454,14 +490,15 @@ MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
   const PointTable table(mesh, mesh, true);
   const std::vector<std::uint8_t> degenerate = find_degenerate_faces(mesh, table, r);
   UnionFind components(mesh.num_triangles());
-  const ManifoldEdges manifold = check_edges(mesh, components, r);
-  check_vertex_fans(mesh, manifold, r);
+  std::vector<std::uint8_t> proved;
+  const ManifoldEdges manifold =
+      check_topology(mesh, table, options.self_intersections, components, proved, r);
   const std::vector<std::uint32_t> component_of =
       number_components(components, mesh.num_triangles(), r);
   if (options.volume) r.volume = signed_volume(mesh);
   r.genus = total_genus(mesh, component_of, r);
   if (options.self_intersections && mesh.num_triangles() > 1)
-    find_self_intersections(mesh, table, degenerate, manifold, options, r);
+    find_self_intersections(mesh, table, degenerate, manifold, proved, options, r);
   r.outward = is_outward(mesh, component_of, options, r);
   return r;
 }

@@ -23,27 +23,37 @@ std::array<PointId, 3> corners(const Mesh& mesh, const std::vector<PointId>& pos
   return {position[t[0]], position[t[1]], position[t[2]]};
 }
 
-// Faces joined across manifold edges when they lie in one plane on either side of the edge (the
-// same turn seen along the plane's dominant axis).
+// The two faces of a manifold edge lie in one plane on either side of the edge (the same turn
+// seen along the plane's dominant axis).
+bool coplanar_across(const Mesh& mesh, const PointTable& table,
+                     const std::vector<PointId>& position,
+                     const std::vector<std::uint8_t>& degenerate,
+                     const std::pair<std::uint64_t, std::array<std::uint32_t, 2>>& link) {
+  const auto [fi, gi] = link.second;
+  if (degenerate[fi] || degenerate[gi]) return false;
+  const auto f = corners(mesh, position, fi), g = corners(mesh, position, gi);
+  for (int k = 0; k < 3; ++k) {
+    const PointId x = g[k];
+    if (x == f[0] || x == f[1] || x == f[2]) continue;
+    if (table.orientation(f[0], f[1], f[2], x) != CGAL::ZERO) return false;
+    const int d = table.dominant_axis(f[0], f[1], f[2]);
+    return table.orientation_2(d, f[0], f[1], f[2]) == table.orientation_2(d, g[0], g[1], g[2]);
+  }
+  return false;
+}
+
+// Faces joined across manifold edges when they lie in one plane on either side of the edge.
 UnionFind coplanar_neighbours(const Mesh& mesh, const PointTable& table,
                               const std::vector<PointId>& position,
                               const std::vector<std::uint8_t>& degenerate,
                               const ManifoldEdges& links) {
   std::vector<std::uint8_t> join(links.size());
-  tbb::parallel_for(std::size_t(0), links.size(), [&](std::size_t l) {
-    const auto [fi, gi] = links[l].second;
-    if (degenerate[fi] || degenerate[gi]) return;
-    const UpwardRounding rounding;
-    const auto f = corners(mesh, position, fi), g = corners(mesh, position, gi);
-    for (int k = 0; k < 3; ++k) {
-      const PointId x = g[k];
-      if (x == f[0] || x == f[1] || x == f[2]) continue;
-      if (table.orientation(f[0], f[1], f[2], x) != CGAL::ZERO) return;
-      const int d = table.dominant_axis(f[0], f[1], f[2]);
-      join[l] =
-          table.orientation_2(d, f[0], f[1], f[2]) == table.orientation_2(d, g[0], g[1], g[2]);
-    }
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, links.size(), 1024),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      const UpwardRounding rounding;  // once per range: setting it costs
+                      for (std::size_t l = range.begin(); l != range.end(); ++l)
+                        join[l] = coplanar_across(mesh, table, position, degenerate, links[l]);
+                    });
   UnionFind patches(mesh.num_triangles());
   for (std::size_t l = 0; l < links.size(); ++l)
     if (join[l]) patches.join(links[l].second[0], links[l].second[1]);

@@ -139,6 +139,9 @@ class PointTable {
     return side == 0 || same_mesh_ ? v : PointId(num_a_ + v);
   }
   std::size_t num_inputs() const { return num_inputs_; }
+  // The input points as doubles, by id, when every input point is one (else empty): for
+  // callers that run the static filters themselves on differences they reuse.
+  const std::vector<std::array<double, 3>>& input_doubles() const { return input_xyz_; }
   std::size_t size() const { return num_inputs_ + recipes_.size(); }
   bool is_input(PointId id) const { return id < num_inputs_; }
   const Recipe& recipe(PointId id) const { return recipes_[id - num_inputs_]; }

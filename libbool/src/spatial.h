@@ -187,8 +187,9 @@ void TriangleTree::for_each_self_pair(Visit&& visit) const {
         for (std::uint32_t i = na.index * kLeafSize; i < a_end; ++i) {
           std::uint32_t hits = leaf_overlaps(nb.index, sorted_boxes_[i]);
           if (i + 1 > b_first) hits &= i + 1 - b_first >= 32 ? 0u : ~0u << (i + 1 - b_first);
-          for (std::uint32_t j = b_first; hits != 0 && j < b_end; ++j, hits >>= 1)
-            if (hits & 1u) visit(task, order_[i], order_[j]);
+          hits &= b_end - b_first >= 32 ? ~0u : (1u << (b_end - b_first)) - 1;
+          for (; hits != 0; hits &= hits - 1)
+            visit(task, order_[i], order_[b_first + std::uint32_t(__builtin_ctz(hits))]);
         }
         continue;
       }

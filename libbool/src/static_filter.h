@@ -46,10 +46,10 @@ inline std::optional<int> static_orientation(const Xyz& p, const Xyz& q, const X
   return std::nullopt;
 }
 
-// sign det [q - p, r - p] in the coordinates u, v: CGAL's orientation of the projected points.
-inline std::optional<int> static_orientation_2(int u, int v, const Xyz& p, const Xyz& q,
-                                               const Xyz& r) {
-  const double qu = q[u] - p[u], qv = q[v] - p[v], ru = r[u] - p[u], rv = r[v] - p[v];
+// sign det [(qu, qv), (ru, rv)] for differences q - p, r - p rounded from doubles (as computed
+// below): orientation_2 of p, q, r when the differences share one origin p.
+inline std::optional<int> static_orientation_2_of_differences(double qu, double qv, double ru,
+                                                              double rv) {
   if ((qu == 0 && ru == 0) || (qv == 0 && rv == 0)) return 0;  // exactly on one axis-parallel line
   const double left = qu * rv, right = qv * ru;
   const double det = left - right, sum = std::fabs(left) + std::fabs(right);
@@ -59,6 +59,12 @@ inline std::optional<int> static_orientation_2(int u, int v, const Xyz& p, const
   if (det > bound) return 1;
   if (-det > bound) return -1;
   return std::nullopt;
+}
+
+// sign det [q - p, r - p] in the coordinates u, v: CGAL's orientation of the projected points.
+inline std::optional<int> static_orientation_2(int u, int v, const Xyz& p, const Xyz& q,
+                                               const Xyz& r) {
+  return static_orientation_2_of_differences(q[u] - p[u], q[v] - p[v], r[u] - p[u], r[v] - p[v]);
 }
 
 }  // namespace morphex::detail
