@@ -393,20 +393,26 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
   const TrianglePairs test(table, position);
   const bool list = options.list_self_intersections;
   // Triangles with a common vertex whose star is proved embedded near it meet properly (the
-  // neighbours of every triangle: most of the pairs the traversal meets).
-  auto share_proved_vertex = [&](const Triangle& f, const Triangle& g) {
-    for (const VertexIndex v : f)
-      if (proved[v] && (v == g[0] || v == g[1] || v == g[2])) return true;
-    return false;
-  };
+  // neighbours of every triangle: most of the pairs the traversal meets); the traversal drops
+  // them by these keys.
+  TriangleTree::TriangleKeys proved_corners;
+  if (!proved.empty()) {
+    proved_corners.resize(mesh.num_triangles());
+    tbb::parallel_for(std::size_t(0), mesh.num_triangles(), [&](std::size_t t) {
+      for (int k = 0; k < 3; ++k) {
+        const VertexIndex v = mesh.triangles[t][k];
+        proved_corners[t][k] = proved[v] ? v : TriangleTree::kNoKey;
+      }
+    });
+  }
   std::vector<Found> found(tree.self_pair_tasks() + planar.patches.size());
   tree.for_each_self_pair<detail::UpwardRounding>(
       [&](std::size_t task, std::uint32_t i, std::uint32_t j) {
         // Degenerate faces are reported on their own (the tree over all faces holds them).
         if (degenerate[i] || degenerate[j]) return;
-        if (!proved.empty() && share_proved_vertex(mesh.triangles[i], mesh.triangles[j])) return;
         if (test.improper(mesh.triangles[i], mesh.triangles[j])) found[task].add(i, j, list);
-      });
+      },
+      proved.empty() ? nullptr : &proved_corners);
   tbb::parallel_for(std::size_t(0), planar.patches.size(), [&](std::size_t p) {
     const std::vector<std::uint32_t> candidates =
         patch_candidates(mesh, table, position, planar, tree, p);

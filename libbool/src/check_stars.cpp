@@ -14,20 +14,6 @@ namespace morphex::detail {
 
 namespace {
 
-// Corners 3 f + k grouped by vertex (a counting sort): corners[first[v] .. first[v + 1]).
-struct CornersByVertex {
-  std::vector<std::uint32_t> first, corners;
-  explicit CornersByVertex(const Mesh& mesh) : first(mesh.num_vertices() + 1, 0) {
-    for (const Triangle& t : mesh.triangles)
-      for (const VertexIndex v : t) ++first[v + 1];
-    std::partial_sum(first.begin(), first.end(), first.begin());
-    corners.resize(3 * mesh.num_triangles());
-    std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
-    for (std::uint32_t c = 0; c < corners.size(); ++c)
-      corners[next[mesh.triangles[c / 3][c % 3]]++] = c;
-  }
-};
-
 // One use of an edge {v, other} by a face of v's star.
 struct Use {
   VertexIndex other;
@@ -43,23 +29,37 @@ struct Angle {
   std::uint32_t face;
 };
 
+// The angles of every face grouped by vertex (a counting sort, faces read in order):
+// angles[first[v] .. first[v + 1]) is the star of v.
+struct StarsByVertex {
+  std::vector<std::uint32_t> first;
+  std::vector<Angle> angles;
+  explicit StarsByVertex(const Mesh& mesh) : first(mesh.num_vertices() + 1, 0) {
+    for (const Triangle& t : mesh.triangles)
+      for (const VertexIndex v : t) ++first[v + 1];
+    std::partial_sum(first.begin(), first.end(), first.begin());
+    angles.resize(3 * mesh.num_triangles());
+    std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
+    for (std::uint32_t f = 0; f < mesh.num_triangles(); ++f) {
+      const Triangle& t = mesh.triangles[f];
+      angles[next[t[0]]++] = {t[1], t[2], f};
+      angles[next[t[1]]++] = {t[2], t[0], f};
+      angles[next[t[2]]++] = {t[0], t[1], f};
+    }
+  }
+};
+
 // Stars of up to this many faces are paired by comparing every angle with every other; larger
 // ones (a cone's apex) sort their edge uses instead.
 constexpr std::size_t kSmallStar = 32;
 
 class StarExaminer {
  public:
-  StarExaminer(const Mesh& mesh, const PointTable& table, bool prove)
-      : mesh_(mesh), table_(table), prove_(prove) {}
+  StarExaminer(const PointTable& table, bool prove) : table_(table), prove_(prove) {}
 
-  // Examines the star of v (its corners) into `out`; true when proved embedded near v.
-  bool examine(VertexIndex v, const std::uint32_t* corners, std::size_t n, VertexStars& out) {
-    star_.clear();
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::uint32_t f = corners[i] / 3, k = corners[i] % 3;
-      const Triangle& t = mesh_.triangles[f];
-      star_.push_back({t[(k + 1) % 3], t[(k + 2) % 3], f});
-    }
+  // Examines the star of v (its angles) into `out`; true when proved embedded near v.
+  bool examine(VertexIndex v, const Angle* angles, std::size_t n, VertexStars& out) {
+    star_.assign(angles, angles + n);
     const bool paired =
         n <= kSmallStar && pair_angles() ? record_paired(v, out) : record_uses(v, out);
     return prove_ && paired && n >= 3 && covers_once(v, projection_axis(v));
@@ -249,7 +249,6 @@ class StarExaminer {
     return q == 3 ? 5 : q;
   }
 
-  const Mesh& mesh_;
   const PointTable& table_;
   const bool prove_;
   std::vector<Angle> star_;
@@ -275,18 +274,19 @@ void append(VertexStars& all, VertexStars& chunk) {
 }  // namespace
 
 VertexStars examine_vertex_stars(const Mesh& mesh, const PointTable& table, bool prove) {
-  const CornersByVertex by_vertex(mesh);
+  const StarsByVertex by_vertex(mesh);
   const std::size_t nv = mesh.num_vertices(), chunk_size = 2048;
   std::vector<VertexStars> chunks((nv + chunk_size - 1) / chunk_size);
   VertexStars all;
   all.embedded.assign(prove ? nv : 0, 0);
   tbb::parallel_for(std::size_t(0), chunks.size(), [&](std::size_t c) {
-    StarExaminer examiner(mesh, table, prove);
+    StarExaminer examiner(table, prove);
+    chunks[c].manifold.reserve(3 * chunk_size);
     for (std::size_t v = c * chunk_size; v < std::min(nv, (c + 1) * chunk_size); ++v) {
       const std::uint32_t begin = by_vertex.first[v], end = by_vertex.first[v + 1];
       if (begin == end) continue;
       const bool embedded =
-          examiner.examine(VertexIndex(v), &by_vertex.corners[begin], end - begin, chunks[c]);
+          examiner.examine(VertexIndex(v), &by_vertex.angles[begin], end - begin, chunks[c]);
       if (prove) all.embedded[v] = embedded;
     }
   });

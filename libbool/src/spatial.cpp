@@ -322,6 +322,43 @@ std::uint32_t TriangleTree::leaf_overlaps(std::uint32_t leaf, const FloatBox& bo
 #endif
 }
 
+std::vector<TriangleTree::LeafKeys> TriangleTree::leaf_keys(const TriangleKeys& keys) const {
+  std::vector<LeafKeys> by_leaf(leaf_boxes_.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, by_leaf.size(), kGrain / kLeafSize),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t leaf = r.begin(); leaf < r.end(); ++leaf)
+                        for (std::uint32_t i = 0; i < kLeafSize; ++i) {
+                          const std::size_t t = leaf * kLeafSize + i;
+                          for (int k = 0; k < 3; ++k)
+                            by_leaf[leaf].key[k][i] =
+                                t < order_.size() ? keys[order_[t]][k] : kNoKey;
+                        }
+                    });
+  return by_leaf;
+}
+
+std::uint32_t TriangleTree::leaf_shares_key(const LeafKeys& leaf,
+                                            const std::array<std::uint32_t, 3>& keys) {
+#if defined(__SSE2__)
+  __m128i any = _mm_setzero_si128();
+  for (const std::uint32_t key : keys) {
+    if (key == kNoKey) continue;
+    const __m128i k = _mm_set1_epi32(int(key));
+    for (int j = 0; j < 3; ++j)
+      any = _mm_or_si128(
+          any, _mm_cmpeq_epi32(k, _mm_load_si128(reinterpret_cast<const __m128i*>(leaf.key[j]))));
+  }
+  return std::uint32_t(_mm_movemask_ps(_mm_castsi128_ps(any)));
+#else
+  std::uint32_t mask = 0;
+  for (std::uint32_t i = 0; i < kLeafSize; ++i)
+    for (const std::uint32_t key : keys)
+      for (int j = 0; j < 3; ++j)
+        if (key != kNoKey && leaf.key[j][i] == key) mask |= 1u << i;
+  return mask;
+#endif
+}
+
 std::uint32_t TriangleTree::self_task_level() const {
   std::uint32_t level = std::uint32_t(levels_.size() - 1);
   while (level > 0 && levels_[level].size() < 256) --level;

@@ -81,7 +81,17 @@ class TriangleTree {
   // one thread, in an order that depends only on the tree). Each task holds a TaskScope object
   // while it runs (a default-constructible guard, for per-task state such as the FPU mode).
   template <class TaskScope = int, class Visit>
-  void for_each_self_pair(Visit&& visit) const;
+  void for_each_self_pair(Visit&& visit) const {
+    for_each_self_pair<TaskScope>(std::forward<Visit>(visit), nullptr);
+  }
+  // The same, without the pairs of triangles that have a common key: keys[t] holds up to three
+  // keys of triangle t (by the mesh's index; kNoKey for none). The check passes the vertices
+  // whose stars are proved embedded, so that the neighbours of a triangle, most of the pairs
+  // whose boxes overlap, are dropped a whole leaf at a time instead of one by one.
+  using TriangleKeys = std::vector<std::array<std::uint32_t, 3>>;
+  static constexpr std::uint32_t kNoKey = 0xffffffffu;
+  template <class TaskScope = int, class Visit>
+  void for_each_self_pair(Visit&& visit, const TriangleKeys* keys) const;
   std::size_t self_pair_tasks() const;
 
   // The box of triangle t (a tree over the whole mesh).
@@ -153,12 +163,21 @@ class TriangleTree {
   std::vector<LeafBoxes> leaf_boxes_;
   // Bit i set: the box of the leaf's i-th triangle overlaps `box`.
   std::uint32_t leaf_overlaps(std::uint32_t leaf, const FloatBox& box) const;
+  // The keys by leaf, side by side like the boxes (kNoKey in empty slots).
+  struct LeafKeys {
+    alignas(16) std::uint32_t key[3][kLeafSize];
+  };
+  std::vector<LeafKeys> leaf_keys(const TriangleKeys& keys) const;
+  // Bit i set: the leaf's i-th triangle has one of `keys` (kNoKey matches nothing).
+  static std::uint32_t leaf_shares_key(const LeafKeys& leaf,
+                                       const std::array<std::uint32_t, 3>& keys);
   std::vector<std::vector<FloatBox>> levels_;  // levels_.back() has the root alone
 };
 
 template <class TaskScope, class Visit>
-void TriangleTree::for_each_self_pair(Visit&& visit) const {
+void TriangleTree::for_each_self_pair(Visit&& visit, const TriangleKeys* keys) const {
   if (levels_.empty()) return;
+  const std::vector<LeafKeys> by_leaf = keys ? leaf_keys(*keys) : std::vector<LeafKeys>();
   const std::uint32_t task_level = self_task_level();
   const Node root{std::uint32_t(levels_.size() - 1), 0};
   // Positions in the Morton order covered by a node: a pair of nodes whose ranges are ordered the
@@ -186,6 +205,7 @@ void TriangleTree::for_each_self_pair(Visit&& visit) const {
         const std::uint32_t b_first = nb.index * kLeafSize;
         for (std::uint32_t i = na.index * kLeafSize; i < a_end; ++i) {
           std::uint32_t hits = leaf_overlaps(nb.index, sorted_boxes_[i]);
+          if (keys && hits != 0) hits &= ~leaf_shares_key(by_leaf[nb.index], (*keys)[order_[i]]);
           if (i + 1 > b_first) hits &= i + 1 - b_first >= 32 ? 0u : ~0u << (i + 1 - b_first);
           hits &= b_end - b_first >= 32 ? ~0u : (1u << (b_end - b_first)) - 1;
           for (; hits != 0; hits &= hits - 1)

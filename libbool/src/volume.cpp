@@ -10,6 +10,7 @@
 #include <gmpxx.h>
 #include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <climits>
@@ -174,7 +175,51 @@ FT signed_volume(const Mesh& mesh) {
   return FT(*six / Exact(6));
 }
 
+namespace {
+// The sign of the sum of det(a, b, c) in doubles, when the rounding errors cannot change it:
+// each term is within 8 eps of its permanent (|ax| (|by cz| + |bz cy|) + ...), and a sum of n
+// terms within (n - 1) eps of the sum of their magnitudes in any order, eps = 2^-52 so that it
+// holds under any rounding mode; underflow adds at most 2^-1074 per operation. Undecided when
+// a coordinate is not a double or the magnitudes are out of range.
+std::optional<CGAL::Sign> volume_sign_by_doubles(const Mesh& mesh) {
+  struct Sum {
+    double det = 0, permanent = 0;
+    bool doubles = true;
+  };
+  const Sum sum = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, mesh.num_triangles(), 4096), Sum{},
+      [&](const tbb::blocked_range<std::size_t>& range, Sum s) {
+        for (std::size_t f = range.begin(); f != range.end() && s.doubles; ++f) {
+          double x[3][3];
+          for (int k = 0; k < 3; ++k) {
+            const auto& p = CGAL::approx(mesh.points[mesh.triangles[f][k]]);
+            s.doubles = s.doubles && p.x().is_point() && p.y().is_point() && p.z().is_point();
+            x[k][0] = p.x().inf(), x[k][1] = p.y().inf(), x[k][2] = p.z().inf();
+          }
+          const auto &a = x[0], &b = x[1], &c = x[2];
+          s.det += a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) +
+                   a[2] * (b[0] * c[1] - b[1] * c[0]);
+          s.permanent += std::fabs(a[0]) * (std::fabs(b[1] * c[2]) + std::fabs(b[2] * c[1])) +
+                         std::fabs(a[1]) * (std::fabs(b[2] * c[0]) + std::fabs(b[0] * c[2])) +
+                         std::fabs(a[2]) * (std::fabs(b[0] * c[1]) + std::fabs(b[1] * c[0]));
+        }
+        return s;
+      },
+      [](const Sum& a, const Sum& b) {
+        return Sum{a.det + b.det, a.permanent + b.permanent, a.doubles && b.doubles};
+      });
+  if (!sum.doubles || !(sum.permanent < 1e300)) return std::nullopt;  // also NaN
+  const double n = double(mesh.num_triangles()), eps = 0x1p-52;
+  // The permanents' own sum is rounded too: a factor 2 covers it.
+  const double bound = 2 * (n + 8) * eps * sum.permanent + 16 * n * 0x1p-1074;
+  if (sum.det > bound) return CGAL::POSITIVE;
+  if (-sum.det > bound) return CGAL::NEGATIVE;
+  return std::nullopt;
+}
+}  // namespace
+
 CGAL::Sign signed_volume_sign(const Mesh& mesh) {
+  if (const auto sign = volume_sign_by_doubles(mesh)) return *sign;
   {
     CGAL::Protect_FPU_rounding<true> rounding;
     CGAL::Interval_nt<false> sum = 0;
