@@ -104,6 +104,34 @@ TEST(Volume, EqualsTheRationalSumForEveryScale) {
   EXPECT_EQ(signed_volume(Mesh{}), FT(0));
 }
 
+// The sign of the volume (the outward test) is decided by doubles when the rounding errors
+// cannot flip it, and exactly otherwise: large terms that cancel exactly, or up to a tiny rest,
+// at scales down to the subnormal range.
+TEST(Volume, SignAgreesWithTheExactSum) {
+  for (int spread : {0, 40, 150}) {
+    for (unsigned seed = 1; seed <= 3; ++seed) {
+      const Mesh m = random_double_triangles(seed * 10 + unsigned(spread), spread, 500);
+      EXPECT_EQ(signed_volume_sign(m), CGAL::sign(volume_by_rationals(m))) << "spread " << spread;
+    }
+  }
+  for (const double scale : {1.0, 0x1p-340, 0x1p-500, 0x1p300}) {
+    for (const double rest : {0.0, 0x1p-60, -0x1p-60}) {
+      // Big triangles and their reverses cancel exactly; one small triangle is what remains.
+      Mesh m = random_double_triangles(99, 20, 200);
+      const std::size_t n = m.triangles.size();
+      for (std::size_t i = 0; i < n; ++i)
+        m.triangles.push_back({m.triangles[i][0], m.triangles[i][2], m.triangles[i][1]});
+      const VertexIndex o = VertexIndex(m.points.size());
+      m.points.insert(m.points.end(), {Point(1, 0, 0), Point(0, 1, 0), Point(0, 0, rest)});
+      m.triangles.push_back({o, o + 1, o + 2});
+      for (Point& p : m.points) p = Point(p.x() * scale, p.y() * scale, p.z() * scale);
+      const CGAL::Sign expected = CGAL::sign(volume_by_rationals(m));
+      EXPECT_EQ(expected, CGAL::sign(rest)) << "scale " << scale << " rest " << rest;
+      EXPECT_EQ(signed_volume_sign(m), expected) << "scale " << scale << " rest " << rest;
+    }
+  }
+}
+
 TEST(DoubleMesh, RoundTripIsLosslessForDoubles) {
   Mesh m = unit_cube();
   m.points[0] = Point(0.1, -2.5e-7, 3.0);
