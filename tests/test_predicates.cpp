@@ -123,6 +123,40 @@ TEST(PointIndex, EqualPositionsShareOneIdWhateverTheirConstruction) {
   }
 }
 
+// Positions are hashed by coordinates truncated to 40 bits, from the intervals when both ends
+// agree and from the exact value otherwise. Coordinates at and within 2^-60 of a truncation cut,
+// as doubles and as rationals reached by two constructions with different intervals, and at
+// tiny and huge magnitudes: equal values always share an id, different ones never do (against a
+// map ordered by exact value).
+TEST(PointIndex, CoordinatesAtTruncationCutsAreIdentifiedExactly) {
+  std::vector<Point> points;
+  detail::PointIndex index(points);
+  std::map<std::array<FT, 3>, std::uint32_t> by_value;  // exact lexicographic order
+  std::mt19937 random(40);
+  std::uniform_int_distribution<int> offset(-3, 3), pick(0, 5);
+  const double scales[] = {1.0, 0x1p-1005, 0x1p-998, 0x1p999, 0x1p1003, 3.0};
+  for (int i = 0; i < 3000; ++i) {
+    FT c[3];
+    for (FT& x : c) {
+      const double cut = scales[pick(random)] * (1 + std::ldexp(double(pick(random)), -39));
+      // On the cut, a double away from it, or a rational (thirds) within 2^-60 of it.
+      x = FT(cut) +
+          FT(cut) * FT(offset(random)) * (pick(random) % 2 ? FT(0x1p-60) : FT(1) / 3 * FT(0x1p-58));
+    }
+    // Two constructions of the same point: directly, and through a midpoint (wider intervals).
+    const Point p(c[0], c[1], c[2]);
+    const Point shifted(c[0] + FT(1) / 7, c[1] - FT(2) / 9, c[2] + FT(5) / 11);
+    const Point q = CGAL::midpoint(
+        shifted, Point(c[0] * 2 - shifted.x(), c[1] * 2 - shifted.y(), c[2] * 2 - shifted.z()));
+    const std::uint32_t id = index.id(i % 2 ? p : q);
+    ASSERT_EQ(index.id(i % 2 ? q : p), id) << i;
+    const auto [it, inserted] = by_value.emplace(std::array<FT, 3>{c[0], c[1], c[2]}, id);
+    ASSERT_EQ(it->second, id) << i << (inserted ? ": a new value found an old id" : "");
+  }
+  EXPECT_EQ(points.size(), by_value.size());
+  EXPECT_GT(by_value.size(), 1000u);
+}
+
 // The point table's predicates on ids (intervals, then homogeneous integers) against CGAL's on
 // the same points, among them constructions (edge/plane crossings kept as recipes, lazy).
 // When every input is a double the table decides most signs by plain double arithmetic and an

@@ -16,17 +16,12 @@
 #include <utility>
 #include <vector>
 
+#include "bench_common.h"
 #include "morphex/boolean.h"
 #include "morphex/generators.h"
 #include "morphex/mesh.h"
 
 namespace morphex::bench {
-
-// Exact rotation about z then x by the rational angle whose half-tangent is near tan(deg/2).
-inline Transformation rational_rotation(double degrees) {
-  const FT t = FT(std::round(std::tan(degrees * 3.14159265358979 / 360) * 1000)) / 1000;
-  return half_tangent_rotation(0, t) * half_tangent_rotation(2, t);
-}
 
 struct Case {
   std::string name;

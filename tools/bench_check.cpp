@@ -9,6 +9,8 @@
 //   cylinder:N    a prism whose caps are fans from their centres
 //   cone:N        a cone whose side triangles all meet at its apex, its base a fan from one vertex
 //   icosphere:L   the icosphere of level L (20 4^L facets)
+//   rotated:INPUT INPUT under a rational rotation (coordinates that are not doubles, as in the
+//                 second operand of bench_bool's real pairs and in every Boolean's output)
 // Columns: `morphex check` as the command runs it (exact volume included) on one thread; the
 // check the Boolean runs on its inputs (validity only) at each thread count, with the speed-up
 // over one thread; CGAL's does_self_intersect (one thread, Epeck) as a peer, and whether the two
@@ -38,8 +40,13 @@ using namespace morphex;
 namespace {
 
 using bench::median_of_runs;
+using bench::rational_rotation;
 
 Mesh input_mesh(const std::string& spec) {
+  // rotated:SPEC: the mesh under bench_bool's rational rotation (coordinates no longer doubles,
+  // as the second operand of its real pairs and every output of a Boolean).
+  if (spec.rfind("rotated:", 0) == 0)
+    return transformed(input_mesh(spec.substr(8)), rational_rotation(20));
   const auto colon = spec.find(':');
   const std::string kind = spec.substr(0, colon);
   const int n = colon == std::string::npos ? 0 : std::stoi(spec.substr(colon + 1));

@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Small pieces the benchmarks share: a median of timed runs, and the exact power-of-two scale
-// that brings a mesh to a common size.
+// Small pieces the benchmarks share: a median of timed runs, the exact power-of-two scale that
+// brings a mesh to a common size, and the rational rotation that makes coordinates non-doubles.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
+#include "morphex/generators.h"
 #include "morphex/mesh.h"
 #include "morphex/stopwatch.h"
 
@@ -24,6 +25,12 @@ double median_of_runs(int runs, Body&& body) {
   }
   std::sort(times.begin(), times.end());
   return times[times.size() / 2];
+}
+
+// Exact rotation about z then x by the rational angle whose half-tangent is near tan(deg/2).
+inline Transformation rational_rotation(double degrees) {
+  const FT t = FT(std::round(std::tan(degrees * 3.14159265358979 / 360) * 1000)) / 1000;
+  return half_tangent_rotation(0, t) * half_tangent_rotation(2, t);
 }
 
 // The power of two that brings the mesh's bounding-box diagonal into [1, 2): a scaling by it is

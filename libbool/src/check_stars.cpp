@@ -224,7 +224,11 @@ class StarExaminer {
   // The same without doubles: exact coordinate comparisons and orientations.
   bool covers_once_exactly(VertexIndex v, int axis) const {
     const int u = axis == 0 ? 1 : 0, w = axis == 2 ? 1 : 2;
+    // The sign of p - v along k: by the intervals when they are apart, else exactly.
     auto sign = [&](VertexIndex p, int k) {
+      const auto &a = table_.approx(p).cartesian(k), &o = table_.approx(v).cartesian(k);
+      if (a.inf() > o.sup()) return 1.0;
+      if (a.sup() < o.inf()) return -1.0;
       return double(CGAL::compare(table_.input(p).cartesian(k), table_.input(v).cartesian(k)));
     };
     int turn = 0, quarters = 0;
@@ -280,6 +284,10 @@ VertexStars examine_vertex_stars(const Mesh& mesh, const PointTable& table, bool
   VertexStars all;
   all.embedded.assign(prove ? nv : 0, 0);
   tbb::parallel_for(std::size_t(0), chunks.size(), [&](std::size_t c) {
+    // The interval stages of the table's predicates run without switching the rounding mode
+    // each time; the static filters' bounds hold under it (static_filter.h), and so do the
+    // quadrants' signs (a nonzero difference of doubles keeps its sign under any rounding).
+    const UpwardRounding rounding;
     StarExaminer examiner(table, prove);
     chunks[c].manifold.reserve(3 * chunk_size);
     for (std::size_t v = c * chunk_size; v < std::min(nv, (c + 1) * chunk_size); ++v) {

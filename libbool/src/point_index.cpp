@@ -12,90 +12,87 @@ namespace morphex::detail {
 
 namespace {
 
-// The three coordinates as doubles when each one is exactly a double, without exact evaluation
-// whenever the interval approximation already says so. (+0.0 stands for -0.0: equal values.)
-std::optional<std::array<double, 3>> double_coordinates(const Point& p) {
-  if (has_double_coordinates(p)) {
-    const auto& a = CGAL::approx(p);
-    return std::array<double, 3>{a.x().inf() + 0.0, a.y().inf() + 0.0, a.z().inf() + 0.0};
-  }
-  const auto& e = CGAL::exact(p);
-  std::array<double, 3> c{};
-  using Exact = std::decay_t<decltype(e.x())>;
-  const Exact* exact[3] = {&e.x(), &e.y(), &e.z()};
-  for (int i = 0; i < 3; ++i) {
-    c[i] = CGAL::to_double(*exact[i]) + 0.0;
-    if (!std::isfinite(c[i]) || Exact(c[i]) != *exact[i]) return std::nullopt;
-  }
-  return c;
+// x truncated toward zero to 40 significant bits (the low 13 bits of the significand cleared),
+// with magnitudes below 2^-1000 taken as 0 and above 2^1000 as 2^1000: a monotone function of x,
+// the same for a double and for any real that GMP truncates to that double first.
+double truncated(double x) {
+  if (std::fabs(x) < 0x1p-1000) return 0.0;
+  if (std::fabs(x) > 0x1p1000) return std::copysign(0x1p1000, x);
+  std::uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  bits &= ~std::uint64_t(0x1fff);
+  std::memcpy(&x, &bits, sizeof bits);
+  return x;
 }
 
-std::uint64_t hash_integer(mpz_srcptr z, std::uint64_t h) {
-  h = mix64(h ^ std::uint64_t(std::int64_t(mpz_sgn(z))));
-  for (std::size_t i = 0, n = mpz_size(z); i < n; ++i)
-    h = mix64(h ^ std::uint64_t(mpz_getlimbn(z, i)));
-  return h;
-}
-
-// Exact rationals are kept in lowest terms, so equal values have equal numerators and
-// denominators, limb for limb.
-std::uint64_t hash_exact(const Point& p) {
-  const auto& e = CGAL::exact(p);
+std::uint64_t hash_key(const std::array<double, 3>& key) {
   std::uint64_t h = 0x243f6a8885a308d3ull;
-  for (int i = 0; i < 3; ++i) {
-    const auto& c = e.cartesian(i);
-    h = hash_integer(c.get_num_mpz_t(), h);
-    h = hash_integer(c.get_den_mpz_t(), h);
+  for (const double d : key) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &d, sizeof bits);
+    h = mix64(h ^ bits);
   }
   return h;
 }
 
 }  // namespace
 
-std::uint32_t PositionIndex::rational_find_or_insert(const Point& p, std::uint32_t id) {
-  if (2 * (rational_entries_.size() + 1) > rational_slots_.size()) {
-    // Grow and re-insert by the stored hashes.
-    std::vector<std::uint32_t> old_slots = std::move(rational_slots_);
-    std::vector<std::uint64_t> old_hash = std::move(rational_hash_);
-    const std::size_t capacity = std::max<std::size_t>(64, 2 * old_slots.size());
-    rational_slots_.assign(capacity, kEmpty);
-    rational_hash_.assign(capacity, 0);
-    for (std::size_t s = 0; s < old_slots.size(); ++s) {
-      if (old_slots[s] == kEmpty) continue;
-      std::size_t i = old_hash[s] & (capacity - 1);
-      while (rational_slots_[i] != kEmpty) i = (i + 1) & (capacity - 1);
-      rational_slots_[i] = old_slots[s];
-      rational_hash_[i] = old_hash[s];
-    }
-  }
-  const std::uint64_t h = hash_exact(p);
-  const std::size_t mask = rational_slots_.size() - 1;
-  for (std::size_t i = h & mask;; i = (i + 1) & mask) {
-    const std::uint32_t entry = rational_slots_[i];
-    if (entry == kEmpty) {
-      rational_slots_[i] = std::uint32_t(rational_entries_.size());
-      rational_hash_[i] = h;
-      rational_entries_.push_back({p, id});
-      return id;
-    }
-    if (rational_hash_[i] == h && CGAL::exact(rational_entries_[entry].point) == CGAL::exact(p))
-      return rational_entries_[entry].id;
+void PositionIndex::reserve(std::size_t points) {
+  entries_.reserve(points);
+  std::size_t capacity = 64;
+  while (capacity < 2 * points + 2) capacity *= 2;
+  if (capacity > slots_.size()) rebuild(capacity);
+}
+
+void PositionIndex::rebuild(std::size_t capacity) {
+  slots_.assign(capacity, kEmpty);
+  hashes_.assign(capacity, 0);
+  for (std::uint32_t e = 0; e < entries_.size(); ++e) {
+    const std::uint64_t h = hash_key(entries_[e].key);
+    std::size_t i = h & (capacity - 1);
+    while (slots_[i] != kEmpty) i = (i + 1) & (capacity - 1);
+    slots_[i] = e;
+    hashes_[i] = h;
   }
 }
 
-std::size_t PositionIndex::Hash::operator()(const std::array<double, 3>& c) const {
-  std::uint64_t h = 0;
-  for (double d : c) {
-    std::uint64_t bits;
-    std::memcpy(&bits, &d, sizeof bits);
-    h = mix64(h ^ bits);
-  }
-  return std::size_t(h);
+bool PositionIndex::same(const Entry& e, const Point& p, bool doubles, const Key& xyz) const {
+  if (e.rational == kDoubles && doubles) return e.xyz == xyz;
+  if (e.rational == kDoubles) return p == Point(e.xyz[0], e.xyz[1], e.xyz[2]);
+  return rationals_[e.rational] == p;
 }
 
 std::uint32_t PositionIndex::find_or_insert(const Point& p, std::uint32_t id) {
-  if (const auto key = double_coordinates(p)) return doubles_.emplace(*key, id).first;
-  return rational_find_or_insert(p, id);
+  const auto& a = CGAL::approx(p);
+  const bool doubles = has_double_coordinates(p);
+  Key key, xyz{};
+  for (int k = 0; k < 3; ++k) {
+    const auto& c = a.cartesian(k);
+    xyz[k] = c.inf() + 0.0;  // +0.0 stands for -0.0: equal values
+    const double lo = truncated(c.inf()), hi = truncated(c.sup());
+    key[k] =
+        lo == hi ? lo + 0.0 : truncated(mpq_get_d(CGAL::exact(p.cartesian(k)).get_mpq_t())) + 0.0;
+  }
+  if (2 * (entries_.size() + 1) > slots_.size())
+    rebuild(std::max<std::size_t>(64, 2 * slots_.size()));
+  const std::uint64_t h = hash_key(key);
+  const std::size_t mask = slots_.size() - 1;
+  for (std::size_t i = h & mask;; i = (i + 1) & mask) {
+    const std::uint32_t e = slots_[i];
+    if (e == kEmpty) {
+      slots_[i] = std::uint32_t(entries_.size());
+      hashes_[i] = h;
+      std::uint32_t rational = kDoubles;
+      if (!doubles) {
+        rational = std::uint32_t(rationals_.size());
+        rationals_.push_back(p);
+      }
+      entries_.push_back({key, xyz, id, rational});
+      return id;
+    }
+    if (hashes_[i] == h && entries_[e].key == key && same(entries_[e], p, doubles, xyz))
+      return entries_[e].id;
+  }
 }
 
 PointIndex::PointIndex(std::vector<Point>& points) : points_(points) {

@@ -11,34 +11,37 @@
 
 namespace morphex::detail {
 
-// Maps exact positions to ids chosen by the caller. Points whose coordinates are doubles (every
-// point read from a file, and constructions that land on doubles) are found by hashing those
-// doubles, without any exact evaluation when the interval approximation already says so; the
-// others by hashing their exact rational coordinates (canonical, so equal values hash alike) and
-// comparing exactly on a hash match. A position is in exactly one of the two tables, so the
-// identity is exact at hash-table cost.
+// Maps exact positions to ids chosen by the caller, at hash-table cost.
+//
+// The hash key of a point is canonical without exact arithmetic in nearly every case: each
+// coordinate truncated toward zero to 40 significant bits. Truncation is monotone, so when both
+// ends of a coordinate's interval approximation truncate alike, so does the exact value between
+// them (a double's interval is the double itself); only a coordinate within 2^-40 of a cut needs
+// its exact value, truncated by GMP to a double and then to 40 bits, which is the same function.
+// Equal points therefore share a key, and points with one key are told apart exactly: by their
+// doubles when both are doubles, else by exact comparison.
 class PositionIndex {
  public:
   // The id stored for p's position; `id` is stored when the position is new.
   std::uint32_t find_or_insert(const Point& p, std::uint32_t id);
-  void reserve(std::size_t points) { doubles_.reserve(points); }
+  void reserve(std::size_t points);
 
  private:
-  struct Hash {
-    std::size_t operator()(const std::array<double, 3>& c) const;
-  };
-  std::uint32_t rational_find_or_insert(const Point& p, std::uint32_t id);
-
-  FlatMap<std::array<double, 3>, std::uint32_t, Hash> doubles_;
-  // Open addressing over entries of the rational table; kEmpty marks a free slot.
+  using Key = std::array<double, 3>;
   struct Entry {
-    Point point;
+    Key key;
+    Key xyz;  // the coordinates, when they are doubles
     std::uint32_t id;
+    std::uint32_t rational;  // index in rationals_, or kDoubles
   };
-  static constexpr std::uint32_t kEmpty = 0xffffffffu;
-  std::vector<Entry> rational_entries_;
-  std::vector<std::uint32_t> rational_slots_;  // entry index
-  std::vector<std::uint64_t> rational_hash_;   // hash of the entry in each slot
+  static constexpr std::uint32_t kEmpty = 0xffffffffu, kDoubles = 0xffffffffu;
+  bool same(const Entry& e, const Point& p, bool doubles, const Key& xyz) const;
+  void rebuild(std::size_t capacity);  // slots for `capacity` entries, rehashed
+
+  std::vector<Entry> entries_;
+  std::vector<std::uint32_t> slots_;   // entry index, kEmpty when free
+  std::vector<std::uint64_t> hashes_;  // the hash of each slot's entry
+  std::vector<Point> rationals_;       // the stored points whose coordinates are not doubles
 };
 
 // Ids 0, 1, 2, ... in order of first insertion, with the points kept in that order.

@@ -189,16 +189,15 @@ PointTable::PointTable(const Mesh& a, const Mesh& b, bool same_mesh)
   mesh_[0] = &a;
   mesh_[1] = same_mesh ? &a : &b;
   input_xyz_.resize(num_inputs_);
+  input_approx_.resize(num_inputs_);
   std::atomic<bool> all_doubles{true};
   tbb::parallel_for(tbb::blocked_range<PointId>(0, num_inputs_, 4096),
                     [&](const tbb::blocked_range<PointId>& range) {
                       for (PointId i = range.begin(); i != range.end(); ++i) {
-                        const Point& p = input(i);
-                        if (!has_double_coordinates(p)) {
+                        const auto& a = CGAL::approx(input(i));
+                        input_approx_[i] = a;
+                        if (!a.x().is_point() || !a.y().is_point() || !a.z().is_point())
                           all_doubles = false;
-                          return;
-                        }
-                        const auto& a = CGAL::approx(p);
                         input_xyz_[i] = {a.x().inf(), a.y().inf(), a.z().inf()};
                       }
                     });

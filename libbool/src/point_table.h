@@ -147,7 +147,7 @@ class PointTable {
   const Recipe& recipe(PointId id) const { return recipes_[id - num_inputs_]; }
 
   const ApproxPoint& approx(PointId id) const {
-    if (id < num_inputs_) return CGAL::approx(input(id));
+    if (id < num_inputs_) return input_approx_[id];
     return approx_[id - num_inputs_];
   }
   // Exact homogeneous coordinates, computed once (thread-safe).
@@ -223,6 +223,9 @@ class PointTable {
   // The inputs' coordinates side by side when every one is a double (empty otherwise), for the
   // static filters that precede the interval stage (static_filter.h).
   std::vector<std::array<double, 3>> input_xyz_;
+  // The inputs' interval approximations side by side: predicates read them without following
+  // each lazy point to its representation.
+  std::vector<ApproxPoint> input_approx_;
   mutable std::deque<std::atomic<Homogeneous*>> constructed_exact_;
 };
 
