@@ -243,8 +243,11 @@ class StarExaminer {
   }
 
   // The half-open quadrant of a nonzero direction (exact: only signs are compared).
+  // Without branches: directions around a vertex fall in any quadrant, and a mispredicted
+  // branch costs more than these comparisons.
   static int quadrant(double du, double dw) {
-    return du > 0 && dw >= 0 ? 0 : du <= 0 && dw > 0 ? 1 : du < 0 && dw <= 0 ? 2 : 3;
+    const int u_pos = du > 0, w_pos = dw > 0, u_neg = du < 0, w_neg = dw < 0;
+    return (1 - u_pos) * w_pos + 2 * (u_neg * (1 - w_pos)) + 3 * ((1 - u_neg) * w_neg);
   }
   // Quadrant boundaries crossed by an angle turning `turn` (less than half a turn) from
   // quadrant `from` to `to`: 0, 1 or 2 (3 cannot happen; 5 makes the sum fail if it did).
