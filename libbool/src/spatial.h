@@ -5,6 +5,9 @@
 #pragma once
 
 #include <CGAL/Bbox_3.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include <algorithm>
 #include <array>
@@ -173,6 +176,51 @@ class TriangleTree {
                                        const std::array<std::uint32_t, 3>& keys);
   std::vector<std::vector<FloatBox>> levels_;  // levels_.back() has the root alone
 };
+
+// Inline: they run once per triangle of a leaf in the traversals' innermost loops.
+inline std::uint32_t TriangleTree::leaf_overlaps(std::uint32_t leaf, const FloatBox& box) const {
+  const LeafBoxes& l = leaf_boxes_[leaf];
+#if defined(__SSE2__)
+  static_assert(kLeafSize == 4, "one SSE register per coordinate of a leaf");
+  __m128 all = _mm_castsi128_ps(_mm_set1_epi32(-1));
+  for (int k = 0; k < 3; ++k) {
+    all = _mm_and_ps(all, _mm_cmple_ps(_mm_load_ps(l.lo[k]), _mm_set1_ps(box.hi[k])));
+    all = _mm_and_ps(all, _mm_cmple_ps(_mm_set1_ps(box.lo[k]), _mm_load_ps(l.hi[k])));
+  }
+  return std::uint32_t(_mm_movemask_ps(all));
+#else
+  std::uint32_t mask = 0;
+  for (std::uint32_t i = 0; i < kLeafSize; ++i) {
+    bool overlap = true;
+    for (int k = 0; k < 3; ++k)
+      overlap = overlap && l.lo[k][i] <= box.hi[k] && box.lo[k] <= l.hi[k][i];
+    mask |= std::uint32_t(overlap) << i;
+  }
+  return mask;
+#endif
+}
+
+inline std::uint32_t TriangleTree::leaf_shares_key(const LeafKeys& leaf,
+                                                   const std::array<std::uint32_t, 3>& keys) {
+#if defined(__SSE2__)
+  __m128i any = _mm_setzero_si128();
+  for (const std::uint32_t key : keys) {
+    if (key == kNoKey) continue;
+    const __m128i k = _mm_set1_epi32(int(key));
+    for (int j = 0; j < 3; ++j)
+      any = _mm_or_si128(
+          any, _mm_cmpeq_epi32(k, _mm_load_si128(reinterpret_cast<const __m128i*>(leaf.key[j]))));
+  }
+  return std::uint32_t(_mm_movemask_ps(_mm_castsi128_ps(any)));
+#else
+  std::uint32_t mask = 0;
+  for (std::uint32_t i = 0; i < kLeafSize; ++i)
+    for (const std::uint32_t key : keys)
+      for (int j = 0; j < 3; ++j)
+        if (key != kNoKey && leaf.key[j][i] == key) mask |= 1u << i;
+  return mask;
+#endif
+}
 
 template <class TaskScope, class Visit>
 void TriangleTree::for_each_self_pair(Visit&& visit, const TriangleKeys* keys) const {
