@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "morphex/union_find.h"
+#include "static_filter.h"
 
 namespace morphex::detail {
 namespace {
@@ -31,6 +32,18 @@ bool coplanar_across(const Mesh& mesh, const PointTable& table,
                      const std::pair<std::uint64_t, std::array<std::uint32_t, 2>>& link) {
   const auto [fi, gi] = link.second;
   if (degenerate[fi] || degenerate[gi]) return false;
+  // Most edges of a curved surface are not flat: the static filter on the vertices (by index)
+  // says so without the positions. Only a certain nonzero sign is taken; a vertex coincident
+  // with one of f's gives zero and goes on below.
+  if (const auto& xyz = table.input_doubles(); !xyz.empty()) {
+    const Triangle &tf = mesh.triangles[fi], &tg = mesh.triangles[gi];
+    for (const VertexIndex w : tg)
+      if (w != tf[0] && w != tf[1] && w != tf[2]) {
+        const auto o = static_orientation(xyz[tf[0]], xyz[tf[1]], xyz[tf[2]], xyz[w]);
+        if (o && *o != 0) return false;
+        break;
+      }
+  }
   const auto f = corners(mesh, position, fi), g = corners(mesh, position, gi);
   for (int k = 0; k < 3; ++k) {
     const PointId x = g[k];
