@@ -214,12 +214,15 @@ TEST(VertexStars, ProvedStarsAreEmbedded) {
 // tells them apart from an embedded star.
 TEST(VertexStars, StarsWoundTwiceAreNotProved) {
   for (const int n : {5, 7, 9, 31, 45}) {  // 45: beyond the small-star pairing
-    for (const int turns : {1, 2}) {
+    // Flat cones too: every face then also turns one way along a diagonal, where the winding
+    // count is what refuses the star.
+    for (const int turns : {1, 2, -1, -2}) {
+      const double height = turns > 0 ? 1 : 0.1;
       DoubleMesh d;
-      d.points.push_back({0, 0, 1});   // apex above
-      d.points.push_back({0, 0, -1});  // apex below
+      d.points.push_back({0, 0, height});   // apex above
+      d.points.push_back({0, 0, -height});  // apex below
       for (int k = 0; k < n; ++k) {
-        const double a = 6.283185307179586 * turns * k / n;
+        const double a = 6.283185307179586 * std::abs(turns) * k / n;
         d.points.push_back({std::cos(a), std::sin(a), 0});
       }
       for (VertexIndex k = 0; k < VertexIndex(n); ++k) {
@@ -229,9 +232,10 @@ TEST(VertexStars, StarsWoundTwiceAreNotProved) {
       }
       const Mesh m = from_double(d);
       const detail::VertexStars stars = examine(m);
-      const std::string what = std::to_string(n) + "-gon wound " + std::to_string(turns);
-      EXPECT_EQ(stars.embedded[0], turns == 1) << what;
-      EXPECT_EQ(stars.embedded[1], turns == 1) << what;
+      const std::string what = std::to_string(n) + "-gon wound " + std::to_string(std::abs(turns)) +
+                               " times, height " + std::to_string(height);
+      EXPECT_EQ(stars.embedded[0], std::abs(turns) == 1) << what;
+      EXPECT_EQ(stars.embedded[1], std::abs(turns) == 1) << what;
       CheckOptions options;
       options.list_self_intersections = true;
       std::vector<std::pair<std::uint32_t, std::uint32_t>> expected;
@@ -239,7 +243,50 @@ TEST(VertexStars, StarsWoundTwiceAreNotProved) {
         for (std::uint32_t b = a + 1; b < m.num_triangles(); ++b)
           if (triangles_intersect_improperly(m, a, b)) expected.emplace_back(a, b);
       EXPECT_EQ(check_mesh(m, options).self_intersecting_pairs, expected) << what;
-      EXPECT_EQ(expected.empty(), turns == 1) << what;
+      EXPECT_EQ(expected.empty(), std::abs(turns) == 1) << what;
     }
   }
+}
+
+// Where faces meet at right angles (a prism's rim: the cap perpendicular to every axis that
+// suits the sides), no coordinate axis proves the star but a diagonal does; on the same shapes
+// with vertices pushed to fold their stars, no folded star is taken as proved, and the check's
+// improper pairs are those of all pairs tested one by one.
+TEST(VertexStars, SharpStarsAreProvedAlongDiagonals) {
+  const Mesh prism = make_fan_prism(40, 1, 1);
+  const detail::VertexStars clean = examine(prism);
+  std::size_t proved = 0;
+  for (const std::uint8_t e : clean.embedded) proved += e;
+  EXPECT_GE(proved, prism.num_vertices() - 2) << "rim vertices of a fan prism";  // all but apexes?
+  std::mt19937 random(90);
+  std::size_t folded_cases = 0;
+  for (int i = 0; i < 30; ++i) {
+    DoubleMesh d =
+        to_double(i % 2 ? make_fan_prism(12 + i, 1, 1) : make_box(Point(0, 0, 0), Point(1, 2, 3)));
+    std::uniform_real_distribution<double> unit(-1, 1);
+    std::uniform_int_distribution<std::size_t> vertex(0, d.points.size() - 1);
+    for (int k = 0; k < 1 + i % 3; ++k)
+      for (double& x : d.points[vertex(random)]) x += (i % 5 == 0 ? 0.05 : 0.9) * unit(random);
+    const Mesh m = from_double(d);
+    const detail::VertexStars s = examine(m);
+    for (VertexIndex v = 0; v < m.num_vertices(); ++v) {
+      if (!s.embedded[v]) continue;
+      for (std::uint32_t a = 0; a < m.num_triangles(); ++a)
+        for (std::uint32_t b = a + 1; b < m.num_triangles(); ++b) {
+          const Triangle &ta = m.triangles[a], &tb = m.triangles[b];
+          const bool at_v =
+              (ta[0] == v || ta[1] == v || ta[2] == v) && (tb[0] == v || tb[1] == v || tb[2] == v);
+          if (at_v) ASSERT_FALSE(triangles_intersect_improperly(m, a, b)) << "case " << i;
+        }
+    }
+    CheckOptions options;
+    options.list_self_intersections = true;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> expected;
+    for (std::uint32_t a = 0; a < m.num_triangles(); ++a)
+      for (std::uint32_t b = a + 1; b < m.num_triangles(); ++b)
+        if (triangles_intersect_improperly(m, a, b)) expected.emplace_back(a, b);
+    ASSERT_EQ(check_mesh(m, options).self_intersecting_pairs, expected) << "case " << i;
+    folded_cases += !expected.empty();
+  }
+  EXPECT_GT(folded_cases, 5);
 }

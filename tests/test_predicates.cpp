@@ -4,6 +4,7 @@
 // to the exact stage.
 #include <gtest/gtest.h>
 
+#include <numeric>
 #include <random>
 
 #include "filtered.h"
@@ -11,6 +12,7 @@
 #include "point_index.h"
 #include "point_table.h"
 #include "projection_traits.h"
+#include "static_filter.h"
 #include "triangle_overlap.h"
 
 using namespace morphex;
@@ -155,6 +157,55 @@ TEST(PointIndex, CoordinatesAtTruncationCutsAreIdentifiedExactly) {
   }
   EXPECT_EQ(points.size(), by_value.size());
   EXPECT_GT(by_value.size(), 1000u);
+}
+
+// The exact sign of a short sum of doubles (the diagonal proofs of vertex stars) against the
+// rational sum: terms of every magnitude that cancel exactly or up to one unit in the last place.
+TEST(StaticFilter, SignOfSumIsExact) {
+  std::mt19937_64 random(52);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::uniform_int_distribution<int> exponent(-60, 60), count(1, 6);
+  int zeros = 0;
+  for (int i = 0; i < 20000; ++i) {
+    std::vector<double> t;
+    for (int k = count(random); k > 0; --k) t.push_back(std::ldexp(unit(random), exponent(random)));
+    if (i % 3 == 0) {  // cancel: append the negated partial sum, rounded, and its rounding error
+      const double s = std::accumulate(t.begin(), t.end(), 0.0);
+      t.push_back(-s);
+      if (i % 2) t.push_back(std::nextafter(0.0, 1.0) * double(i % 5 - 2));
+    }
+    FT exact = 0;
+    for (const double x : t) exact += FT(x);
+    int ours = 0;
+    switch (t.size()) {
+      case 1:
+        ours = detail::sign_of_sum({t[0]});
+        break;
+      case 2:
+        ours = detail::sign_of_sum({t[0], t[1]});
+        break;
+      case 3:
+        ours = detail::sign_of_sum({t[0], t[1], t[2]});
+        break;
+      case 4:
+        ours = detail::sign_of_sum({t[0], t[1], t[2], t[3]});
+        break;
+      case 5:
+        ours = detail::sign_of_sum({t[0], t[1], t[2], t[3], t[4]});
+        break;
+      case 6:
+        ours = detail::sign_of_sum({t[0], t[1], t[2], t[3], t[4], t[5]});
+        break;
+      case 7:
+        ours = detail::sign_of_sum({t[0], t[1], t[2], t[3], t[4], t[5], t[6]});
+        break;
+      default:
+        ours = detail::sign_of_sum({t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7]});
+    }
+    ASSERT_EQ(ours, int(CGAL::sign(exact))) << i;
+    zeros += CGAL::sign(exact) == CGAL::ZERO;
+  }
+  EXPECT_GT(zeros, 100);
 }
 
 // The point table's predicates on ids (intervals, then homogeneous integers) against CGAL's on

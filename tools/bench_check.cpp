@@ -133,7 +133,12 @@ int main(int argc, char** argv) {
       row["self_intersecting"] = ours;
       row["cgal_self_intersecting"] = cgal_says;
     }
-    const std::string name = spec.substr(spec.find_last_of('/') + 1);
+    // The file's name without its directory, any prefix such as rotated: kept.
+    const std::size_t slash = spec.find_last_of('/'), colon = spec.find(':');
+    const std::string name =
+        slash == std::string::npos
+            ? spec
+            : (colon < slash ? spec.substr(0, colon + 1) : std::string()) + spec.substr(slash + 1);
     std::cout << std::left << std::setw(26) << name.substr(0, 25) << std::right << std::setw(9)
               << mesh.num_triangles() << std::fixed << std::setprecision(3) << std::setw(10) << full
               << std::setprecision(2) << std::setw(8) << full * per_million << std::setprecision(3);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "check_stars.h"
 
+#include <CGAL/FPU.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -62,7 +63,11 @@ class StarExaminer {
     star_.assign(angles, angles + n);
     const bool paired =
         n <= kSmallStar && pair_angles() ? record_paired(v, out) : record_uses(v, out);
-    return prove_ && paired && n >= 3 && covers_once(v, projection_axis(v));
+    if (!prove_ || !paired || n < 3) return false;
+    const std::array<double, 3> normal = mean_normal(v);
+    // A coordinate axis suits smooth surfaces; where faces meet at sharp angles (CAD models:
+    // a face perpendicular to every axis that suits the others) a diagonal may.
+    return covers_once(v, closest_axis(normal)) || covers_once_along_diagonal(v, normal);
   }
 
  private:
@@ -175,9 +180,8 @@ class StarExaminer {
     return sets <= 1;
   }
 
-  // The coordinate axis closest to the star's mean normal (in doubles: a poor choice only makes
-  // the proof fail, never wrong).
-  int projection_axis(VertexIndex v) const {
+  // The star's mean normal, in doubles (a poor one only makes the proofs fail, never wrong).
+  std::array<double, 3> mean_normal(VertexIndex v) const {
     const auto& doubles = table_.input_doubles();
     auto xyz = [&](VertexIndex p) {
       if (!doubles.empty()) return doubles[p];
@@ -185,7 +189,7 @@ class StarExaminer {
       return std::array<double, 3>{a.x().inf(), a.y().inf(), a.z().inf()};
     };
     const std::array<double, 3> o = xyz(v);
-    double n[3] = {0, 0, 0};
+    std::array<double, 3> n{0, 0, 0};
     for (const Angle& a : star_) {
       std::array<double, 3> p = xyz(a.from), q = xyz(a.to);
       for (int i = 0; i < 3; ++i) p[i] -= o[i], q[i] -= o[i];
@@ -193,8 +197,46 @@ class StarExaminer {
       n[1] += p[2] * q[0] - p[0] * q[2];
       n[2] += p[0] * q[1] - p[1] * q[0];
     }
+    return n;
+  }
+
+  static int closest_axis(const std::array<double, 3>& n) {
     const double x = std::fabs(n[0]), y = std::fabs(n[1]), z = std::fabs(n[2]);
     return x >= y && x >= z ? 0 : y >= z ? 1 : 2;
+  }
+
+  // The same proof along the diagonal d = (sx, sy, 1) (sx, sy = +-1) closest to the normal,
+  // double inputs only. The plane across d gets the frame f1 = d x e_z = (sy, -sx, 0) and
+  // f2 = d x f1 = (sx, sy, -2), whose integer entries make each coordinate of a direction a sum
+  // of a few doubles, with an exact sign; f1 x f2 = 2 d, so the turn in that frame is the sign
+  // of det [p - v, q - v, d] (the static filter: undecided makes the proof fail).
+  bool covers_once_along_diagonal(VertexIndex v, const std::array<double, 3>& normal) const {
+    const auto& doubles = table_.input_doubles();
+    if (doubles.empty()) return false;
+    const CGAL::Protect_FPU_rounding<true> nearest(CGAL_FE_TONEAREST);  // for sign_of_sum
+    const double sx = normal[0] * normal[2] < 0 ? -1 : 1, sy = normal[1] * normal[2] < 0 ? -1 : 1;
+    const std::array<double, 3>& o = doubles[v];
+    // The quadrant of p - v in the frame, from the exact signs of its two coordinates.
+    auto quadrant_of = [&](const std::array<double, 3>& p) {
+      for (int k = 0; k < 3; ++k)  // sums of a few coordinates must not overflow
+        if (!(std::fabs(p[k]) < 1e300 && std::fabs(o[k]) < 1e300)) return 5;
+      const int u = sign_of_sum({sy * p[0], -sy * o[0], -sx * p[1], sx * o[1]});
+      const int w =
+          sign_of_sum({sx * p[0], sy * p[1], -2 * p[2], -sx * o[0], -sy * o[1], 2 * o[2]});
+      return quadrant(u, w);
+    };
+    int turn = 0, quarters = 0;
+    for (const Angle& a : star_) {
+      const std::array<double, 3>&p = doubles[a.from], &q = doubles[a.to];
+      const std::optional<int> s = static_orientation_of_differences(
+          p[0] - o[0], p[1] - o[1], p[2] - o[2], q[0] - o[0], q[1] - o[1], q[2] - o[2], sx, sy, 1);
+      if (!s || *s == 0 || *s == -turn) return false;
+      turn = *s;
+      const int from = quadrant_of(p), to = quadrant_of(q);
+      if (from > 3 || to > 3) return false;
+      quarters += quarters_turned(turn, from, to);
+    }
+    return quarters == 4;
   }
 
   // Every angle turns one way seen along `axis` and, together, they wind once around v.
@@ -287,10 +329,6 @@ VertexStars examine_vertex_stars(const Mesh& mesh, const PointTable& table, bool
   VertexStars all;
   all.embedded.assign(prove ? nv : 0, 0);
   tbb::parallel_for(std::size_t(0), chunks.size(), [&](std::size_t c) {
-    // The interval stages of the table's predicates run without switching the rounding mode
-    // each time; the static filters' bounds hold under it (static_filter.h), and so do the
-    // quadrants' signs (a nonzero difference of doubles keeps its sign under any rounding).
-    const UpwardRounding rounding;
     StarExaminer examiner(table, prove);
     chunks[c].manifold.reserve(3 * chunk_size);
     for (std::size_t v = c * chunk_size; v < std::min(nv, (c + 1) * chunk_size); ++v) {

@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cmath>
+#include <initializer_list>
 #include <optional>
 
 namespace morphex::detail {
@@ -21,12 +22,11 @@ using Xyz = std::array<double, 3>;
 // Inside [kTiny, kHuge] no product of the filters underflows or overflows.
 inline constexpr double kStaticTiny = 1e-140, kStaticHuge = 1e140;
 
-// sign det [q - p, r - p, s - p]: CGAL's orientation(p, q, r, s).
-inline std::optional<int> static_orientation(const Xyz& p, const Xyz& q, const Xyz& r,
-                                             const Xyz& s) {
-  const double ax = q[0] - p[0], ay = q[1] - p[1], az = q[2] - p[2];
-  const double bx = r[0] - p[0], by = r[1] - p[1], bz = r[2] - p[2];
-  const double cx = s[0] - p[0], cy = s[1] - p[1], cz = s[2] - p[2];
+// sign det [a, b, c] for rows rounded once each from differences of doubles (or exact, which
+// the bound covers too): the core of static_orientation.
+inline std::optional<int> static_orientation_of_differences(double ax, double ay, double az,
+                                                            double bx, double by, double bz,
+                                                            double cx, double cy, double cz) {
   // All four points in one plane perpendicular to an axis (flat faces of CAD models): the
   // differences along it are exactly zero, and so is the determinant.
   if ((ax == 0 && bx == 0 && cx == 0) || (ay == 0 && by == 0 && cy == 0) ||
@@ -44,6 +44,14 @@ inline std::optional<int> static_orientation(const Xyz& p, const Xyz& q, const X
   if (det > bound) return permanent > kStaticTiny ? std::optional<int>(1) : std::nullopt;
   if (-det > bound) return permanent > kStaticTiny ? std::optional<int>(-1) : std::nullopt;
   return std::nullopt;
+}
+
+// sign det [q - p, r - p, s - p]: CGAL's orientation(p, q, r, s).
+inline std::optional<int> static_orientation(const Xyz& p, const Xyz& q, const Xyz& r,
+                                             const Xyz& s) {
+  return static_orientation_of_differences(q[0] - p[0], q[1] - p[1], q[2] - p[2], r[0] - p[0],
+                                           r[1] - p[1], r[2] - p[2], s[0] - p[0], s[1] - p[1],
+                                           s[2] - p[2]);
 }
 
 // sign det [(qu, qv), (ru, rv)] for differences q - p, r - p rounded from doubles (as computed
@@ -65,6 +73,28 @@ inline std::optional<int> static_orientation_2_of_differences(double qu, double 
 inline std::optional<int> static_orientation_2(int u, int v, const Xyz& p, const Xyz& q,
                                                const Xyz& r) {
   return static_orientation_2_of_differences(q[u] - p[u], q[v] - p[v], r[u] - p[u], r[v] - p[v]);
+}
+
+// The exact sign of a sum of at most 8 doubles (finite, no overflow in the partial sums), by
+// Shewchuk's growing expansion: each Two-Sum is exact when the FPU rounds to nearest, which the
+// caller must ensure; the expansion's components do not overlap and grow in magnitude, so the
+// last one carries the sign.
+inline int sign_of_sum(std::initializer_list<double> terms) {
+  double e[8];
+  int m = 0;
+  for (const double b : terms) {
+    double q = b;
+    int k = 0;
+    for (int i = 0; i < m; ++i) {
+      const double x = q + e[i], b_virtual = x - q, a_virtual = x - b_virtual;
+      const double y = (q - a_virtual) + (e[i] - b_virtual);
+      q = x;
+      if (y != 0) e[k++] = y;
+    }
+    if (q != 0) e[k++] = q;
+    m = k;
+  }
+  return m == 0 ? 0 : e[m - 1] > 0 ? 1 : -1;
 }
 
 }  // namespace morphex::detail
