@@ -80,6 +80,23 @@ detail::VertexStars examine(const Mesh& m) {
   return detail::examine_vertex_stars(m, table, true);
 }
 
+// Every improper pair, by CGAL's triangle predicates over all pairs.
+using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
+Pairs improper_pairs_by_brute_force(const Mesh& m) {
+  Pairs pairs;
+  for (std::uint32_t a = 0; a < m.num_triangles(); ++a)
+    for (std::uint32_t b = a + 1; b < m.num_triangles(); ++b)
+      if (triangles_intersect_improperly(m, a, b)) pairs.emplace_back(a, b);
+  return pairs;
+}
+
+// The improper pairs the check lists.
+Pairs improper_pairs_by_check(const Mesh& m) {
+  CheckOptions options;
+  options.list_self_intersections = true;
+  return check_mesh(m, options).self_intersecting_pairs;
+}
+
 void expect_same_counts(const Mesh& m, const std::string& what) {
   const detail::VertexStars s = examine(m);
   const EdgeCounts c = count_by_edge_map(m);
@@ -194,13 +211,8 @@ TEST(VertexStars, ProvedStarsAreEmbedded) {
               << "case " << i << ": vertex " << v << " proved, faces " << star[v][a] << ", "
               << star[v][b] << " meet improperly";
     }
-    CheckOptions options;
-    options.list_self_intersections = true;
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> expected;
-    for (std::uint32_t a = 0; a < m.num_triangles(); ++a)
-      for (std::uint32_t b = a + 1; b < m.num_triangles(); ++b)
-        if (triangles_intersect_improperly(m, a, b)) expected.emplace_back(a, b);
-    ASSERT_EQ(check_mesh(m, options).self_intersecting_pairs, expected) << "case " << i;
+    const Pairs expected = improper_pairs_by_brute_force(m);
+    ASSERT_EQ(improper_pairs_by_check(m), expected) << "case " << i;
     folded_cases += !expected.empty();
   }
   EXPECT_GT(proved, 20 * 162 * 9 / 10);  // nearly all of 24 spheres' 162 vertices
@@ -236,13 +248,8 @@ TEST(VertexStars, StarsWoundTwiceAreNotProved) {
                                " times, height " + std::to_string(height);
       EXPECT_EQ(stars.embedded[0], std::abs(turns) == 1) << what;
       EXPECT_EQ(stars.embedded[1], std::abs(turns) == 1) << what;
-      CheckOptions options;
-      options.list_self_intersections = true;
-      std::vector<std::pair<std::uint32_t, std::uint32_t>> expected;
-      for (std::uint32_t a = 0; a < m.num_triangles(); ++a)
-        for (std::uint32_t b = a + 1; b < m.num_triangles(); ++b)
-          if (triangles_intersect_improperly(m, a, b)) expected.emplace_back(a, b);
-      EXPECT_EQ(check_mesh(m, options).self_intersecting_pairs, expected) << what;
+      const Pairs expected = improper_pairs_by_brute_force(m);
+      EXPECT_EQ(improper_pairs_by_check(m), expected) << what;
       EXPECT_EQ(expected.empty(), std::abs(turns) == 1) << what;
     }
   }
@@ -279,13 +286,8 @@ TEST(VertexStars, SharpStarsAreProvedAlongDiagonals) {
           if (at_v) ASSERT_FALSE(triangles_intersect_improperly(m, a, b)) << "case " << i;
         }
     }
-    CheckOptions options;
-    options.list_self_intersections = true;
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> expected;
-    for (std::uint32_t a = 0; a < m.num_triangles(); ++a)
-      for (std::uint32_t b = a + 1; b < m.num_triangles(); ++b)
-        if (triangles_intersect_improperly(m, a, b)) expected.emplace_back(a, b);
-    ASSERT_EQ(check_mesh(m, options).self_intersecting_pairs, expected) << "case " << i;
+    const Pairs expected = improper_pairs_by_brute_force(m);
+    ASSERT_EQ(improper_pairs_by_check(m), expected) << "case " << i;
     folded_cases += !expected.empty();
   }
   EXPECT_GT(folded_cases, 5);
