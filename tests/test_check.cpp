@@ -141,23 +141,23 @@ TEST(Check, NonManifoldFeaturesByIndex) {
   EXPECT_FALSE(r.valid_solid());
 }
 
-TEST(Check, DegenerateFace) {
+namespace {
+// A cube with one more face, its corners on the z axis at heights z0 < z1 < z2 (collinear).
+Mesh cube_with_flat_face(int z0, int z1, int z2) {
   Mesh m = make_cube(FT(1));
-  m.points.push_back(Point(0, 0, 5));
-  m.points.push_back(Point(0, 0, 6));
-  m.points.push_back(Point(0, 0, 7));
+  for (const int z : {z0, z1, z2}) m.points.push_back(Point(0, 0, z));
   m.triangles.push_back({8, 9, 10});
-  const MeshReport r = check_mesh(m);
+  return m;
+}
+}  // namespace
+
+TEST(Check, DegenerateFace) {
+  const MeshReport r = check_mesh(cube_with_flat_face(5, 6, 7));
   EXPECT_EQ(r.degenerate_faces, 1u);
   EXPECT_EQ(r.first_degenerate_face, 12u);
   // A degenerate face through the cube is reported as degenerate, not as crossing the faces
   // it passes (its pairs are not tested: the triangle tests need proper triangles).
-  Mesh through = make_cube(FT(1));
-  through.points.push_back(Point(0, 0, -3));
-  through.points.push_back(Point(0, 0, 0));
-  through.points.push_back(Point(0, 0, 3));
-  through.triangles.push_back({8, 9, 10});
-  const MeshReport t = check_mesh(through);
+  const MeshReport t = check_mesh(cube_with_flat_face(-3, 0, 3));
   EXPECT_EQ(t.degenerate_faces, 1u);
   EXPECT_EQ(t.self_intersections, 0u);
   // a closed mesh whose first problem is a face with collinear corners

@@ -3,13 +3,13 @@
 #include "morphex/boolean.h"
 
 #include <tbb/parallel_invoke.h>
-#include "morphex/stopwatch.h"
 
 #include <chrono>
 #include <stdexcept>
 
 #include "boolean_internal.h"
 #include "morphex/check.h"
+#include "morphex/stopwatch.h"
 
 namespace morphex {
 
