@@ -12,6 +12,7 @@
 #include <string>
 
 #include "check_stars.h"
+#include "check_test_support.h"
 #include "morphex/check.h"
 #include "morphex/generators.h"
 #include "morphex/union_find.h"
@@ -80,22 +81,9 @@ detail::VertexStars examine(const Mesh& m) {
   return detail::examine_vertex_stars(m, table, true);
 }
 
-// Every improper pair, by CGAL's triangle predicates over all pairs.
-using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
-Pairs improper_pairs_by_brute_force(const Mesh& m) {
-  Pairs pairs;
-  for (std::uint32_t a = 0; a < m.num_triangles(); ++a)
-    for (std::uint32_t b = a + 1; b < m.num_triangles(); ++b)
-      if (triangles_intersect_improperly(m, a, b)) pairs.emplace_back(a, b);
-  return pairs;
-}
-
-// The improper pairs the check lists.
-Pairs improper_pairs_by_check(const Mesh& m) {
-  CheckOptions options;
-  options.list_self_intersections = true;
-  return check_mesh(m, options).self_intersecting_pairs;
-}
+using test_support::improper_pairs_by_brute_force;
+using test_support::improper_pairs_by_check;
+using test_support::Pairs;
 
 void expect_same_counts(const Mesh& m, const std::string& what) {
   const detail::VertexStars s = examine(m);

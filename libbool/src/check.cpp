@@ -99,8 +99,23 @@ class TrianglePairs {
            in_angle(b1, b2, turn_b, a1) || in_angle(b1, b2, turn_b, a2);
   }
 
+  // All of x's corners lie strictly on one side of t's plane, by the filter alone.
+  bool certainly_beside(const std::array<PointId, 3>& x, const std::array<PointId, 3>& t) const {
+    const CGAL::Uncertain<CGAL::Sign> s0 = table_.orientation_filter(t[0], t[1], t[2], x[0]);
+    if (!s0.is_certain() || s0.make_certain() == CGAL::ZERO) return false;
+    for (int i = 1; i < 3; ++i) {
+      const CGAL::Uncertain<CGAL::Sign> si = table_.orientation_filter(t[0], t[1], t[2], x[i]);
+      if (!si.is_certain() || si.make_certain() != s0.make_certain()) return false;
+    }
+    return true;
+  }
+
   // Closed triangles a and b (no common position) meet.
   bool triangles_meet(const std::array<PointId, 3>& a, const std::array<PointId, 3>& b) const {
+    // Either triangle beside the other's plane settles it. Near-coplanar pairs (a nearly flat
+    // face against a wall that ends on it) often have one way that the filter decides and one
+    // that needs exact arithmetic, so both ways are tried by the filter first.
+    if (certainly_beside(a, b) || certainly_beside(b, a)) return false;
     std::int8_t sa[3], sb[3];
     for (int i = 0; i < 3; ++i) sa[i] = std::int8_t(table_.orientation(b[0], b[1], b[2], a[i]));
     if (sa[0] != 0 && sa[0] == sa[1] && sa[1] == sa[2]) return false;
@@ -339,18 +354,25 @@ constexpr std::size_t kMinPlanarPatch = 16;
 constexpr std::size_t kMinStar = 32;
 
 // The triangles that may meet patch `p` improperly: those near its box that meet its plane
-// elsewhere than in its vertices and edges, outside it and outside the patches before it (whose
-// own candidates included p's triangles).
+// elsewhere than in its vertices and edges (a flat patch) or reach into its slab (a nearly flat
+// one), outside it and outside the patches before it (whose own candidates included p's
+// triangles). For a slab, `parts` gets the box of each candidate's part in it.
 std::vector<std::uint32_t> patch_candidates(const Mesh& mesh, const PointTable& table,
                                             const std::vector<PointId>& position,
                                             const detail::PlanarPatches& planar,
-                                            const TriangleTree& rest, std::size_t p) {
+                                            const TriangleTree& rest, std::size_t p,
+                                            std::vector<CGAL::Bbox_3>& parts) {
   const detail::PlanarPatch& patch = planar.patches[p];
   std::vector<std::uint32_t> out;
   auto consider = [&](std::uint32_t t) {
     const Triangle& f = mesh.triangles[t];
-    if (!patch.flat || !detail::meets_patch_only_at_its_features(
-                           table, patch, {position[f[0]], position[f[1]], position[f[2]]}))
+    const std::array<PointId, 3> corners = {position[f[0]], position[f[1]], position[f[2]]};
+    if (patch.slab) {
+      if (const auto part = detail::part_in_slab(table, patch, corners)) {
+        out.push_back(t);
+        parts.push_back(*part);
+      }
+    } else if (!patch.flat || !detail::meets_patch_only_at_its_features(table, patch, corners))
       out.push_back(t);
   };
   const detail::UpwardRounding rounding;
@@ -365,6 +387,40 @@ std::vector<std::uint32_t> patch_candidates(const Mesh& mesh, const PointTable& 
     }
   }
   return out;
+}
+
+// The pairs of a nearly flat patch's triangles and its candidates that may meet, for
+// test(i, j): the patch's triangles (boxed piece by piece: they are often long and thin) near a
+// candidate's part in its slab, and of those only the ones that its projection does not clear.
+template <class Test>
+void slab_pairs(const Mesh& mesh, const PointTable& table, const std::vector<PointId>& position,
+                const detail::PlanarPatch& slab, const std::vector<std::uint32_t>& candidates,
+                const std::vector<CGAL::Bbox_3>& parts, Test&& test) {
+  auto corners = [&](std::uint32_t t) {
+    const Triangle& f = mesh.triangles[t];
+    return std::array<PointId, 3>{position[f[0]], position[f[1]], position[f[2]]};
+  };
+  std::vector<CGAL::Bbox_3> pieces;
+  std::vector<FloatBox> boxes;
+  std::vector<std::uint32_t> ids;
+  for (const std::uint32_t t : slab.triangles) {
+    pieces.clear();
+    detail::add_pieces(table, corners(t), pieces);
+    for (const CGAL::Bbox_3& b : pieces) {
+      boxes.push_back(FloatBox::of(b));
+      ids.push_back(t);
+    }
+  }
+  const TriangleTree tree(std::move(boxes), ids);
+  std::vector<std::uint32_t> near;
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    near.clear();
+    tree.for_each_overlap(parts[c], [&](std::uint32_t i) { near.push_back(i); });
+    std::sort(near.begin(), near.end());
+    near.erase(std::unique(near.begin(), near.end()), near.end());
+    for (const std::uint32_t i : near)
+      if (!detail::apart_along_axis(table, slab, parts[c], corners(i))) test(i, candidates[c]);
+  }
 }
 
 // Self-intersections: flat patches proved embedded, the other triangles by their tree against
@@ -384,6 +440,8 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
   }
   detail::PlanarPatches planar =
       detail::verified_planar_patches(mesh, table, position, degenerate, manifold, kMinPlanarPatch);
+  detail::add_near_flat_patches(mesh, table, position, degenerate, manifold, kMinPlanarPatch,
+                                planar);
   detail::add_proved_stars(mesh, table, position, degenerate, kMinStar, planar);
   std::vector<std::uint32_t> others;
   for (std::uint32_t t = 0; t < mesh.num_triangles(); ++t)
@@ -414,15 +472,23 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
       },
       proved.empty() ? nullptr : &proved_corners);
   tbb::parallel_for(std::size_t(0), planar.patches.size(), [&](std::size_t p) {
+    std::vector<CGAL::Bbox_3> parts;
     const std::vector<std::uint32_t> candidates =
-        patch_candidates(mesh, table, position, planar, tree, p);
+        patch_candidates(mesh, table, position, planar, tree, p, parts);
     if (candidates.empty()) return;
-    const auto pairs = TriangleTree::overlapping_pairs(
-        TriangleTree(mesh, planar.patches[p].triangles), TriangleTree(mesh, candidates));
     const detail::UpwardRounding rounding;
     Found& f = found[tree.self_pair_tasks() + p];
-    for (const auto& [i, j] : pairs)
+    auto test_pair = [&](std::uint32_t i, std::uint32_t j) {
       if (test.improper(mesh.triangles[i], mesh.triangles[j])) f.add(i, j, list);
+    };
+    if (planar.patches[p].slab) {
+      slab_pairs(mesh, table, position, planar.patches[p], candidates, parts, test_pair);
+    } else {
+      const TriangleTree patch(mesh, planar.patches[p].triangles);
+      for (const auto& [i, j] :
+           TriangleTree::overlapping_pairs(patch, TriangleTree(mesh, candidates)))
+        test_pair(i, j);
+    }
   });
   report(found, r);
 }

@@ -6,6 +6,8 @@
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <optional>
 
 #include "morphex/union_find.h"
@@ -13,6 +15,8 @@
 
 namespace morphex::detail {
 namespace {
+
+using I = CGAL::Interval_nt<false>;
 
 std::uint64_t edge_key(PointId a, PointId b) {
   return (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
@@ -336,25 +340,22 @@ std::optional<PlanarPatch> prove_embedded(const Mesh& mesh, const PointTable& ta
   return patch;
 }
 
-}  // namespace
-
-PlanarPatches verified_planar_patches(const Mesh& mesh, const PointTable& table,
-                                      const std::vector<PointId>& position,
-                                      const std::vector<std::uint8_t>& degenerate,
-                                      const ManifoldEdges& manifold, std::size_t min_triangles) {
-  PlanarPatches out;
+// The groups of `joined` with at least min_triangles eligible triangles, each proved embedded
+// (in parallel); the proved ones, their triangles in increasing order.
+std::vector<PlanarPatch> proved_groups(const Mesh& mesh, const PointTable& table,
+                                       const std::vector<PointId>& position, UnionFind& joined,
+                                       const std::vector<std::uint8_t>& eligible,
+                                       std::size_t min_triangles) {
   const std::uint32_t nf = std::uint32_t(mesh.num_triangles());
-  out.patch_of.assign(nf, -1);
-  UnionFind joined = coplanar_neighbours(mesh, table, position, degenerate, manifold);
   std::vector<std::uint32_t> root(nf), size(nf, 0);
   for (std::uint32_t f = 0; f < nf; ++f) {
     root[f] = std::uint32_t(joined.find(f));
-    ++size[root[f]];
+    size[root[f]] += eligible[f];
   }
   std::vector<std::vector<std::uint32_t>> groups;
   std::vector<std::int32_t> group_of_root(nf, -1);
   for (std::uint32_t f = 0; f < nf; ++f) {
-    if (degenerate[f] || size[root[f]] < min_triangles) continue;
+    if (!eligible[f] || size[root[f]] < min_triangles) continue;
     if (group_of_root[root[f]] < 0) {
       group_of_root[root[f]] = std::int32_t(groups.size());
       groups.emplace_back();
@@ -366,13 +367,250 @@ PlanarPatches verified_planar_patches(const Mesh& mesh, const PointTable& table,
     const UpwardRounding rounding;
     proved[g] = prove_embedded(mesh, table, position, std::move(groups[g]));
   });
-  for (auto& patch : proved) {
-    if (!patch) continue;
-    for (const std::uint32_t f : patch->triangles)
-      out.patch_of[f] = std::int32_t(out.patches.size());
-    out.patches.push_back(std::move(*patch));
-  }
+  std::vector<PlanarPatch> out;
+  for (auto& patch : proved)
+    if (patch) out.push_back(std::move(*patch));
   return out;
+}
+
+void append(std::vector<PlanarPatch>&& patches, PlanarPatches& out) {
+  for (auto& patch : patches) {
+    for (const std::uint32_t f : patch.triangles)
+      out.patch_of[f] = std::int32_t(out.patches.size());
+    out.patches.push_back(std::move(patch));
+  }
+}
+
+using Normal = std::array<double, 3>;
+
+// Face f's normal in doubles, of unit length (zero for a face too thin to tell): only to group
+// faces, never to decide anything.
+Normal rough_normal(const Mesh& mesh, const PointTable& table, const std::vector<PointId>& position,
+                    std::uint32_t f) {
+  const auto c = corners(mesh, position, f);
+  double p[3][3];
+  for (int k = 0; k < 3; ++k)
+    for (int a = 0; a < 3; ++a) p[k][a] = table.approx(c[k]).cartesian(a).inf();
+  const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+  const double v[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+  Normal n = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if (!(length > 0) || !std::isfinite(length)) return {0, 0, 0};
+  for (double& x : n) x /= length;
+  return n;
+}
+
+// The slab of a proved near-flat patch: its normal the sum of its faces', its bounds those of
+// its vertices' heights in interval arithmetic (the caller rounds upward).
+void set_slab(const PointTable& table, const std::vector<Normal>& normal, PlanarPatch& patch) {
+  Normal n = {0, 0, 0};
+  for (const std::uint32_t f : patch.triangles)
+    for (int a = 0; a < 3; ++a) n[a] += normal[f][a];
+  patch.slab = true;
+  patch.normal = n;
+  patch.dropped = 0;
+  for (int a = 1; a < 3; ++a)
+    if (std::abs(n[a]) > std::abs(n[patch.dropped])) patch.dropped = a;
+  patch.low = std::numeric_limits<double>::infinity();
+  patch.high = -patch.low;
+  for (const PointId v : patch.vertices) {
+    const ApproxPoint& x = table.approx(v);
+    const auto h = n[0] * x.x() + n[1] * x.y() + n[2] * x.z();
+    patch.low = std::min(patch.low, h.inf());
+    patch.high = std::max(patch.high, h.sup());
+  }
+}
+
+}  // namespace
+
+PlanarPatches verified_planar_patches(const Mesh& mesh, const PointTable& table,
+                                      const std::vector<PointId>& position,
+                                      const std::vector<std::uint8_t>& degenerate,
+                                      const ManifoldEdges& manifold, std::size_t min_triangles) {
+  PlanarPatches out;
+  out.patch_of.assign(mesh.num_triangles(), -1);
+  UnionFind joined = coplanar_neighbours(mesh, table, position, degenerate, manifold);
+  std::vector<std::uint8_t> eligible(mesh.num_triangles());
+  for (std::size_t f = 0; f < eligible.size(); ++f) eligible[f] = !degenerate[f];
+  append(proved_groups(mesh, table, position, joined, eligible, min_triangles), out);
+  return out;
+}
+
+void add_near_flat_patches(const Mesh& mesh, const PointTable& table,
+                           const std::vector<PointId>& position,
+                           const std::vector<std::uint8_t>& degenerate,
+                           const ManifoldEdges& manifold, std::size_t min_triangles,
+                           PlanarPatches& groups) {
+  // Normals within about 1.4e-3 radians: 1 - cos(angle) below 1e-6.
+  constexpr double kBend = 1e-6;
+  const std::size_t nf = mesh.num_triangles();
+  std::vector<std::uint8_t> eligible(nf);
+  std::vector<Normal> normal(nf);
+  tbb::parallel_for(std::size_t(0), nf, [&](std::size_t f) {
+    eligible[f] = !degenerate[f] && groups.patch_of[f] < 0;
+    if (eligible[f]) normal[f] = rough_normal(mesh, table, position, std::uint32_t(f));
+  });
+  std::vector<std::uint8_t> join(manifold.size());
+  tbb::parallel_for(std::size_t(0), manifold.size(), [&](std::size_t l) {
+    const auto [f, g] = manifold[l].second;
+    const Normal &a = normal[f], &b = normal[g];
+    join[l] = eligible[f] && eligible[g] && a[0] * b[0] + a[1] * b[1] + a[2] * b[2] >= 1 - kBend;
+  });
+  UnionFind joined(nf);
+  std::size_t joins = 0;
+  for (std::size_t l = 0; l < manifold.size(); ++l)
+    if (join[l]) {
+      joined.join(manifold[l].second[0], manifold[l].second[1]);
+      ++joins;
+    }
+  if (joins + 1 < min_triangles) return;  // no group can be large enough
+  std::vector<PlanarPatch> proved =
+      proved_groups(mesh, table, position, joined, eligible, min_triangles);
+  tbb::parallel_for(std::size_t(0), proved.size(), [&](std::size_t p) {
+    const UpwardRounding rounding;
+    proved[p].flat = false;
+    set_slab(table, normal, proved[p]);
+  });
+  append(std::move(proved), groups);
+}
+
+bool apart_along_axis(const PointTable& table, const PlanarPatch& patch, const CGAL::Bbox_3& part,
+                      const std::array<PointId, 3>& t) {
+  const int u = patch.dropped == 0 ? 1 : 0, v = patch.dropped == 2 ? 1 : 2;
+  I x[3], y[3];
+  for (int k = 0; k < 3; ++k) {
+    x[k] = table.approx(t[k]).cartesian(u);
+    y[k] = table.approx(t[k]).cartesian(v);
+  }
+  const double bx[2] = {part.min(u), part.max(u)}, by[2] = {part.min(v), part.max(v)};
+  for (int k = 0; k < 3; ++k) {
+    const int j = (k + 1) % 3, o = (k + 2) % 3;
+    // side(p) = (b - a) x (p - a) for the edge a b; the triangle's third corner fixes the inside.
+    const I ex = x[j] - x[k], ey = y[j] - y[k];
+    auto side = [&](const I& px, const I& py) { return ex * (py - y[k]) - ey * (px - x[k]); };
+    const I inner = side(x[o], y[o]);
+    const bool positive = inner.inf() > 0;
+    if (!positive && !(inner.sup() < 0)) continue;
+    // The box is outside when its corner most to the inside is: the one the gradient of the
+    // inside's side (-ey, ex) points to, or both along an axis where its sign is uncertain.
+    const I gu = positive ? -ey : ey, gv = positive ? ex : -ex;
+    // (A gradient component that is exactly zero takes either corner.)
+    int u_first = gu.inf() >= 0 ? 1 : 0, u_last = gu.sup() <= 0 ? 0 : 1;
+    int v_first = gv.inf() >= 0 ? 1 : 0, v_last = gv.sup() <= 0 ? 0 : 1;
+    if (u_first > u_last) u_first = u_last = 0;
+    if (v_first > v_last) v_first = v_last = 0;
+    bool all_out = true;
+    for (int cu = u_first; cu <= u_last && all_out; ++cu)
+      for (int cv = v_first; cv <= v_last && all_out; ++cv) {
+        const I s = side(I(bx[cu]), I(by[cv]));
+        all_out = positive ? s.sup() < 0 : s.inf() > 0;
+      }
+    if (all_out) return true;
+  }
+  return false;
+}
+
+namespace {
+
+// The box of the part of triangle t where the affine function h (its values at the corners
+// given) lies in [low, high]: the hull of the corners in that range and of the points where the
+// edges cross h = low and h = high, each taken with its interval. Empty when no part is.
+CGAL::Bbox_3 part_between(const PointTable& table, const std::array<PointId, 3>& t, const I (&h)[3],
+                          double low, double high) {
+  CGAL::Bbox_3 part;
+  for (int k = 0; k < 3; ++k) {
+    const ApproxPoint& x = table.approx(t[k]);
+    if (h[k].inf() <= high && h[k].sup() >= low) part += x.bbox();
+    const int j = (k + 1) % 3;
+    const ApproxPoint& y = table.approx(t[j]);
+    for (const double c : {low, high}) {
+      const bool k_over = h[k].inf() > c, k_under = h[k].sup() < c;
+      const bool j_over = h[j].inf() > c, j_under = h[j].sup() < c;
+      if ((k_over && j_over) || (k_under && j_under)) continue;  // the edge stays on one side
+      const I rise = h[j] - h[k];
+      if (rise.inf() <= 0 && rise.sup() >= 0) {  // too flat to place the crossing: the edge
+        part += x.bbox();
+        part += y.bbox();
+        continue;
+      }
+      const I s = (c - h[k]) / rise;
+      part += (x + s * (y - x)).bbox();
+    }
+  }
+  return part;
+}
+
+CGAL::Bbox_3 common_box(const CGAL::Bbox_3& a, const CGAL::Bbox_3& b) {
+  return {std::max(a.xmin(), b.xmin()), std::max(a.ymin(), b.ymin()), std::max(a.zmin(), b.zmin()),
+          std::min(a.xmax(), b.xmax()), std::min(a.ymax(), b.ymax()), std::min(a.zmax(), b.zmax())};
+}
+
+}  // namespace
+
+std::optional<CGAL::Bbox_3> part_in_slab(const PointTable& table, const PlanarPatch& patch,
+                                         const std::array<PointId, 3>& t) {
+  const auto& n = patch.normal;
+  I h[3];
+  bool above = true, below = true;
+  CGAL::Bbox_3 whole;
+  for (int k = 0; k < 3; ++k) {
+    const ApproxPoint& x = table.approx(t[k]);
+    h[k] = n[0] * x.x() + n[1] * x.y() + n[2] * x.z();
+    above &= h[k].inf() > patch.high;
+    below &= h[k].sup() < patch.low;
+    whole += x.bbox();
+  }
+  if (above || below) return std::nullopt;
+  // Both boxes hold the part; their intersection does too.
+  return common_box(part_between(table, t, h, patch.low, patch.high), whole);
+}
+
+void add_pieces(const PointTable& table, const std::array<PointId, 3>& t,
+                std::vector<CGAL::Bbox_3>& out) {
+  constexpr int kMaxPieces = 16;
+  CGAL::Bbox_3 whole;
+  for (const PointId v : t) whole += table.approx(v).bbox();
+  int axis = 0;
+  for (int a = 1; a < 3; ++a)
+    if (whole.max(a) - whole.min(a) > whole.max(axis) - whole.min(axis)) axis = a;
+  // As many pieces as the triangle is long for its width (its longest edge over the height on
+  // it), in doubles: any count is sound, this one keeps boxes of thin triangles small.
+  double p[3][3];
+  for (int k = 0; k < 3; ++k)
+    for (int a = 0; a < 3; ++a) p[k][a] = table.approx(t[k]).cartesian(a).inf();
+  double longest = 0, cross = 0;
+  {
+    const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+    const double v[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+    const double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                         u[0] * v[1] - u[1] * v[0]};
+    cross = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    for (int k = 0; k < 3; ++k) {
+      const int j = (k + 1) % 3;
+      double l2 = 0;
+      for (int a = 0; a < 3; ++a) l2 += (p[j][a] - p[k][a]) * (p[j][a] - p[k][a]);
+      longest = std::max(longest, l2);
+    }
+  }
+  // longest / height = longest^2 / cross (cross: twice the area)
+  const double ratio = cross > 0 ? longest / cross : kMaxPieces;
+  const int pieces = ratio >= kMaxPieces ? kMaxPieces : std::max(1, int(ratio));
+  if (pieces == 1) {
+    out.push_back(whole);
+    return;
+  }
+  const I h[3] = {table.approx(t[0]).cartesian(axis), table.approx(t[1]).cartesian(axis),
+                  table.approx(t[2]).cartesian(axis)};
+  const double lo = whole.min(axis), step = (whole.max(axis) - lo) / pieces;
+  for (int i = 0; i < pieces; ++i) {
+    // The last piece ends at the box's end, whatever the rounding of the steps.
+    const double a = i == 0 ? lo : lo + i * step,
+                 b = i + 1 == pieces ? whole.max(axis) : lo + (i + 1) * step;
+    const CGAL::Bbox_3 piece = common_box(part_between(table, t, h, a, b), whole);
+    if (piece.xmin() <= piece.xmax() && piece.ymin() <= piece.ymax() &&
+        piece.zmin() <= piece.zmax())
+      out.push_back(piece);
+  }
 }
 
 namespace {

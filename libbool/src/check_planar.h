@@ -16,6 +16,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -37,6 +38,13 @@ struct PlanarPatch {
   std::vector<PointId> vertices;         // its positions, sorted
   std::vector<std::uint64_t> edges;      // its edges (min << 32 | max over positions), sorted
   CGAL::Bbox_3 box;
+  // Nearly flat patches (flat = false, add_near_flat_patches): every vertex's height
+  // normal . x lies in [low, high] (bounds from interval arithmetic, so exact), and whatever
+  // stays outside that slab cannot meet the patch.
+  bool slab = false;
+  std::array<double, 3> normal{};
+  double low = 0, high = 0;
+  int dropped = 2;  // the coordinate axis closest to `normal`
 };
 
 struct PlanarPatches {
@@ -51,6 +59,35 @@ PlanarPatches verified_planar_patches(const Mesh& mesh, const PointTable& table,
                                       const std::vector<PointId>& position,
                                       const std::vector<std::uint8_t>& degenerate,
                                       const ManifoldEdges& manifold, std::size_t min_triangles);
+
+// Patches of at least `min_triangles` triangles outside `groups`, joined across manifold edges
+// where their normals differ by less than about a thousandth of a radian, kept when proved
+// embedded along a coordinate axis as flat patches are (the proof needs no flatness: an injective
+// projection of the patch means no two of its triangles meet elsewhere than at common features).
+// Such patches are the flat faces of a mesh after a rounded rotation: long thin facets that are
+// no longer exactly coplanar. Appended with flat = false and slab = true.
+void add_near_flat_patches(const Mesh& mesh, const PointTable& table,
+                           const std::vector<PointId>& position,
+                           const std::vector<std::uint8_t>& degenerate,
+                           const ManifoldEdges& manifold, std::size_t min_triangles,
+                           PlanarPatches& groups);
+
+// The part of triangle t (by positions) inside the slab of `patch` (slab = true) lies in the
+// returned box; nullopt when t lies strictly outside the slab. The caller rounds upward.
+std::optional<CGAL::Bbox_3> part_in_slab(const PointTable& table, const PlanarPatch& patch,
+                                         const std::array<PointId, 3>& t);
+
+// Seen along the slab patch's axis, triangle t (by positions) and the box `part` are certainly
+// apart (a line through an edge of t has the box strictly on its outer side): then they do not
+// meet. The caller rounds upward.
+bool apart_along_axis(const PointTable& table, const PlanarPatch& patch, const CGAL::Bbox_3& part,
+                      const std::array<PointId, 3>& t);
+
+// Boxes that together hold triangle t: its box, or for a long thin triangle the boxes of up to
+// 16 slices across its longest extent (a thin triangle lying diagonally has a box far larger
+// than itself, which a box traversal pairs with everything near it). The caller rounds upward.
+void add_pieces(const PointTable& table, const std::array<PointId, 3>& t,
+                std::vector<CGAL::Bbox_3>& out);
 
 // Vertex stars of at least `min_triangles` triangles outside `groups` whose projection along
 // a coordinate axis is one fan turning one way and wrapping at most once: then no two of them

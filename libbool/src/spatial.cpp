@@ -190,6 +190,10 @@ TriangleTree::TriangleTree(const Mesh& mesh, const std::vector<std::uint32_t>& s
   build(std::move(boxes), &subset);
 }
 
+TriangleTree::TriangleTree(std::vector<FloatBox> boxes, const std::vector<std::uint32_t>& ids) {
+  if (!boxes.empty()) build(std::move(boxes), &ids);
+}
+
 void TriangleTree::build(std::vector<FloatBox> boxes, const std::vector<std::uint32_t>* ids) {
   const std::uint32_t n = std::uint32_t(boxes.size());
   FloatBox frame;

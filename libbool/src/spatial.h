@@ -57,6 +57,9 @@ class TriangleTree {
   // Over the triangles `subset` of mesh only; traversals report the mesh's triangle indices.
   // box() and float_box() are not available on such a tree.
   TriangleTree(const Mesh& mesh, const std::vector<std::uint32_t>& subset);
+  // Over the given boxes, box i reporting ids[i]; several boxes may report one id (pieces of a
+  // long thin triangle, each boxed on its own), and then a traversal reports it once per box.
+  TriangleTree(std::vector<FloatBox> boxes, const std::vector<std::uint32_t>& ids);
 
   // Calls f(triangle index) for every triangle whose box overlaps `box`.
   template <class F>

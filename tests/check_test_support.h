@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// What the self-intersection tests share: the improper pairs of a mesh two ways (by CGAL's
+// triangle predicates over every pair, triangles_intersect_improperly, independent of the
+// check's own tests, traversal and proofs; and as check_mesh lists them), the patches the check
+// proves embedded, and meshes turned in doubles (flat faces become nearly flat).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <utility>
+#include <vector>
+
+#include "check_planar.h"
+#include "morphex/check.h"
+#include "point_index.h"
+#include "point_table.h"
+#include "spatial.h"
+
+namespace morphex::test_support {
+
+using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
+
+inline Pairs improper_pairs_by_brute_force(const Mesh& m) {
+  Pairs pairs;
+  for (std::uint32_t a = 0; a < m.num_triangles(); ++a)
+    for (std::uint32_t b = a + 1; b < m.num_triangles(); ++b)
+      if (triangles_intersect_improperly(m, a, b)) pairs.emplace_back(a, b);
+  return pairs;
+}
+
+inline Pairs improper_pairs_by_check(const Mesh& m) {
+  CheckOptions options;
+  options.list_self_intersections = true;
+  return check_mesh(m, options).self_intersecting_pairs;
+}
+
+// The patches the check proves embedded: exactly flat ones, then (near_flat) nearly flat ones.
+inline detail::PlanarPatches proved_patches_of(const Mesh& m, bool near_flat) {
+  const detail::PointTable table(m, m, true);
+  std::vector<detail::PointId> position(m.num_vertices());
+  detail::PositionIndex index;
+  for (VertexIndex v = 0; v < m.num_vertices(); ++v)
+    position[v] = index.find_or_insert(m.points[v], v);
+  const std::vector<std::uint8_t> degenerate(m.num_triangles(), 0);
+  std::map<std::uint64_t, std::vector<std::uint32_t>> uses;
+  for (std::uint32_t f = 0; f < m.num_triangles(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const VertexIndex a = m.triangles[f][k], b = m.triangles[f][(k + 1) % 3];
+      uses[(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b)].push_back(f);
+    }
+  detail::ManifoldEdges manifold;
+  for (const auto& [key, faces] : uses)
+    if (faces.size() == 2) manifold.push_back({key, {faces[0], faces[1]}});
+  detail::PlanarPatches patches =
+      detail::verified_planar_patches(m, table, position, degenerate, manifold, 16);
+  if (near_flat)
+    detail::add_near_flat_patches(m, table, position, degenerate, manifold, 16, patches);
+  return patches;
+}
+
+// m turned about the z axis by `a` and then about the x axis by `b` radians in doubles, every
+// coordinate rounded to a double: its flat faces are then flat only up to rounding.
+inline Mesh turned_and_rounded(const Mesh& m, double a, double b) {
+  DoubleMesh d;
+  d.triangles = m.triangles;
+  for (const Point& p : m.points) {
+    const double x = CGAL::to_double(p.x()), y = CGAL::to_double(p.y()), z = CGAL::to_double(p.z());
+    const double x1 = std::cos(a) * x - std::sin(a) * y, y1 = std::sin(a) * x + std::cos(a) * y;
+    d.points.push_back(
+        {x1, std::cos(b) * y1 - std::sin(b) * z, std::sin(b) * y1 + std::cos(b) * z});
+  }
+  return from_double(d);
+}
+
+}  // namespace morphex::test_support

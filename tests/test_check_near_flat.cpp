@@ -1,0 +1,144 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Nearly flat patches in the self-intersection check (check_planar.h): flat faces of long thin
+// facets that a rounded rotation left flat only up to rounding are proved embedded along an axis,
+// and only what reaches into their slab is tested against them, piece by piece. Against CGAL's
+// triangle predicates over every pair, and (the boxes) against exact points of the triangles.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "check_planar.h"
+#include "check_test_support.h"
+#include "morphex/check.h"
+#include "morphex/generators.h"
+#include "point_table.h"
+
+using namespace morphex;
+using test_support::improper_pairs_by_brute_force;
+using test_support::improper_pairs_by_check;
+using test_support::proved_patches_of;
+using test_support::turned_and_rounded;
+
+namespace {
+std::size_t slabs(const detail::PlanarPatches& p) {
+  std::size_t n = 0;
+  for (const auto& patch : p.patches) n += patch.slab;
+  return n;
+}
+}  // namespace
+
+// A fan prism's caps (long thin facets from one rim vertex) turned in doubles are no longer
+// exactly flat; both are proved as nearly flat patches, and the solid is valid with no improper
+// pair, as testing every pair finds too.
+TEST(NearFlat, TurnedCapsAreProvedAsNearlyFlatPatches) {
+  for (const auto& [a, b] : {std::pair{0.3, 0.7}, std::pair{1.1, -0.4}, std::pair{2.5, 2.9}}) {
+    const Mesh m = turned_and_rounded(make_fan_prism(40, 2.0, 1.0), a, b);
+    EXPECT_EQ(proved_patches_of(m, false).patches.size(), 0u);  // no longer exactly flat
+    const detail::PlanarPatches patches = proved_patches_of(m, true);
+    EXPECT_EQ(patches.patches.size(), 2u);
+    EXPECT_EQ(slabs(patches), 2u);
+    for (const auto& patch : patches.patches) EXPECT_EQ(patch.triangles.size(), 38u);
+    const MeshReport r = check_mesh(m);
+    EXPECT_TRUE(r.valid_solid()) << describe_problems(r);
+    EXPECT_TRUE(improper_pairs_by_brute_force(m).empty());
+  }
+}
+
+// Broken caps (a rim vertex moved inward or two swapped: folds inside the patch), a cap bent
+// out of its plane by a little or a lot, and other solids piercing, touching or beside a cap,
+// all turned in doubles: the improper pairs the check lists are exactly those of all pairs.
+TEST(NearFlat, ImproperPairsAgreeWithBruteForce) {
+  std::mt19937 random(31);
+  auto pick = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(random); };
+  int intersecting = 0, with_slabs = 0;
+  for (int i = 0; i < 70; ++i) {
+    const int n = pick(17, 30);
+    Mesh m = make_fan_prism(n, 2.0, 1.0);
+    const int kind = pick(0, 6);
+    if (kind == 0) {  // a bottom rim vertex moved inward, in the plane
+      const VertexIndex v = VertexIndex(pick(1, n - 1));
+      const FT shrink = FT(pick(1, 9)) / 10;
+      m.points[v] = Point(m.points[v].x() * shrink, m.points[v].y() * shrink, 0);
+    } else if (kind == 1) {  // two bottom rim vertices swapped
+      std::swap(m.points[std::size_t(pick(1, n - 1))], m.points[std::size_t(pick(1, n - 1))]);
+    } else if (kind == 2) {  // a bottom rim vertex lifted by 2^-30 up to 2^-2, or sunk
+      const VertexIndex v = VertexIndex(pick(1, n - 1));
+      const double lift = std::ldexp(pick(0, 1) ? 1.0 : -1.0, -pick(2, 30));
+      m.points[v] = Point(m.points[v].x(), m.points[v].y(), lift);
+    } else {  // a tetrahedron or another fan prism through, onto or beside the bottom cap
+      const Mesh other = kind == 6 ? make_fan_prism(pick(17, 24), 1.0, 1.0)
+                                   : transformed(make_tetrahedron(),
+                                                 Transformation(CGAL::SCALING, FT(pick(1, 4)) / 2));
+      const FT z = kind == 3 ? FT(pick(-2, 0)) / 2 : kind == 4 ? FT(0) : FT(pick(-1, 1)) / 2;
+      m = concatenate(m, translated(other, Vector(FT(pick(-6, 6)) / 4, FT(pick(-6, 6)) / 4, z)));
+    }
+    m = turned_and_rounded(m, pick(1, 600) / 100.0, pick(1, 600) / 100.0);
+    with_slabs += slabs(proved_patches_of(m, true)) > 0;
+    const auto expected = improper_pairs_by_brute_force(m);
+    ASSERT_EQ(improper_pairs_by_check(m), expected) << "case " << i << " kind " << kind;
+    intersecting += !expected.empty();
+  }
+  EXPECT_GT(intersecting, 20);
+  EXPECT_LT(intersecting, 62);
+  EXPECT_GT(with_slabs, 45);  // the cases go through the nearly flat patches
+}
+
+// The boxes the slab test relies on hold what they claim, checked on exact points: every point
+// of a triangle lies in one of its pieces' boxes, and every point of it within a slab lies in
+// the box of its part in the slab (none when the triangle is said to be outside). Thin
+// triangles in all directions, some with rational corners (intervals wider than a point).
+TEST(NearFlat, PiecesAndSlabPartsHoldTheirTriangles) {
+  std::mt19937 random(37);
+  std::uniform_real_distribution<double> coordinate(-1, 1);
+  constexpr int kSteps = 12;  // points i/kSteps, j/kSteps of the triangle, corners and edges too
+  int outside = 0, pieces_used = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    Mesh m;
+    const Point a(coordinate(random), coordinate(random), coordinate(random));
+    const Vector long_side(coordinate(random), coordinate(random), coordinate(random));
+    const FT width = FT(1) / std::uniform_int_distribution<int>(1, 1000)(random);
+    const Vector across(coordinate(random) * width, coordinate(random) * width,
+                        coordinate(random) * width);
+    const FT third = trial % 3 == 0 ? FT(1) / 3 : FT(1) / 4;  // thirds: not dyadic
+    m.points = {a, a + long_side, a + long_side * third + across};
+    m.triangles = {{0, 1, 2}};
+    const detail::PointTable table(m, m, true);
+    const std::array<detail::PointId, 3> t = {0, 1, 2};
+    detail::PlanarPatch slab;
+    slab.slab = true;
+    slab.normal = {coordinate(random), coordinate(random), coordinate(random)};
+    slab.low = coordinate(random);
+    slab.high = slab.low + std::abs(coordinate(random)) / 4;
+    std::vector<CGAL::Bbox_3> pieces;
+    std::optional<CGAL::Bbox_3> part;
+    {
+      const detail::UpwardRounding rounding;
+      detail::add_pieces(table, t, pieces);
+      part = detail::part_in_slab(table, slab, t);
+    }
+    pieces_used += pieces.size() > 1;
+    outside += !part;
+    auto in = [](const Point& p, const CGAL::Bbox_3& b) {
+      for (int k = 0; k < 3; ++k)
+        if (p[k] < b.min(k) || p[k] > b.max(k)) return false;
+      return true;
+    };
+    for (int i = 0; i <= kSteps; ++i)
+      for (int j = 0; i + j <= kSteps; ++j) {
+        const FT u = FT(i) / kSteps, v = FT(j) / kSteps;
+        const Point p =
+            m.points[0] + (m.points[1] - m.points[0]) * u + (m.points[2] - m.points[0]) * v;
+        bool covered = false;
+        for (const auto& b : pieces) covered = covered || in(p, b);
+        ASSERT_TRUE(covered) << "trial " << trial;
+        const FT h = slab.normal[0] * p.x() + slab.normal[1] * p.y() + slab.normal[2] * p.z();
+        if (h >= slab.low && h <= slab.high) {
+          ASSERT_TRUE(part) << "trial " << trial;
+          ASSERT_TRUE(in(p, *part)) << "trial " << trial;
+        }
+      }
+  }
+  EXPECT_GT(pieces_used, 100);
+  EXPECT_GT(outside, 30);
+  EXPECT_LT(outside, 270);
+}
