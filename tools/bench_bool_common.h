@@ -143,6 +143,9 @@ inline void own_inputs(const Case& c) {
 struct RealSetOptions {
   BooleanOp op = BooleanOp::Union;
   std::string json_path, only, demo_dir, prusa_dir;
+  // Manifold's EMBER cases (ember-benchmark-cases.json and the meshes, ID.stl), as
+  // tools/peers/extract-ember-meshes leaves them; the EMBER pairs are skipped without it.
+  std::string ember_dir;
   // A pair run while the rest of the machine kept over a quarter of a core busy runs again, up to
   // this many times, and the least disturbed attempt is reported.
   int busy_retries = 2;

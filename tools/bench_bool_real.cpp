@@ -6,16 +6,20 @@
 // Each input is read, checked, repaired when it is not a valid solid (morphex repair; the output
 // says which), scaled by a power of two to a bounding-box diagonal in [1, 2) and centred on a
 // dyadic point, all exactly. B then turns by a rational rotation and moves by a rational fraction
-// of its box, so A and B overlap substantially. Per pair, each in its own forked child with its
-// own thread limit: morphex's operation on inputs taken as valid and morphex as `morphex bool`
-// runs it (input check + operation), Manifold, at one thread; morphex at 2 and 4 threads and
-// Manifold at 2 for the scaling. Per input, check_mesh on the file as read (what `morphex check`
-// does) at one thread.
+// of its box, so A and B overlap substantially. The EMBER pairs (Thingi10K meshes from Manifold's
+// benchmark of the EMBER paper's cases) are placed by their cases' affine maps instead, in doubles
+// as Manifold applies them, and both engines get the same double meshes. Per pair, each in its own
+// forked child with its own thread limit: morphex's operation on inputs taken as valid and morphex
+// as `morphex bool` runs it (input check + operation), Manifold, at one thread; morphex at 2 and 4
+// threads and Manifold at 2 for the scaling. Per input, check_mesh on the file as read (what
+// `morphex check` does) at one thread.
 #include <tbb/global_control.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -35,12 +39,17 @@ namespace morphex::bench {
 
 namespace {
 
-// A pair of inputs named "demo:NAME" (DEMO_DIR/NAME.off) or "prusa:NAME" (PRUSA_DIR/NAME.stl);
-// B turns by `degrees` (rational_rotation) before it moves.
+// A pair of inputs named "demo:NAME" (DEMO_DIR/NAME.off), "prusa:NAME" (PRUSA_DIR/NAME.stl) or
+// "ember:ID@CASE" (EMBER_DIR/ID.stl placed as case CASE of ember-benchmark-cases.json places it);
+// B turns by `degrees` (rational_rotation) before it moves, except in EMBER pairs.
 struct PairSpec {
   std::string a, b;
   double degrees;
 };
+
+bool is_ember(const std::string& source) {
+  return source.rfind("ember:", 0) == 0;
+}
 
 // Large against large (over 100,000 facets together: the thread scaling), organic and CAD
 // meshes of a few thousand facets, a mesh against a rotated copy of itself, and coarse against
@@ -63,6 +72,15 @@ const std::vector<PairSpec> kPairs = {
     {"demo:tripod", "demo:armadillo", 20},
     {"prusa:M3x10_screw", "prusa:M3_hex_nut", 5},
     {"prusa:torus", "prusa:sphere", 15},
+    // The EMBER cases whose two meshes Manifold's source carries (the six the issue measured):
+    // coarse against fine among them (1,660 facets against 68,548; 3,632 against 71,974; 1,466
+    // against 14,740 long thin ones).
+    {"ember:88566@16", "ember:58011@16", 0},
+    {"ember:1706459@84", "ember:1514499@84", 0},
+    {"ember:908460@260", "ember:73416@260", 0},
+    {"ember:1063852@406", "ember:72214@406", 0},
+    {"ember:79741@582", "ember:65004@582", 0},
+    {"ember:472042@667", "ember:99865@667", 0},
 };
 
 // One input as the pairs use it.
@@ -75,15 +93,62 @@ struct Input {
   Run check;  // check_mesh on the file as read, one thread
 };
 
-// "bunny00 x armadillo": the row's name, which --only matches.
+// The NAME or ID of a source.
+std::string source_name(const std::string& source) {
+  const auto colon = source.find(':');
+  return source.substr(colon + 1, source.find('@') - colon - 1);
+}
+
+// "bunny00 x armadillo", "79741 x 65004 (ember)": the row's name, which --only matches.
 std::string pair_name(const PairSpec& p) {
-  return p.a.substr(p.a.find(':') + 1) + " x " + p.b.substr(p.b.find(':') + 1);
+  return source_name(p.a) + " x " + source_name(p.b) + (is_ember(p.a) ? " (ember)" : "");
 }
 
 std::string input_path(const std::string& source, const RealSetOptions& o) {
-  const auto colon = source.find(':');
-  const std::string kind = source.substr(0, colon), name = source.substr(colon + 1);
+  const std::string kind = source.substr(0, source.find(':')), name = source_name(source);
+  if (kind == "ember") return o.ember_dir + "/" + name + ".stl";
   return kind == "prusa" ? o.prusa_dir + "/" + name + ".stl" : o.demo_dir + "/" + name + ".off";
+}
+
+// An EMBER case's affine map of one of its meshes: columns (x, y, z, translation), in doubles.
+using AffineColumns = std::array<std::array<double, 3>, 4>;
+
+// The map of "ember:ID@CASE" from EMBER_DIR/ember-benchmark-cases.json (transform_a when ID is
+// the case's id_a), or nullopt (with `why`) when the file or the case is not there.
+std::optional<AffineColumns> ember_placement(const std::string& source, const RealSetOptions& o,
+                                             std::string& why) {
+  const std::string cases_path = o.ember_dir + "/ember-benchmark-cases.json";
+  std::ifstream in(cases_path);
+  if (!in) {
+    why = "missing file " + cases_path;
+    return std::nullopt;
+  }
+  const nlohmann::json cases = nlohmann::json::parse(in);
+  const std::size_t at = std::stoul(source.substr(source.find('@') + 1));
+  const long id = std::stol(source_name(source));
+  if (at >= cases.size() || (cases[at]["id_a"] != id && cases[at]["id_b"] != id)) {
+    why = "no EMBER case " + std::to_string(at) + " with mesh " + std::to_string(id);
+    return std::nullopt;
+  }
+  const nlohmann::json& t = cases[at][cases[at]["id_a"] == id ? "transform_a" : "transform_b"];
+  AffineColumns columns;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 3; ++r)
+      columns[c][r] = t["col" + std::to_string(c)][std::string(1, "xyz"[r])].get<double>();
+  return columns;
+}
+
+// The mesh under the map, each coordinate x*c0 + y*c1 + z*c2 + c3 rounded in doubles in that
+// order (as Manifold's Transform computes it): the same double mesh goes to both engines.
+Mesh placed(const Mesh& m, const AffineColumns& t) {
+  Mesh out = m;
+  for (Point& p : out.points) {
+    const double x = CGAL::to_double(p.x()), y = CGAL::to_double(p.y()), z = CGAL::to_double(p.z());
+    double q[3];
+    for (int r = 0; r < 3; ++r) q[r] = x * t[0][r] + y * t[1][r] + z * t[2][r] + t[3][r];
+    p = Point(q[0], q[1], q[2]);
+  }
+  return out;
 }
 
 // Scaled by the power of two that brings its bounding-box diagonal into [1, 2), then moved so
@@ -103,10 +168,12 @@ Mesh normalized(const Mesh& m) {
   return out;
 }
 
-// Reads, checks, repairs and normalizes one input in a child (the check and the repair run TBB,
-// which the parent must not start before it forks), which writes the result as an exact OFF file
-// for the parent and sends back what it did.
-Input prepare_input(const std::string& path, const std::string& prepared_path) {
+// Reads, checks, repairs and places one input (`place`: normalized, or an EMBER case's map) in a
+// child (the check and the repair run TBB, which the parent must not start before it forks),
+// which writes the result as an exact OFF file for the parent and sends back what it did. The
+// placed mesh is checked again: rounding an EMBER map could break it.
+Input prepare_input(const std::string& path, const std::string& prepared_path,
+                    const std::function<Mesh(const Mesh&)>& place) {
   Input in;
   in.path = path;
   if (!std::filesystem::exists(path)) {
@@ -130,9 +197,15 @@ Input prepare_input(const std::string& path, const std::string& prepared_path) {
         return std::nullopt;
       }
     }
+    const Mesh out = place(valid);
+    const MeshReport placed_report = check_mesh(out, kValidityOnly);
+    if (!placed_report.valid_solid()) {
+      child_note = "not a valid solid once placed (" + describe_problems(placed_report) + ")";
+      return std::nullopt;
+    }
     WriteOptions exact;
     exact.exact = true;
-    write_mesh(normalized(valid), prepared_path, exact);
+    write_mesh(out, prepared_path, exact);
     return std::make_pair(0.0, FT(int(read.num_triangles())));
   });
   in.status = run.note;
@@ -381,7 +454,20 @@ std::map<std::string, Input> prepare_inputs(const std::vector<PairSpec>& pairs,
     for (const std::string& source : {p.a, p.b}) {
       if (inputs.count(source)) continue;
       const std::string prepared = (scratch / (std::to_string(inputs.size()) + ".off")).string();
-      Input in = prepare_input(input_path(source, o), prepared);
+      std::function<Mesh(const Mesh&)> place = normalized;
+      std::string why;
+      if (is_ember(source)) {
+        const std::optional<AffineColumns> map = ember_placement(source, o, why);
+        if (!map) {
+          Input missing;
+          missing.status = why;
+          inputs.emplace(source, std::move(missing));
+          std::cout << "input " << source << ": " << why << std::endl;
+          continue;
+        }
+        place = [map](const Mesh& m) { return placed(m, *map); };
+      }
+      Input in = prepare_input(input_path(source, o), prepared, place);
       if (in.ok) in.check = time_check(in.path, warm);
       std::cout << "input " << std::left << std::setw(26) << source << std::right << std::setw(8)
                 << in.file_facets << " facets: " << in.status << std::endl;  // progress, as it goes
@@ -453,7 +539,8 @@ int run_real_set(const RealSetOptions& o) {
       std::cout << name << ": skipped (" << (a.ok ? b.status : a.status) << ")\n";
       continue;
     }
-    const Case c = make_pair_case(name, a, b, p.degrees);
+    const Case c =
+        is_ember(p.a) ? Case{name, a.mesh, b.mesh} : make_pair_case(name, a, b, p.degrees);
     PairRuns r = run_pair(c, o.op, warm);
     for (int retry = 0; retry < o.busy_retries && r.other_cores > 0.25; ++retry) {
       PairRuns again = run_pair(c, o.op, warm);
