@@ -58,8 +58,25 @@ void triangulate(const Intersection& x, const std::array<CutPoint, 3>& corners,
   Cdt cdt{Traits(&table)};
   std::vector<std::pair<PointId, typename Cdt::Vertex_handle>> handles;
   handles.reserve(points.size());
-  for (const CutPoint& p : points)
-    handles.emplace_back(p.id, cdt.insert(TablePoint{p.id, p.edges}));
+  // Inserted along the plane's first coordinate, each located from the one before: cut points
+  // come in chains along the other surface, and located from an arbitrary face each would walk
+  // across the whole chain, through thin triangles of nearly collinear points whose
+  // orientations need exact arithmetic (a flat face of long thin facets crossing a coarse
+  // facet puts hundreds of them on one nearly straight line). The order is only a heuristic.
+  constexpr int u = dropped == 0 ? 1 : 0;
+  std::vector<std::pair<double, std::uint32_t>> order;
+  order.reserve(points.size());
+  for (std::uint32_t i = 0; i < points.size(); ++i)
+    order.emplace_back(table.approx(points[i].id).cartesian(u).inf(), i);
+  std::sort(order.begin(), order.end());
+  typename Cdt::Face_handle hint;
+  for (const auto& [key, i] : order) {
+    const auto v = cdt.insert(TablePoint{points[i].id, points[i].edges}, hint);
+    hint = v->face();
+    handles.emplace_back(points[i].id, v);
+  }
+  std::sort(handles.begin(), handles.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
   auto handle = [&](PointId id) {
     return std::lower_bound(handles.begin(), handles.end(), id,
                             [](const auto& h, PointId key) { return h.first < key; })
