@@ -349,7 +349,11 @@ CGAL::Sign PointTable::orientation_2(int dropped, PointId p, PointId q, PointId 
     if (CGAL::is_certain(o)) return CGAL::get_certain(o);
   }
   const Homogeneous &hp = exact(p), &hq = exact(q), &hr = exact(r);
-  // det [p 1; q 1; r 1] in homogeneous rows, the W factors positive.
+  // det [p 1; q 1; r 1] in homogeneous rows, the W factors positive: in fixed-size integers
+  // when they fit (no allocation: nearly collinear constructed points in a retriangulation come
+  // here by the thousand), else in GMP's.
+  const Homogeneous* rows[3] = {&hp, &hq, &hr};
+  if (const auto sign = fixed_sign_of_det3(rows, u, v, 3)) return CGAL::Sign(*sign);
   return CGAL::Sign(
       sgn(determinant_3<mpz_class>(hp[u], hp[v], hp[3], hq[u], hq[v], hq[3], hr[u], hr[v], hr[3])));
 }
