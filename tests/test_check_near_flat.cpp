@@ -113,7 +113,7 @@ TEST(NearFlat, PiecesAndSlabPartsHoldTheirTriangles) {
     std::optional<CGAL::Bbox_3> part;
     {
       const detail::UpwardRounding rounding;
-      detail::add_pieces(table, t, pieces);
+      detail::add_pieces(table, t, detail::pieces_for(table, t), pieces);
       part = detail::part_in_slab(table, slab, t);
     }
     pieces_used += pieces.size() > 1;

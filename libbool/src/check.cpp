@@ -405,7 +405,7 @@ void slab_pairs(const Mesh& mesh, const PointTable& table, const std::vector<Poi
   std::vector<std::uint32_t> ids;
   for (const std::uint32_t t : slab.triangles) {
     pieces.clear();
-    detail::add_pieces(table, corners(t), pieces);
+    detail::add_pieces(table, corners(t), detail::pieces_for(table, corners(t)), pieces);
     for (const CGAL::Bbox_3& b : pieces) {
       boxes.push_back(FloatBox::of(b));
       ids.push_back(t);

@@ -565,40 +565,39 @@ std::optional<CGAL::Bbox_3> part_in_slab(const PointTable& table, const PlanarPa
   return common_box(part_between(table, t, h, patch.low, patch.high), whole);
 }
 
-void add_pieces(const PointTable& table, const std::array<PointId, 3>& t,
-                std::vector<CGAL::Bbox_3>& out) {
+int pieces_for(const PointTable& table, const std::array<PointId, 3>& t) {
   constexpr int kMaxPieces = 16;
-  CGAL::Bbox_3 whole;
-  for (const PointId v : t) whole += table.approx(v).bbox();
-  int axis = 0;
-  for (int a = 1; a < 3; ++a)
-    if (whole.max(a) - whole.min(a) > whole.max(axis) - whole.min(axis)) axis = a;
-  // As many pieces as the triangle is long for its width (its longest edge over the height on
-  // it), in doubles: any count is sound, this one keeps boxes of thin triangles small.
   double p[3][3];
   for (int k = 0; k < 3; ++k)
     for (int a = 0; a < 3; ++a) p[k][a] = table.approx(t[k]).cartesian(a).inf();
-  double longest = 0, cross = 0;
-  {
-    const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
-    const double v[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
-    const double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-                         u[0] * v[1] - u[1] * v[0]};
-    cross = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-    for (int k = 0; k < 3; ++k) {
-      const int j = (k + 1) % 3;
-      double l2 = 0;
-      for (int a = 0; a < 3; ++a) l2 += (p[j][a] - p[k][a]) * (p[j][a] - p[k][a]);
-      longest = std::max(longest, l2);
-    }
-  }
-  // longest / height = longest^2 / cross (cross: twice the area)
-  const double ratio = cross > 0 ? longest / cross : kMaxPieces;
-  const int pieces = ratio >= kMaxPieces ? kMaxPieces : std::max(1, int(ratio));
-  if (pieces == 1) {
+  // The box's two largest extents against the triangle's area (in doubles: any count is sound).
+  // A thin triangle lying diagonally has a box face about its length squared, one along an
+  // axis about its own area; slicing a diagonal one into k pieces shrinks each box k-fold.
+  double extent[3];
+  for (int a = 0; a < 3; ++a)
+    extent[a] = std::max({p[0][a], p[1][a], p[2][a]}) - std::min({p[0][a], p[1][a], p[2][a]});
+  std::sort(extent, extent + 3);
+  const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+  const double v[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+  const double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                       u[0] * v[1] - u[1] * v[0]};
+  const double twice_area = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+  const double pieces = std::sqrt(extent[2] * extent[1] / (2 * twice_area));
+  if (!(pieces < kMaxPieces)) return twice_area > 0 ? kMaxPieces : 1;  // too thin to tell: one
+  return std::max(1, int(pieces));
+}
+
+void add_pieces(const PointTable& table, const std::array<PointId, 3>& t, int pieces,
+                std::vector<CGAL::Bbox_3>& out) {
+  CGAL::Bbox_3 whole;
+  for (const PointId v : t) whole += table.approx(v).bbox();
+  if (pieces <= 1) {
     out.push_back(whole);
     return;
   }
+  int axis = 0;
+  for (int a = 1; a < 3; ++a)
+    if (whole.max(a) - whole.min(a) > whole.max(axis) - whole.min(axis)) axis = a;
   const I h[3] = {table.approx(t[0]).cartesian(axis), table.approx(t[1]).cartesian(axis),
                   table.approx(t[2]).cartesian(axis)};
   const double lo = whole.min(axis), step = (whole.max(axis) - lo) / pieces;

@@ -83,10 +83,13 @@ std::optional<CGAL::Bbox_3> part_in_slab(const PointTable& table, const PlanarPa
 bool apart_along_axis(const PointTable& table, const PlanarPatch& patch, const CGAL::Bbox_3& part,
                       const std::array<PointId, 3>& t);
 
-// Boxes that together hold triangle t: its box, or for a long thin triangle the boxes of up to
-// 16 slices across its longest extent (a thin triangle lying diagonally has a box far larger
-// than itself, which a box traversal pairs with everything near it). The caller rounds upward.
-void add_pieces(const PointTable& table, const std::array<PointId, 3>& t,
+// How many pieces to box triangle t in: 1, or for a long thin triangle lying diagonally up to
+// 16 (its box is then far larger than itself, and a box traversal pairs it with everything
+// near it). A degenerate triangle gets 1.
+int pieces_for(const PointTable& table, const std::array<PointId, 3>& t);
+// Boxes that together hold triangle t: its box (pieces = 1), or the boxes of `pieces` slices
+// across its longest extent. The caller rounds upward.
+void add_pieces(const PointTable& table, const std::array<PointId, 3>& t, int pieces,
                 std::vector<CGAL::Bbox_3>& out);
 
 // Vertex stars of at least `min_triangles` triangles outside `groups` whose projection along
