@@ -418,3 +418,61 @@ TEST(FixedInteger, DeterminantSignsAgreeWithMpz) {
   EXPECT_GT(declined4, 400);  // 300- and 600-bit entries fall back
   EXPECT_GT(zeros, 600);
 }
+
+// The static filters for points known within an error of their doubles (rational inputs: a
+// rotated mesh) against CGAL's exact orientation of the exact points: nearly coplanar and nearly
+// collinear points, each moved off its double by up to the error, at scales 2^-80 to 2^80. A
+// sign given must be the exact one; most generic configurations must get one.
+TEST(StaticFilter, SignsOfPointsNearTheirDoublesAreExact) {
+  std::mt19937_64 random(61);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::uniform_int_distribution<int> scale_exponent(-80, 80), shift(-3, 3);
+  int decided_generic = 0, generic = 0, decided_near = 0, wrong = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const int e = scale_exponent(random);
+    const double scale = std::ldexp(1.0, e), error = std::ldexp(scale, -45 + shift(random));
+    const bool near = i % 2 == 0;
+    std::array<detail::Xyz, 4> d;
+    for (int k = 0; k < 3; ++k)
+      d[k] = {unit(random) * scale, unit(random) * scale, unit(random) * scale};
+    if (near) {  // the fourth in the plane of the first three, up to rounding (z over x, y)
+      const double a = unit(random), b = unit(random);
+      for (int c = 0; c < 3; ++c)
+        d[3][c] = d[0][c] + a * (d[1][c] - d[0][c]) + b * (d[2][c] - d[0][c]);
+    } else {
+      d[3] = {unit(random) * scale, unit(random) * scale, unit(random) * scale};
+    }
+    // The exact points: each coordinate off its double by a rational within the error.
+    std::array<Point, 4> p;
+    for (int k = 0; k < 4; ++k) {
+      FT c[3];
+      for (int j = 0; j < 3; ++j)
+        c[j] = FT(d[k][j]) + FT(error) * FT(int(random() % 2001) - 1000) / 1000;
+      p[k] = Point(c[0], c[1], c[2]);
+    }
+    const int exact = int(CGAL::orientation(p[0], p[1], p[2], p[3]));
+    if (const auto o = detail::static_orientation_near(d[0], d[1], d[2], d[3], error)) {
+      wrong += *o != exact;
+      (near ? decided_near : decided_generic)++;
+    }
+    generic += !near;
+    // Two dimensions, on (x, y): the fourth point again, or (near) one on the line of the
+    // first two up to rounding, moved off its double as above.
+    using Point_2 = Kernel::Point_2;
+    detail::Xyz c = d[3];
+    Point_2 x2(p[3].x(), p[3].y());
+    if (near) {
+      const double t = unit(random);
+      for (int j = 0; j < 2; ++j) c[j] = d[0][j] + t * (d[1][j] - d[0][j]);
+      x2 = Point_2(FT(c[0]) + FT(error) * FT(int(random() % 2001) - 1000) / 1000,
+                   FT(c[1]) + FT(error) * FT(int(random() % 2001) - 1000) / 1000);
+    }
+    const int exact_2 =
+        int(CGAL::orientation(Point_2(p[0].x(), p[0].y()), Point_2(p[1].x(), p[1].y()), x2));
+    if (const auto o = detail::static_orientation_2_near(0, 1, d[0], d[1], c, error))
+      wrong += *o != exact_2;
+  }
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GT(decided_generic, generic * 9 / 10);
+  EXPECT_LT(decided_near, 10000 / 2);  // nearly coplanar: mostly left to the exact stages
+}

@@ -4,6 +4,7 @@
 #include <CGAL/predicates/kernel_ftC2.h>
 #include <CGAL/predicates/kernel_ftC3.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
@@ -190,18 +191,24 @@ PointTable::PointTable(const Mesh& a, const Mesh& b, bool same_mesh)
   mesh_[1] = same_mesh ? &a : &b;
   input_xyz_.resize(num_inputs_);
   input_approx_.resize(num_inputs_);
-  std::atomic<bool> all_doubles{true};
-  tbb::parallel_for(tbb::blocked_range<PointId>(0, num_inputs_, 4096),
-                    [&](const tbb::blocked_range<PointId>& range) {
-                      for (PointId i = range.begin(); i != range.end(); ++i) {
-                        const auto& a = CGAL::approx(input(i));
-                        input_approx_[i] = a;
-                        if (!a.x().is_point() || !a.y().is_point() || !a.z().is_point())
-                          all_doubles = false;
-                        input_xyz_[i] = {a.x().inf(), a.y().inf(), a.z().inf()};
-                      }
-                    });
-  if (!all_doubles) input_xyz_ = {};
+  // Each coordinate's double is its interval's lower end, within the interval's width of it.
+  input_error_ = tbb::parallel_reduce(
+      tbb::blocked_range<PointId>(0, num_inputs_, 4096), 0.0,
+      [&](const tbb::blocked_range<PointId>& range, double widest) {
+        for (PointId i = range.begin(); i != range.end(); ++i) {
+          const auto& a = CGAL::approx(input(i));
+          input_approx_[i] = a;
+          input_xyz_[i] = {a.x().inf(), a.y().inf(), a.z().inf()};
+          for (int k = 0; k < 3; ++k)
+            widest = std::max(widest, a.cartesian(k).sup() - a.cartesian(k).inf());
+        }
+        return widest;
+      },
+      [](double a, double b) { return std::max(a, b); });
+  // The widths were rounded in the caller's mode: one unit up covers it. A width that is not
+  // finite leaves the static filters out.
+  if (input_error_ > 0) input_error_ = std::nextafter(input_error_, HUGE_VAL);
+  if (!std::isfinite(input_error_)) input_xyz_ = {};
 }
 
 PointTable::~PointTable() {
@@ -308,10 +315,12 @@ CGAL::Uncertain<CGAL::Sign> PointTable::orientation_filter(PointId p, PointId q,
                                                            PointId s) const {
   if (p == q || p == r || p == s || q == r || q == s || r == s) return CGAL::ZERO;
   if (!input_xyz_.empty() && p < num_inputs_ && q < num_inputs_ && r < num_inputs_ &&
-      s < num_inputs_)
-    if (const auto o =
-            static_orientation(input_xyz_[p], input_xyz_[q], input_xyz_[r], input_xyz_[s]))
+      s < num_inputs_) {
+    const Xyz &xp = input_xyz_[p], &xq = input_xyz_[q], &xr = input_xyz_[r], &xs = input_xyz_[s];
+    if (const auto o = input_error_ == 0 ? static_orientation(xp, xq, xr, xs)
+                                         : static_orientation_near(xp, xq, xr, xs, input_error_))
       return CGAL::Sign(*o);
+  }
   IntervalStage rounding;
   const ApproxPoint &ap = approx(p), &aq = approx(q), &ar = approx(r), &as = approx(s);
   return CGAL::orientationC3(ap.x(), ap.y(), ap.z(), aq.x(), aq.y(), aq.z(), ar.x(), ar.y(), ar.z(),
@@ -338,9 +347,13 @@ CGAL::Sign PointTable::plane_side(const Plane& plane, PointId s) const {
 CGAL::Sign PointTable::orientation_2(int dropped, PointId p, PointId q, PointId r) const {
   if (p == q || q == r || p == r) return CGAL::ZERO;
   const int u = dropped == 0 ? 1 : 0, v = dropped == 2 ? 1 : 2;
-  if (!input_xyz_.empty() && p < num_inputs_ && q < num_inputs_ && r < num_inputs_)
-    if (const auto o = static_orientation_2(u, v, input_xyz_[p], input_xyz_[q], input_xyz_[r]))
+  if (!input_xyz_.empty() && p < num_inputs_ && q < num_inputs_ && r < num_inputs_) {
+    const Xyz &xp = input_xyz_[p], &xq = input_xyz_[q], &xr = input_xyz_[r];
+    if (const auto o = input_error_ == 0
+                           ? static_orientation_2(u, v, xp, xq, xr)
+                           : static_orientation_2_near(u, v, xp, xq, xr, input_error_))
       return CGAL::Sign(*o);
+  }
   {
     IntervalStage rounding;
     const ApproxPoint &ap = approx(p), &aq = approx(q), &ar = approx(r);

@@ -141,7 +141,10 @@ class PointTable {
   std::size_t num_inputs() const { return num_inputs_; }
   // The input points as doubles, by id, when every input point is one (else empty): for
   // callers that run the static filters themselves on differences they reuse.
-  const std::vector<std::array<double, 3>>& input_doubles() const { return input_xyz_; }
+  const std::vector<std::array<double, 3>>& input_doubles() const {
+    static const std::vector<std::array<double, 3>> none;
+    return input_error_ == 0 ? input_xyz_ : none;
+  }
   std::size_t size() const { return num_inputs_ + recipes_.size(); }
   bool is_input(PointId id) const { return id < num_inputs_; }
   const Recipe& recipe(PointId id) const { return recipes_[id - num_inputs_]; }
@@ -220,9 +223,11 @@ class PointTable {
   std::deque<ApproxPoint> approx_;
   std::deque<Point> explicit_;
   std::unique_ptr<std::atomic<Homogeneous*>[]> input_exact_;
-  // The inputs' coordinates side by side when every one is a double (empty otherwise), for the
-  // static filters that precede the interval stage (static_filter.h).
+  // The inputs' coordinates side by side as doubles, each within input_error_ of the exact one
+  // (0: every one is a double), for the static filters that precede the interval stage
+  // (static_filter.h).
   std::vector<std::array<double, 3>> input_xyz_;
+  double input_error_ = 0;
   // The inputs' interval approximations side by side: predicates read them without following
   // each lazy point to its representation.
   std::vector<ApproxPoint> input_approx_;

@@ -69,6 +69,57 @@ inline std::optional<int> static_orientation_2_of_differences(double qu, double 
   return std::nullopt;
 }
 
+// Points known only within `error` of the doubles given, in each coordinate (a rational input's
+// nearest doubles): each difference is then off by up to 2 error besides its rounding, which moves
+// each of the six products of the determinant by at most 3 (2 error) m^2, with m bounding the
+// entries and their errors: 36 error m^2 in all, added to the bound (37: the rounding of the
+// bound itself). No shortcut for coordinates that agree: the points they stand for may not.
+// m (the largest entry) with the errors, rounded up whatever the rounding mode.
+inline double entry_bound(double m, double error) {
+  return (m + 2 * error) * (1 + 0x1p-50);
+}
+// Below the normal range a product loses its relative accuracy: slack is never less than this.
+inline constexpr double kNearSlackFloor = 1e-280;
+
+inline std::optional<int> static_orientation_near(const Xyz& p, const Xyz& q, const Xyz& r,
+                                                  const Xyz& s, double error) {
+  const double ax = q[0] - p[0], ay = q[1] - p[1], az = q[2] - p[2], bx = r[0] - p[0],
+               by = r[1] - p[1], bz = r[2] - p[2], cx = s[0] - p[0], cy = s[1] - p[1],
+               cz = s[2] - p[2];
+  const double m = std::fmax(
+      std::fmax(std::fmax(std::fabs(ax), std::fabs(ay)), std::fmax(std::fabs(az), std::fabs(bx))),
+      std::fmax(std::fmax(std::fabs(by), std::fabs(bz)),
+                std::fmax(std::fabs(cx), std::fmax(std::fabs(cy), std::fabs(cz)))));
+  const double bxcy = bx * cy, cxby = cx * by, cxay = cx * ay, axcy = ax * cy, axby = ax * by,
+               bxay = bx * ay;
+  const double det = az * (bxcy - cxby) + bz * (cxay - axcy) + cz * (axby - bxay);
+  const double permanent = (std::fabs(bxcy) + std::fabs(cxby)) * std::fabs(az) +
+                           (std::fabs(cxay) + std::fabs(axcy)) * std::fabs(bz) +
+                           (std::fabs(axby) + std::fabs(bxay)) * std::fabs(cz);
+  if (!(permanent < kStaticHuge) || !(permanent > kStaticTiny)) return std::nullopt;
+  const double e = entry_bound(m, error);
+  const double bound = 1.6e-15 * permanent + std::fmax(37 * error * e * e, kNearSlackFloor);
+  if (det > bound) return 1;
+  if (-det > bound) return -1;
+  return std::nullopt;
+}
+
+// The same in two coordinates: each of the two products moves by at most 4 error m, 8 error m
+// in all (9 with the bound's rounding).
+inline std::optional<int> static_orientation_2_near(int u, int v, const Xyz& p, const Xyz& q,
+                                                    const Xyz& r, double error) {
+  const double qu = q[u] - p[u], qv = q[v] - p[v], ru = r[u] - p[u], rv = r[v] - p[v];
+  const double m =
+      std::fmax(std::fmax(std::fabs(qu), std::fabs(qv)), std::fmax(std::fabs(ru), std::fabs(rv)));
+  const double left = qu * rv, right = qv * ru;
+  const double det = left - right, sum = std::fabs(left) + std::fabs(right);
+  if (!(sum < kStaticHuge) || !(sum > kStaticTiny)) return std::nullopt;
+  const double bound = 7e-16 * sum + std::fmax(9 * error * entry_bound(m, error), kNearSlackFloor);
+  if (det > bound) return 1;
+  if (-det > bound) return -1;
+  return std::nullopt;
+}
+
 // sign det [q - p, r - p] in the coordinates u, v: CGAL's orientation of the projected points.
 inline std::optional<int> static_orientation_2(int u, int v, const Xyz& p, const Xyz& q,
                                                const Xyz& r) {
