@@ -212,7 +212,7 @@ std::vector<std::uint32_t> edge_twins(const std::vector<Triangle>& tri, std::siz
 class SamePlane {
  public:
   SamePlane(const PointTable& table, const std::vector<std::array<PointId, 3>>& planes)
-      : table_(table), planes_(planes), equation_(planes.size()) {}
+      : table_(table), planes_(planes) {}
 
   bool operator()(std::uint32_t a, std::uint32_t b) {
     if (a == b) return true;
@@ -227,21 +227,20 @@ class SamePlane {
   }
 
  private:
-  // Intervals first; the planes that meet here are mostly one plane, so the exact test is
-  // against the plane's equation, computed once.
+  // Intervals first, then the exact orientation (fixed-size integers when they fit). Most of
+  // the pairs that get here lie in one plane, where no filter can decide; each facet meets a
+  // few others, so an exact plane equation per facet (GMP integers) would cost more than it
+  // saves.
   bool on_plane(std::uint32_t a, PointId q) {
     const auto& pa = planes_[a];
     const CGAL::Uncertain<CGAL::Sign> s = table_.orientation_filter(pa[0], pa[1], pa[2], q);
     if (s.is_certain()) return s.make_certain() == CGAL::ZERO;
-    if (!equation_[a])
-      equation_[a] = std::make_unique<PointTable::Plane>(table_.exact_plane(pa[0], pa[1], pa[2]));
-    return table_.plane_side(*equation_[a], q) == CGAL::ZERO;
+    return table_.orientation_exact(pa[0], pa[1], pa[2], q) == CGAL::ZERO;
   }
 
   const PointTable& table_;
   const std::vector<std::array<PointId, 3>>& planes_;
   FlatMap<std::uint64_t, std::uint8_t, Hash64> cache_;
-  std::vector<std::unique_ptr<PointTable::Plane>> equation_;
 };
 
 // The surface being merged with what every later step reads: its adjacency and its coplanar
