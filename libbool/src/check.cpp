@@ -360,8 +360,8 @@ constexpr std::size_t kMinStar = 32;
 std::vector<std::uint32_t> patch_candidates(const Mesh& mesh, const PointTable& table,
                                             const std::vector<PointId>& position,
                                             const detail::PlanarPatches& planar,
-                                            const TriangleTree& rest, std::size_t p,
-                                            std::vector<CGAL::Bbox_3>& parts) {
+                                            const TriangleTree& rest, const TriangleTree& patched,
+                                            std::size_t p, std::vector<CGAL::Bbox_3>& parts) {
   const detail::PlanarPatch& patch = planar.patches[p];
   std::vector<std::uint32_t> out;
   auto consider = [&](std::uint32_t t) {
@@ -377,15 +377,9 @@ std::vector<std::uint32_t> patch_candidates(const Mesh& mesh, const PointTable& 
   };
   const detail::UpwardRounding rounding;
   rest.for_each_overlap(patch.box, consider);
-  const FloatBox box = FloatBox::of(patch.box);
-  for (std::size_t q = p + 1; q < planar.patches.size(); ++q) {
-    if (!FloatBox::of(planar.patches[q].box).overlaps(box)) continue;
-    for (const std::uint32_t t : planar.patches[q].triangles) {
-      FloatBox tb;
-      for (const VertexIndex v : mesh.triangles[t]) tb += FloatBox::of(mesh.points[v]);
-      if (tb.overlaps(box)) consider(t);
-    }
-  }
+  patched.for_each_overlap(patch.box, [&](std::uint32_t t) {
+    if (std::size_t(planar.patch_of[t]) > p) consider(t);
+  });
   return out;
 }
 
@@ -443,9 +437,13 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
   detail::add_near_flat_patches(mesh, table, position, degenerate, manifold, kMinPlanarPatch,
                                 planar);
   detail::add_proved_stars(mesh, table, position, degenerate, kMinStar, planar);
-  std::vector<std::uint32_t> others;
-  for (std::uint32_t t = 0; t < mesh.num_triangles(); ++t)
+  std::vector<std::uint32_t> others, in_patches;
+  for (std::uint32_t t = 0; t < mesh.num_triangles(); ++t) {
+    if (planar.patch_of[t] >= 0) in_patches.push_back(t);
     if (planar.patch_of[t] < 0 && !degenerate[t]) others.push_back(t);
+  }
+  // The triangles of the patches, for each patch's candidates among the later patches.
+  const TriangleTree patched(mesh, in_patches);
   const TriangleTree tree =
       planar.patches.empty() ? TriangleTree(mesh) : TriangleTree(mesh, others);
   const TrianglePairs test(table, position);
@@ -474,7 +472,7 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
   tbb::parallel_for(std::size_t(0), planar.patches.size(), [&](std::size_t p) {
     std::vector<CGAL::Bbox_3> parts;
     const std::vector<std::uint32_t> candidates =
-        patch_candidates(mesh, table, position, planar, tree, p, parts);
+        patch_candidates(mesh, table, position, planar, tree, patched, p, parts);
     if (candidates.empty()) return;
     const detail::UpwardRounding rounding;
     Found& f = found[tree.self_pair_tasks() + p];
