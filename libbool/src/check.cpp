@@ -477,6 +477,12 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
     const detail::UpwardRounding rounding;
     Found& f = found[tree.self_pair_tasks() + p];
     auto test_pair = [&](std::uint32_t i, std::uint32_t j) {
+      // As in the traversal: a common vertex whose star is proved embedded settles the pair.
+      if (!proved.empty())
+        for (const VertexIndex v : mesh.triangles[i])
+          if (proved[v] &&
+              (v == mesh.triangles[j][0] || v == mesh.triangles[j][1] || v == mesh.triangles[j][2]))
+            return;
       if (test.improper(mesh.triangles[i], mesh.triangles[j])) f.add(i, j, list);
     };
     if (planar.patches[p].slab) {
