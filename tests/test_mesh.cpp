@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 
+#include "morphex/generators.h"
 #include "morphex/mesh.h"
 
 using namespace morphex;
@@ -102,6 +103,39 @@ TEST(Volume, EqualsTheRationalSumForEveryScale) {
   for (Point& p : thirds.points) p = Point(p.x() / 3, p.y(), p.z() * 5 / 7);
   EXPECT_EQ(signed_volume(thirds), volume_by_rationals(thirds));
   EXPECT_EQ(signed_volume(Mesh{}), FT(0));
+}
+
+// Rational coordinates over a few shared denominators (thirds and sevenths, a rational rotation,
+// scales down to 2^-600) take the sum over their common denominator; coordinates over
+// denominators with nothing in common (distinct primes: the common one passes 4096 bits) the
+// sum of rationals. Both must equal the definition exactly.
+TEST(Volume, RationalCoordinatesEqualTheDefinition) {
+  const Transformation turn(FT(3) / 5, FT(-4) / 5, 0, FT(4) / 5, FT(3) / 5, 0, 0, 0, 1);
+  const Transformation tilt(1, 0, 0, 0, FT(5) / 13, FT(-12) / 13, 0, FT(12) / 13, FT(5) / 13);
+  for (int scale : {0, -40, -600}) {
+    Mesh m = random_double_triangles(unsigned(11 - scale), 30, 300);
+    for (Point& p : m.points)
+      p = tilt(turn(Point(p.x() * std::ldexp(1.0, scale) / 3, p.y() * 5 / 7, p.z())));
+    EXPECT_EQ(signed_volume(m), volume_by_rationals(m)) << "scale 2^" << scale;
+  }
+  Mesh primes = random_double_triangles(12, 10, 200);
+  int next = 1000003;
+  auto prime_after = [](int n) {
+    for (;; ++n) {
+      bool prime = n > 1;
+      for (int d = 2; d * d <= n && prime; ++d) prime = n % d != 0;
+      if (prime) return n;
+    }
+  };
+  for (Point& p : primes.points) {
+    FT c[3];
+    for (int k = 0; k < 3; ++k) {
+      next = prime_after(next + 1);
+      c[k] = p[k] / next;
+    }
+    p = Point(c[0], c[1], c[2]);
+  }
+  EXPECT_EQ(signed_volume(primes), volume_by_rationals(primes));
 }
 
 // The sign of the volume (the outward test) is decided by doubles when the rounding errors

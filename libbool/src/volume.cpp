@@ -17,6 +17,7 @@
 #include <cmath>
 #include <optional>
 #include <type_traits>
+#include <vector>
 
 #include "morphex/mesh.h"
 #include "wide_integer.h"
@@ -51,6 +52,53 @@ Exact rational_volume_times_6(const Mesh& mesh) {
     terms[i] = a.x() * cx + a.y() * cy + a.z() * cz;
   });
   return sum_balanced(terms);
+}
+
+// Rational coordinates (a rotated mesh, a Boolean's output) mostly share their denominators: over
+// their least common multiple D they are integers, and the sum of determinants is a sum of
+// integers (GMP, no gcd per face) divided by D^3 once. Nullopt when D grows past
+// kMaxDenominatorBits (denominators with nothing in common), for the sum of rationals.
+constexpr std::size_t kMaxDenominatorBits = 4096;
+
+std::optional<Exact> common_denominator_volume_times_6(const Mesh& mesh) {
+  static_assert(std::is_same_v<Exact, mpq_class>, "Epeck's exact number type is GMP's");
+  const std::size_t n = mesh.points.size();
+  std::vector<const mpq_class*> coordinate(3 * n);
+  mpz_class common = 1;
+  for (std::size_t v = 0; v < n; ++v) {
+    const auto& p = CGAL::exact(mesh.points[v]);
+    for (int k = 0; k < 3; ++k) {
+      const mpq_class& c = p.cartesian(k);
+      coordinate[3 * v + k] = &c;
+      if (mpz_divisible_p(common.get_mpz_t(), c.get_den_mpz_t())) continue;
+      mpz_lcm(common.get_mpz_t(), common.get_mpz_t(), c.get_den_mpz_t());
+      if (mpz_sizeinbase(common.get_mpz_t(), 2) > kMaxDenominatorBits) return std::nullopt;
+    }
+  }
+  std::vector<mpz_class> integer(3 * n);
+  tbb::parallel_for(std::size_t(0), 3 * n, [&](std::size_t i) {
+    const mpq_class& c = *coordinate[i];
+    mpz_divexact(integer[i].get_mpz_t(), common.get_mpz_t(), c.get_den_mpz_t());
+    integer[i] *= c.get_num();
+  });
+  std::vector<mpz_class> terms(mesh.triangles.size());
+  tbb::parallel_for(std::size_t(0), terms.size(), [&](std::size_t i) {
+    const Triangle& t = mesh.triangles[i];
+    const mpz_class *a = &integer[3 * t[0]], *b = &integer[3 * t[1]], *c = &integer[3 * t[2]];
+    // a . (b x c)
+    terms[i] = a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) +
+               a[2] * (b[0] * c[1] - b[1] * c[0]);
+  });
+  while (terms.size() > 1) {  // pairwise, as sum_balanced
+    const std::size_t half = (terms.size() + 1) / 2, pairs = terms.size() - half;
+    tbb::parallel_for(std::size_t(0), pairs, [&](std::size_t i) { terms[i] += terms[i + half]; });
+    terms.resize(half);
+  }
+  if (terms.empty()) return Exact(0);
+  const mpz_class cube = common * common * common;
+  Exact out(terms[0], cube);
+  out.canonicalize();
+  return out;
 }
 
 // The widths of one exact sum: coordinates below 2^Bits in magnitude, 2x2 minors below
@@ -171,6 +219,7 @@ std::optional<Exact> integer_volume_times_6(const Mesh& mesh) {
 
 FT signed_volume(const Mesh& mesh) {
   std::optional<Exact> six = integer_volume_times_6(mesh);
+  if (!six) six = common_denominator_volume_times_6(mesh);
   if (!six) six = rational_volume_times_6(mesh);
   return FT(*six / Exact(6));
 }
