@@ -13,6 +13,7 @@
 
 #include "check_planar.h"
 #include "morphex/check.h"
+#include "morphex/generators.h"
 #include "point_index.h"
 #include "point_table.h"
 #include "spatial.h"
@@ -71,6 +72,34 @@ inline Mesh turned_and_rounded(const Mesh& m, double a, double b) {
         {x1, std::cos(b) * y1 - std::sin(b) * z, std::sin(b) * y1 + std::cos(b) * z});
   }
   return from_double(d);
+}
+
+// A fan prism of n segments (radius 2, height 1, caps fanned from one rim vertex) with its bottom
+// cap broken or met by another solid, by `kind`: 0 a rim vertex moved inward in the cap's plane,
+// 1 two rim vertices swapped, 2 a rim vertex lifted or sunk by 2^-30 up to 2^-2, 3 to 5 a
+// tetrahedron through, onto or beside the cap, 6 another fan prism there. pick(lo, hi) draws the
+// details.
+template <class Pick>
+Mesh fan_prism_case(int n, int kind, Pick&& pick) {
+  Mesh m = make_fan_prism(n, 2.0, 1.0);
+  if (kind == 0) {
+    const VertexIndex v = VertexIndex(pick(1, n - 1));
+    const FT shrink = FT(pick(1, 9)) / 10;
+    m.points[v] = Point(m.points[v].x() * shrink, m.points[v].y() * shrink, 0);
+  } else if (kind == 1) {
+    std::swap(m.points[std::size_t(pick(1, n - 1))], m.points[std::size_t(pick(1, n - 1))]);
+  } else if (kind == 2) {
+    const VertexIndex v = VertexIndex(pick(1, n - 1));
+    const double lift = std::ldexp(pick(0, 1) ? 1.0 : -1.0, -pick(2, 30));
+    m.points[v] = Point(m.points[v].x(), m.points[v].y(), lift);
+  } else {
+    const Mesh other = kind == 6 ? make_fan_prism(pick(17, 24), 1.0, 1.0)
+                                 : transformed(make_tetrahedron(),
+                                               Transformation(CGAL::SCALING, FT(pick(1, 4)) / 2));
+    const FT z = kind == 3 ? FT(pick(-2, 0)) / 2 : kind == 4 ? FT(0) : FT(pick(-1, 1)) / 2;
+    m = concatenate(m, translated(other, Vector(FT(pick(-6, 6)) / 4, FT(pick(-6, 6)) / 4, z)));
+  }
+  return m;
 }
 
 }  // namespace morphex::test_support

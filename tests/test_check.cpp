@@ -365,21 +365,9 @@ TEST(Check, FlatFansAgreeWithBruteForce) {
   int broken = 0, intersecting = 0;
   for (int i = 0; i < 80; ++i) {
     const int n = pick(17, 36);
-    Mesh m = make_fan_prism(n, 2.0, 1.0);
+    // Moved, swapped, a tetrahedron through or onto the cap, another fan prism.
     const int kind = pick(0, 4);
-    if (kind == 0) {  // a bottom rim vertex moved inward, in the plane
-      const VertexIndex v = VertexIndex(pick(1, n - 1));
-      const FT shrink = FT(pick(1, 9)) / 10;
-      m.points[v] = Point(m.points[v].x() * shrink, m.points[v].y() * shrink, 0);
-    } else if (kind == 1) {  // two bottom rim vertices swapped
-      std::swap(m.points[std::size_t(pick(1, n - 1))], m.points[std::size_t(pick(1, n - 1))]);
-    } else {  // a tetrahedron or another fan prism through, onto or beside the bottom cap
-      const Mesh other = kind == 4 ? make_fan_prism(pick(17, 24), 1.0, 1.0)
-                                   : transformed(make_tetrahedron(),
-                                                 Transformation(CGAL::SCALING, FT(pick(1, 4)) / 2));
-      const FT z = kind == 2 ? FT(pick(-2, 0)) / 2 : kind == 3 ? FT(0) : FT(pick(-1, 1)) / 2;
-      m = concatenate(m, translated(other, Vector(FT(pick(-6, 6)) / 4, FT(pick(-6, 6)) / 4, z)));
-    }
+    const Mesh m = test_support::fan_prism_case(n, std::array{0, 1, 3, 4, 6}[kind], pick);
     CheckOptions options;
     options.list_self_intersections = true;
     const MeshReport r = check_mesh(m, options);

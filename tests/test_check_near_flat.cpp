@@ -53,25 +53,8 @@ TEST(NearFlat, ImproperPairsAgreeWithBruteForce) {
   int intersecting = 0, with_slabs = 0;
   for (int i = 0; i < 70; ++i) {
     const int n = pick(17, 30);
-    Mesh m = make_fan_prism(n, 2.0, 1.0);
     const int kind = pick(0, 6);
-    if (kind == 0) {  // a bottom rim vertex moved inward, in the plane
-      const VertexIndex v = VertexIndex(pick(1, n - 1));
-      const FT shrink = FT(pick(1, 9)) / 10;
-      m.points[v] = Point(m.points[v].x() * shrink, m.points[v].y() * shrink, 0);
-    } else if (kind == 1) {  // two bottom rim vertices swapped
-      std::swap(m.points[std::size_t(pick(1, n - 1))], m.points[std::size_t(pick(1, n - 1))]);
-    } else if (kind == 2) {  // a bottom rim vertex lifted by 2^-30 up to 2^-2, or sunk
-      const VertexIndex v = VertexIndex(pick(1, n - 1));
-      const double lift = std::ldexp(pick(0, 1) ? 1.0 : -1.0, -pick(2, 30));
-      m.points[v] = Point(m.points[v].x(), m.points[v].y(), lift);
-    } else {  // a tetrahedron or another fan prism through, onto or beside the bottom cap
-      const Mesh other = kind == 6 ? make_fan_prism(pick(17, 24), 1.0, 1.0)
-                                   : transformed(make_tetrahedron(),
-                                                 Transformation(CGAL::SCALING, FT(pick(1, 4)) / 2));
-      const FT z = kind == 3 ? FT(pick(-2, 0)) / 2 : kind == 4 ? FT(0) : FT(pick(-1, 1)) / 2;
-      m = concatenate(m, translated(other, Vector(FT(pick(-6, 6)) / 4, FT(pick(-6, 6)) / 4, z)));
-    }
+    Mesh m = test_support::fan_prism_case(n, kind, pick);
     m = turned_and_rounded(m, pick(1, 600) / 100.0, pick(1, 600) / 100.0);
     with_slabs += slabs(proved_patches_of(m, true)) > 0;
     const auto expected = improper_pairs_by_brute_force(m);

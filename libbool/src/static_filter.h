@@ -22,6 +22,21 @@ using Xyz = std::array<double, 3>;
 // Inside [kTiny, kHuge] no product of the filters underflows or overflows.
 inline constexpr double kStaticTiny = 1e-140, kStaticHuge = 1e140;
 
+// det [a, b, c] in doubles, and the sum of the magnitudes of its six products (its permanent),
+// which the error bounds scale with.
+struct DetAndPermanent {
+  double det, permanent;
+};
+inline DetAndPermanent det_and_permanent(double ax, double ay, double az, double bx, double by,
+                                         double bz, double cx, double cy, double cz) {
+  const double bxcy = bx * cy, cxby = cx * by, cxay = cx * ay, axcy = ax * cy, axby = ax * by,
+               bxay = bx * ay;
+  return {az * (bxcy - cxby) + bz * (cxay - axcy) + cz * (axby - bxay),
+          (std::fabs(bxcy) + std::fabs(cxby)) * std::fabs(az) +
+              (std::fabs(cxay) + std::fabs(axcy)) * std::fabs(bz) +
+              (std::fabs(axby) + std::fabs(bxay)) * std::fabs(cz)};
+}
+
 // sign det [a, b, c] for rows rounded once each from differences of doubles (or exact, which
 // the bound covers too): the core of static_orientation.
 inline std::optional<int> static_orientation_of_differences(double ax, double ay, double az,
@@ -32,12 +47,7 @@ inline std::optional<int> static_orientation_of_differences(double ax, double ay
   if ((ax == 0 && bx == 0 && cx == 0) || (ay == 0 && by == 0 && cy == 0) ||
       (az == 0 && bz == 0 && cz == 0))
     return 0;
-  const double bxcy = bx * cy, cxby = cx * by, cxay = cx * ay, axcy = ax * cy, axby = ax * by,
-               bxay = bx * ay;
-  const double det = az * (bxcy - cxby) + bz * (cxay - axcy) + cz * (axby - bxay);
-  const double permanent = (std::fabs(bxcy) + std::fabs(cxby)) * std::fabs(az) +
-                           (std::fabs(cxay) + std::fabs(axcy)) * std::fabs(bz) +
-                           (std::fabs(axby) + std::fabs(bxay)) * std::fabs(cz);
+  const auto [det, permanent] = det_and_permanent(ax, ay, az, bx, by, bz, cx, cy, cz);
   // Shewchuk's orient3d bound A is (7 + 56 eps) eps with eps = 2^-53.
   const double bound = 1.6e-15 * permanent;
   if (!(permanent < kStaticHuge)) return std::nullopt;  // also NaN
@@ -90,12 +100,7 @@ inline std::optional<int> static_orientation_near(const Xyz& p, const Xyz& q, co
       std::fmax(std::fmax(std::fabs(ax), std::fabs(ay)), std::fmax(std::fabs(az), std::fabs(bx))),
       std::fmax(std::fmax(std::fabs(by), std::fabs(bz)),
                 std::fmax(std::fabs(cx), std::fmax(std::fabs(cy), std::fabs(cz)))));
-  const double bxcy = bx * cy, cxby = cx * by, cxay = cx * ay, axcy = ax * cy, axby = ax * by,
-               bxay = bx * ay;
-  const double det = az * (bxcy - cxby) + bz * (cxay - axcy) + cz * (axby - bxay);
-  const double permanent = (std::fabs(bxcy) + std::fabs(cxby)) * std::fabs(az) +
-                           (std::fabs(cxay) + std::fabs(axcy)) * std::fabs(bz) +
-                           (std::fabs(axby) + std::fabs(bxay)) * std::fabs(cz);
+  const auto [det, permanent] = det_and_permanent(ax, ay, az, bx, by, bz, cx, cy, cz);
   if (!(permanent < kStaticHuge) || !(permanent > kStaticTiny)) return std::nullopt;
   const double e = entry_bound(m, error);
   const double bound = 1.6e-15 * permanent + std::fmax(37 * error * e * e, kNearSlackFloor);
