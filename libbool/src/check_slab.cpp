@@ -1,0 +1,154 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The boxes and the projection test that the nearly flat patches of the self-intersection check
+// rely on (check_planar.h): a triangle's part in a patch's slab, a thin triangle's slices, and
+// whether a triangle and a box are apart along the patch's axis. All in interval arithmetic, the
+// caller rounding upward, so that every box holds what it claims.
+#include <algorithm>
+#include <cmath>
+
+#include "check_planar.h"
+
+namespace morphex::detail {
+namespace {
+using I = CGAL::Interval_nt<false>;
+}  // namespace
+
+bool apart_along_axis(const PointTable& table, const PlanarPatch& patch, const CGAL::Bbox_3& part,
+                      const std::array<PointId, 3>& t) {
+  const int u = patch.dropped == 0 ? 1 : 0, v = patch.dropped == 2 ? 1 : 2;
+  I x[3], y[3];
+  for (int k = 0; k < 3; ++k) {
+    x[k] = table.approx(t[k]).cartesian(u);
+    y[k] = table.approx(t[k]).cartesian(v);
+  }
+  const double bx[2] = {part.min(u), part.max(u)}, by[2] = {part.min(v), part.max(v)};
+  for (int k = 0; k < 3; ++k) {
+    const int j = (k + 1) % 3, o = (k + 2) % 3;
+    // side(p) = (b - a) x (p - a) for the edge a b; the triangle's third corner fixes the inside.
+    const I ex = x[j] - x[k], ey = y[j] - y[k];
+    auto side = [&](const I& px, const I& py) { return ex * (py - y[k]) - ey * (px - x[k]); };
+    const I inner = side(x[o], y[o]);
+    const bool positive = inner.inf() > 0;
+    if (!positive && !(inner.sup() < 0)) continue;
+    // The box is outside when its corner most to the inside is: the one the gradient of the
+    // inside's side (-ey, ex) points to, or both along an axis where its sign is uncertain.
+    const I gu = positive ? -ey : ey, gv = positive ? ex : -ex;
+    // (A gradient component that is exactly zero takes either corner.)
+    int u_first = gu.inf() >= 0 ? 1 : 0, u_last = gu.sup() <= 0 ? 0 : 1;
+    int v_first = gv.inf() >= 0 ? 1 : 0, v_last = gv.sup() <= 0 ? 0 : 1;
+    if (u_first > u_last) u_first = u_last = 0;
+    if (v_first > v_last) v_first = v_last = 0;
+    bool all_out = true;
+    for (int cu = u_first; cu <= u_last && all_out; ++cu)
+      for (int cv = v_first; cv <= v_last && all_out; ++cv) {
+        const I s = side(I(bx[cu]), I(by[cv]));
+        all_out = positive ? s.sup() < 0 : s.inf() > 0;
+      }
+    if (all_out) return true;
+  }
+  return false;
+}
+
+namespace {
+
+// The box of the part of triangle t where the affine function h (its values at the corners
+// given) lies in [low, high]: the hull of the corners in that range and of the points where the
+// edges cross h = low and h = high, each taken with its interval. Empty when no part is.
+CGAL::Bbox_3 part_between(const PointTable& table, const std::array<PointId, 3>& t, const I (&h)[3],
+                          double low, double high) {
+  CGAL::Bbox_3 part;
+  for (int k = 0; k < 3; ++k) {
+    const ApproxPoint& x = table.approx(t[k]);
+    if (h[k].inf() <= high && h[k].sup() >= low) part += x.bbox();
+    const int j = (k + 1) % 3;
+    const ApproxPoint& y = table.approx(t[j]);
+    for (const double c : {low, high}) {
+      const bool k_over = h[k].inf() > c, k_under = h[k].sup() < c;
+      const bool j_over = h[j].inf() > c, j_under = h[j].sup() < c;
+      if ((k_over && j_over) || (k_under && j_under)) continue;  // the edge stays on one side
+      const I rise = h[j] - h[k];
+      if (rise.inf() <= 0 && rise.sup() >= 0) {  // too flat to place the crossing: the edge
+        part += x.bbox();
+        part += y.bbox();
+        continue;
+      }
+      const I s = (c - h[k]) / rise;
+      part += (x + s * (y - x)).bbox();
+    }
+  }
+  return part;
+}
+
+CGAL::Bbox_3 common_box(const CGAL::Bbox_3& a, const CGAL::Bbox_3& b) {
+  return {std::max(a.xmin(), b.xmin()), std::max(a.ymin(), b.ymin()), std::max(a.zmin(), b.zmin()),
+          std::min(a.xmax(), b.xmax()), std::min(a.ymax(), b.ymax()), std::min(a.zmax(), b.zmax())};
+}
+
+}  // namespace
+
+std::optional<CGAL::Bbox_3> part_in_slab(const PointTable& table, const PlanarPatch& patch,
+                                         const std::array<PointId, 3>& t) {
+  const auto& n = patch.normal;
+  I h[3];
+  bool above = true, below = true;
+  CGAL::Bbox_3 whole;
+  for (int k = 0; k < 3; ++k) {
+    const ApproxPoint& x = table.approx(t[k]);
+    h[k] = n[0] * x.x() + n[1] * x.y() + n[2] * x.z();
+    above &= h[k].inf() > patch.high;
+    below &= h[k].sup() < patch.low;
+    whole += x.bbox();
+  }
+  if (above || below) return std::nullopt;
+  // Both boxes hold the part; their intersection does too.
+  return common_box(part_between(table, t, h, patch.low, patch.high), whole);
+}
+
+int pieces_for(const PointTable& table, const std::array<PointId, 3>& t) {
+  constexpr int kMaxPieces = 16;
+  double p[3][3];
+  for (int k = 0; k < 3; ++k)
+    for (int a = 0; a < 3; ++a) p[k][a] = table.approx(t[k]).cartesian(a).inf();
+  // The box's two largest extents against the triangle's area (in doubles: any count is sound).
+  // A thin triangle lying diagonally has a box face about its length squared, one along an
+  // axis about its own area; slicing a diagonal one into k pieces shrinks each box k-fold.
+  double extent[3];
+  for (int a = 0; a < 3; ++a)
+    extent[a] = std::max({p[0][a], p[1][a], p[2][a]}) - std::min({p[0][a], p[1][a], p[2][a]});
+  std::sort(extent, extent + 3);
+  const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+  const double v[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+  const double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                       u[0] * v[1] - u[1] * v[0]};
+  const double twice_area = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+  const double pieces = std::sqrt(extent[2] * extent[1] / (2 * twice_area));
+  if (!(pieces < kMaxPieces)) return twice_area > 0 ? kMaxPieces : 1;  // too thin to tell: one
+  return std::max(1, int(pieces));
+}
+
+void add_pieces(const PointTable& table, const std::array<PointId, 3>& t, int pieces,
+                std::vector<CGAL::Bbox_3>& out) {
+  CGAL::Bbox_3 whole;
+  for (const PointId v : t) whole += table.approx(v).bbox();
+  if (pieces <= 1) {
+    out.push_back(whole);
+    return;
+  }
+  int axis = 0;
+  for (int a = 1; a < 3; ++a)
+    if (whole.max(a) - whole.min(a) > whole.max(axis) - whole.min(axis)) axis = a;
+  const I h[3] = {table.approx(t[0]).cartesian(axis), table.approx(t[1]).cartesian(axis),
+                  table.approx(t[2]).cartesian(axis)};
+  const double lo = whole.min(axis), step = (whole.max(axis) - lo) / pieces;
+  for (int i = 0; i < pieces; ++i) {
+    // The last piece ends at the box's end, whatever the rounding of the steps.
+    const double a = i == 0 ? lo : lo + i * step,
+                 b = i + 1 == pieces ? whole.max(axis) : lo + (i + 1) * step;
+    const CGAL::Bbox_3 piece = common_box(part_between(table, t, h, a, b), whole);
+    if (piece.xmin() <= piece.xmax() && piece.ymin() <= piece.ymax() &&
+        piece.zmin() <= piece.zmax())
+      out.push_back(piece);
+  }
+}
+
+}  // namespace morphex::detail
