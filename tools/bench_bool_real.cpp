@@ -12,7 +12,7 @@
 // forked child with its own thread limit: morphex's operation on inputs taken as valid and morphex
 // as `morphex bool` runs it (input check + operation), Manifold, at one thread; morphex at 2 and 4
 // threads and Manifold at 2 for the scaling. Per input, check_mesh on the file as read (what
-// `morphex check` does) at one thread.
+// `morphex check` does; an EMBER mesh as placed, what `morphex bool` checks) at one thread.
 #include <tbb/global_control.h>
 
 #include <array>
