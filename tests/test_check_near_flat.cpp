@@ -22,7 +22,7 @@ using test_support::turned_and_rounded;
 namespace {
 std::size_t slabs(const detail::PlanarPatches& p) {
   std::size_t n = 0;
-  for (const auto& patch : p.patches) n += patch.slab;
+  for (const auto& patch : p.patches) n += patch.kind == detail::PlanarPatch::Kind::NearlyFlat;
   return n;
 }
 }  // namespace
@@ -88,7 +88,7 @@ TEST(NearFlat, PiecesAndSlabPartsHoldTheirTriangles) {
     const detail::PointTable table(m, m, true);
     const std::array<detail::PointId, 3> t = {0, 1, 2};
     detail::PlanarPatch slab;
-    slab.slab = true;
+    slab.kind = detail::PlanarPatch::Kind::NearlyFlat;
     slab.normal = {coordinate(random), coordinate(random), coordinate(random)};
     slab.low = coordinate(random);
     slab.high = slab.low + std::abs(coordinate(random)) / 4;

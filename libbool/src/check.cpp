@@ -427,12 +427,13 @@ std::vector<std::uint32_t> patch_candidates(const Mesh& mesh, const PointTable& 
   auto consider = [&](std::uint32_t t) {
     const Triangle& f = mesh.triangles[t];
     const std::array<PointId, 3> corners = {position[f[0]], position[f[1]], position[f[2]]};
-    if (patch.slab) {
+    if (patch.kind == detail::PlanarPatch::Kind::NearlyFlat) {
       if (const auto part = detail::part_in_slab(table, patch, corners)) {
         out.push_back(t);
         parts.push_back(*part);
       }
-    } else if (!patch.flat || !detail::meets_patch_only_at_its_features(table, patch, corners))
+    } else if (patch.kind == detail::PlanarPatch::Kind::Star ||
+               !detail::meets_patch_only_at_its_features(table, patch, corners))
       out.push_back(t);
   };
   const detail::UpwardRounding rounding;
@@ -459,7 +460,8 @@ void slab_pairs(const Mesh& mesh, const PointTable& table, const std::vector<Poi
   std::vector<std::uint32_t> ids;
   for (const std::uint32_t t : slab.triangles) {
     pieces.clear();
-    detail::add_pieces(table, corners(t), detail::pieces_for(table, corners(t)), pieces);
+    const std::array<PointId, 3> c = corners(t);
+    detail::add_pieces(table, c, detail::pieces_for(table, c), pieces);
     for (const CGAL::Bbox_3& b : pieces) {
       boxes.push_back(FloatBox::of(b));
       ids.push_back(t);
@@ -548,7 +550,7 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
       if (planes.beside(i, j) || planes.beside(j, i)) return;
       if (test.improper(mesh.triangles[i], mesh.triangles[j])) f.add(i, j, list);
     };
-    if (planar.patches[p].slab) {
+    if (planar.patches[p].kind == detail::PlanarPatch::Kind::NearlyFlat) {
       slab_pairs(mesh, table, position, planar.patches[p], candidates, parts, test_pair);
     } else {
       const TriangleTree patch(mesh, planar.patches[p].triangles);

@@ -385,13 +385,7 @@ using Normal = std::array<double, 3>;
 // faces, never to decide anything.
 Normal rough_normal(const Mesh& mesh, const PointTable& table, const std::vector<PointId>& position,
                     std::uint32_t f) {
-  const auto c = corners(mesh, position, f);
-  double p[3][3];
-  for (int k = 0; k < 3; ++k)
-    for (int a = 0; a < 3; ++a) p[k][a] = table.approx(c[k]).cartesian(a).inf();
-  const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
-  const double v[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
-  Normal n = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  Normal n = rough_cross(table, corners(mesh, position, f));
   const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   if (!(length > 0) || !std::isfinite(length)) return {0, 0, 0};
   for (double& x : n) x /= length;
@@ -404,7 +398,6 @@ void set_slab(const PointTable& table, const std::vector<Normal>& normal, Planar
   Normal n = {0, 0, 0};
   for (const std::uint32_t f : patch.triangles)
     for (int a = 0; a < 3; ++a) n[a] += normal[f][a];
-  patch.slab = true;
   patch.normal = n;
   patch.dropped = 0;
   for (int a = 1; a < 3; ++a)
@@ -466,7 +459,7 @@ void add_near_flat_patches(const Mesh& mesh, const PointTable& table,
       proved_groups(mesh, table, position, joined, eligible, min_triangles);
   tbb::parallel_for(std::size_t(0), proved.size(), [&](std::size_t p) {
     const UpwardRounding rounding;
-    proved[p].flat = false;
+    proved[p].kind = PlanarPatch::Kind::NearlyFlat;
     set_slab(table, normal, proved[p]);
   });
   append(std::move(proved), groups);
@@ -542,7 +535,7 @@ void add_proved_stars(const Mesh& mesh, const PointTable& table,
   for (std::size_t s = 0; s < stars.size(); ++s) {
     if (!proved[s]) continue;
     PlanarPatch group;
-    group.flat = false;
+    group.kind = PlanarPatch::Kind::Star;
     for (std::size_t k = stars[s].first; k < stars[s].second; ++k) {
       const std::uint32_t f = corners_at[k].face;
       if (groups.patch_of[f] >= 0) continue;  // claimed by an earlier group

@@ -32,16 +32,17 @@ using ManifoldEdges = std::vector<std::pair<std::uint64_t, std::array<std::uint3
 // a flat patch, or (not flat) triangles of one vertex star that a coordinate projection maps
 // onto a fan without overlap (a cone's side: long thin facets meeting at its apex).
 struct PlanarPatch {
-  bool flat = true;
+  // Flat: its triangles lie in one plane. NearlyFlat (add_near_flat_patches): they lie in the
+  // slab below. Star (add_proved_stars): the triangles of one vertex star.
+  enum class Kind { Flat, NearlyFlat, Star };
+  Kind kind = Kind::Flat;
   std::array<PointId, 3> plane;          // flat: a triangle of the patch, spanning its plane
   std::vector<std::uint32_t> triangles;  // mesh triangle indices
   std::vector<PointId> vertices;         // its positions, sorted
   std::vector<std::uint64_t> edges;      // its edges (min << 32 | max over positions), sorted
   CGAL::Bbox_3 box;
-  // Nearly flat patches (flat = false, add_near_flat_patches): every vertex's height
-  // normal . x lies in [low, high] (bounds from interval arithmetic, so exact), and whatever
-  // stays outside that slab cannot meet the patch.
-  bool slab = false;
+  // NearlyFlat: every vertex's height normal . x lies in [low, high] (bounds from interval
+  // arithmetic, so exact), and whatever stays outside that slab cannot meet the patch.
   std::array<double, 3> normal{};
   double low = 0, high = 0;
   int dropped = 2;  // the coordinate axis closest to `normal`
@@ -65,14 +66,14 @@ PlanarPatches verified_planar_patches(const Mesh& mesh, const PointTable& table,
 // embedded along a coordinate axis as flat patches are (the proof needs no flatness: an injective
 // projection of the patch means no two of its triangles meet elsewhere than at common features).
 // Such patches are the flat faces of a mesh after a rounded rotation: long thin facets that are
-// no longer exactly coplanar. Appended with flat = false and slab = true.
+// no longer exactly coplanar. Appended as Kind::NearlyFlat.
 void add_near_flat_patches(const Mesh& mesh, const PointTable& table,
                            const std::vector<PointId>& position,
                            const std::vector<std::uint8_t>& degenerate,
                            const ManifoldEdges& manifold, std::size_t min_triangles,
                            PlanarPatches& groups);
 
-// The part of triangle t (by positions) inside the slab of `patch` (slab = true) lies in the
+// The part of triangle t (by positions) inside the slab of `patch` (NearlyFlat) lies in the
 // returned box; nullopt when t lies strictly outside the slab. The caller rounds upward.
 std::optional<CGAL::Bbox_3> part_in_slab(const PointTable& table, const PlanarPatch& patch,
                                          const std::array<PointId, 3>& t);
@@ -82,6 +83,10 @@ std::optional<CGAL::Bbox_3> part_in_slab(const PointTable& table, const PlanarPa
 // meet. The caller rounds upward.
 bool apart_along_axis(const PointTable& table, const PlanarPatch& patch, const CGAL::Bbox_3& part,
                       const std::array<PointId, 3>& t);
+
+// (q - p) x (r - p) for triangle t = (p, q, r), in doubles from the lower ends of the corners'
+// intervals: a rough quantity (to group faces, to count slices), never a decision.
+std::array<double, 3> rough_cross(const PointTable& table, const std::array<PointId, 3>& t);
 
 // How many pieces to box triangle t in: 1, or for a long thin triangle lying diagonally up to
 // 16 (its box is then far larger than itself, and a box traversal pairs it with everything
@@ -95,7 +100,7 @@ void add_pieces(const PointTable& table, const std::array<PointId, 3>& t, int pi
 // Vertex stars of at least `min_triangles` triangles outside `groups` whose projection along
 // a coordinate axis is one fan turning one way and wrapping at most once: then no two of them
 // meet beyond their common vertex and edges. Their triangles outside earlier groups are appended
-// as groups with flat = false (`edges`, `vertices` and `plane` unused).
+// as groups of Kind::Star (`edges`, `vertices` and `plane` unused).
 void add_proved_stars(const Mesh& mesh, const PointTable& table,
                       const std::vector<PointId>& position,
                       const std::vector<std::uint8_t>& degenerate, std::size_t min_triangles,

@@ -104,22 +104,25 @@ std::optional<CGAL::Bbox_3> part_in_slab(const PointTable& table, const PlanarPa
   return common_box(part_between(table, t, h, patch.low, patch.high), whole);
 }
 
-int pieces_for(const PointTable& table, const std::array<PointId, 3>& t) {
-  constexpr int kMaxPieces = 16;
+std::array<double, 3> rough_cross(const PointTable& table, const std::array<PointId, 3>& t) {
   double p[3][3];
   for (int k = 0; k < 3; ++k)
     for (int a = 0; a < 3; ++a) p[k][a] = table.approx(t[k]).cartesian(a).inf();
+  const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+  const double v[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+  return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+}
+
+int pieces_for(const PointTable& table, const std::array<PointId, 3>& t) {
+  constexpr int kMaxPieces = 16;
   // The box's two largest extents against the triangle's area (in doubles: any count is sound).
   // A thin triangle lying diagonally has a box face about its length squared, one along an
   // axis about its own area; slicing a diagonal one into k pieces shrinks each box k-fold.
-  double extent[3];
-  for (int a = 0; a < 3; ++a)
-    extent[a] = std::max({p[0][a], p[1][a], p[2][a]}) - std::min({p[0][a], p[1][a], p[2][a]});
+  CGAL::Bbox_3 box;
+  for (const PointId v : t) box += table.approx(v).bbox();
+  double extent[3] = {box.xmax() - box.xmin(), box.ymax() - box.ymin(), box.zmax() - box.zmin()};
   std::sort(extent, extent + 3);
-  const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
-  const double v[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
-  const double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-                       u[0] * v[1] - u[1] * v[0]};
+  const std::array<double, 3> c = rough_cross(table, t);
   const double twice_area = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
   const double pieces = std::sqrt(extent[2] * extent[1] / (2 * twice_area));
   if (!(pieces < kMaxPieces)) return twice_area > 0 ? kMaxPieces : 1;  // too thin to tell: one
