@@ -28,8 +28,10 @@ namespace {
 using Exact = std::decay_t<decltype(CGAL::exact(std::declval<FT>()))>;
 
 // Pairwise, so that operands stay of similar size; each level's additions run in parallel.
-Exact sum_balanced(std::vector<Exact>& terms) {
-  if (terms.empty()) return Exact(0);
+// Rationals or integers.
+template <class Number>
+Number sum_balanced(std::vector<Number>& terms) {
+  if (terms.empty()) return Number(0);
   while (terms.size() > 1) {
     const std::size_t half = (terms.size() + 1) / 2, pairs = terms.size() - half;
     tbb::parallel_for(std::size_t(0), pairs, [&](std::size_t i) { terms[i] += terms[i + half]; });
@@ -89,14 +91,8 @@ std::optional<Exact> common_denominator_volume_times_6(const Mesh& mesh) {
     terms[i] = a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) +
                a[2] * (b[0] * c[1] - b[1] * c[0]);
   });
-  while (terms.size() > 1) {  // pairwise, as sum_balanced
-    const std::size_t half = (terms.size() + 1) / 2, pairs = terms.size() - half;
-    tbb::parallel_for(std::size_t(0), pairs, [&](std::size_t i) { terms[i] += terms[i + half]; });
-    terms.resize(half);
-  }
-  if (terms.empty()) return Exact(0);
   const mpz_class cube = common * common * common;
-  Exact out(terms[0], cube);
+  Exact out(sum_balanced(terms), cube);
   out.canonicalize();
   return out;
 }
