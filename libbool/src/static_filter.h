@@ -79,11 +79,6 @@ inline std::optional<int> static_orientation_2_of_differences(double qu, double 
   return std::nullopt;
 }
 
-// Points known only within `error` of the doubles given, in each coordinate (a rational input's
-// nearest doubles): each difference is then off by up to 2 error besides its rounding, which moves
-// each of the six products of the determinant by at most 3 (2 error) m^2, with m bounding the
-// entries and their errors: 36 error m^2 in all, added to the bound (37: the rounding of the
-// bound itself). No shortcut for coordinates that agree: the points they stand for may not.
 // m (the largest entry) with the errors, rounded up whatever the rounding mode.
 inline double entry_bound(double m, double error) {
   return (m + 2 * error) * (1 + 0x1p-50);
@@ -91,6 +86,11 @@ inline double entry_bound(double m, double error) {
 // Below the normal range a product loses its relative accuracy: slack is never less than this.
 inline constexpr double kNearSlackFloor = 1e-280;
 
+// Points known only within `error` of the doubles given, in each coordinate (a rational input's
+// interval's lower end): each difference is then off by up to 2 error besides its rounding, which
+// moves each of the six products of the determinant by at most 3 (2 error) m^2, with m bounding the
+// entries and their errors: 36 error m^2 in all, added to the bound (37: the rounding of the
+// bound itself). No shortcut for coordinates that agree: the points they stand for may not.
 inline std::optional<int> static_orientation_near(const Xyz& p, const Xyz& q, const Xyz& r,
                                                   const Xyz& s, double error) {
   const double ax = q[0] - p[0], ay = q[1] - p[1], az = q[2] - p[2], bx = r[0] - p[0],
