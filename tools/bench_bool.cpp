@@ -7,7 +7,7 @@
 //              [--no-peers]   (morphex alone, for profiling) [--threads N]
 //   bench_bool A B [--rotate DEG] [--translate X Y Z] [--op OP]      (one pair from files)
 //   bench_bool --set real [--op OP] [--demo-dir DIR] [--prusa-dir DIR] [--ember-dir DIR]
-//              [--only SUBSTRING] [--json FILE] [--busy-retries N]
+//              [--only SUBSTRING] [--json FILE] [--busy-retries N] [--write-cases DIR]
 //              (pairs of real meshes against Manifold: bench_bool_real.cpp)
 //
 // Cases: icosphere pairs crossing each other from level 2 up to --max-level (a scaling curve),
@@ -98,7 +98,7 @@ struct Options {
   int busy_retries = 2;           // --set real only
   bool phases = false, peers_too = true;
   std::size_t threads = 0;  // 0: all cores
-  std::string demo_dir, prusa_dir, ember_dir;
+  std::string demo_dir, prusa_dir, ember_dir, write_cases;
   double degrees = 0;
   Vector offset = Vector(0, 0, 0);
 };
@@ -133,6 +133,8 @@ std::optional<Options> parse_arguments(int argc, char** argv) {
       o.prusa_dir = next();
     else if (arg == "--ember-dir")
       o.ember_dir = next();
+    else if (arg == "--write-cases")
+      o.write_cases = next();
     else if (arg == "--set") {
       o.set = next();
       if (o.set != "generated" && o.set != "real")
@@ -386,8 +388,8 @@ int main(int argc, char** argv) {
   const Options& o = *options;
   // The real set runs each engine at the thread counts it compares (1, 2, 4), set in each child.
   if (o.set == "real")
-    return run_real_set(
-        {o.op, o.json_path, o.only, o.demo_dir, o.prusa_dir, o.ember_dir, o.busy_retries});
+    return run_real_set({o.op, o.json_path, o.only, o.demo_dir, o.prusa_dir, o.ember_dir,
+                         o.busy_retries, o.write_cases});
   const std::vector<Case> cases = make_cases(o);
 
   // Limits morphex's TBB phases; CGAL's corefinement and Nef run sequentially anyway.

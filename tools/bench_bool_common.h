@@ -149,6 +149,9 @@ struct RealSetOptions {
   // A pair run while the rest of the machine kept over a quarter of a core busy runs again, up to
   // this many times, and the least disturbed attempt is reported.
   int busy_retries = 2;
+  // When set, each selected pair's two meshes are written there as placed (exact OFF,
+  // "<A> x <B>.a.off" and ".b.off"), so that one pair can be profiled alone with `bench_bool A B`.
+  std::string write_cases;
 };
 // Runs the set, prints its table and summary, writes the JSON; the exit status (0: every pair
 // that ran agreed).

@@ -433,6 +433,18 @@ nlohmann::json json_row(const Case& c, const RealSetOptions& o, const PairRuns& 
   return row;
 }
 
+// The pair's meshes as the engines get them, in exact OFF (the placed coordinates are rational).
+void write_case(const Case& c, const std::filesystem::path& dir) {
+  std::filesystem::create_directories(dir);
+  std::string stem = c.name;
+  for (char& ch : stem)
+    if (ch == '/' || ch == ':' || ch == '@') ch = '_';
+  WriteOptions exact;
+  exact.exact = true;
+  write_mesh(c.a, (dir / (stem + ".a.off")).string(), exact);
+  write_mesh(c.b, (dir / (stem + ".b.off")).string(), exact);
+}
+
 double median(std::vector<double> values) {
   if (values.empty()) return std::nan("");
   std::sort(values.begin(), values.end());
@@ -543,6 +555,7 @@ int run_real_set(const RealSetOptions& o) {
     }
     const Case c =
         is_ember(p.a) ? Case{name, a.mesh, b.mesh} : make_pair_case(name, a, b, p.degrees);
+    if (!o.write_cases.empty()) write_case(c, o.write_cases);
     PairRuns r = run_pair(c, o.op, warm);
     for (int retry = 0; retry < o.busy_retries && r.other_cores > 0.25; ++retry) {
       PairRuns again = run_pair(c, o.op, warm);
