@@ -56,7 +56,8 @@ BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
   BooleanStats& stats = result.stats;
   stats.seconds.validate = clock.lap();
 
-  const auto pairs = detail::candidate_pairs(a, b);
+  detail::OperandTrees trees;
+  const auto pairs = detail::candidate_pairs(a, b, trees);
   stats.candidate_pairs = pairs.size();
   stats.seconds.pairs = clock.lap();
 
@@ -76,8 +77,9 @@ BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
   detail::ClassifyCounts counts[2];
   // The two sides at once: a side's patch flood fill is sequential.
   detail::Labels labels[2];
-  tbb::parallel_invoke([&] { labels[0] = detail::classify(a, b, 0, refined[0], x, counts[0]); },
-                       [&] { labels[1] = detail::classify(b, a, 1, refined[1], x, counts[1]); });
+  tbb::parallel_invoke(
+      [&] { labels[0] = detail::classify(a, b, 0, refined[0], x, trees, counts[0]); },
+      [&] { labels[1] = detail::classify(b, a, 1, refined[1], x, trees, counts[1]); });
   stats.patches = counts[0].patches + counts[1].patches;
   stats.patches_by_orientation_rule = counts[0].by_orientation_rule + counts[1].by_orientation_rule;
   stats.patches_by_ray_cast = counts[0].by_ray_cast + counts[1].by_ray_cast;

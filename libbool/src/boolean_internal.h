@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "morphex/boolean.h"
 #include "morphex/union_find.h"
 #include "point_table.h"
+#include "spatial.h"
 
 namespace morphex::detail {
 
@@ -35,8 +37,22 @@ inline std::uint64_t edge_key(const Edge& e) {
 
 using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
 
-// Step 2: pairs (ta, tb) whose boxes overlap.
-Pairs candidate_pairs(const Mesh& a, const Mesh& b);
+// The box trees of the two operands, each built at most once per Boolean: by step 2 when it
+// indexes that operand, else by step 6 when a patch of the other operand needs a ray cast. The
+// two sides' classifications run at once, each reading only the other side's slot.
+class OperandTrees {
+ public:
+  const TriangleTree& of(int side, const Mesh& mesh) {
+    if (!tree_[side]) tree_[side].emplace(mesh);
+    return *tree_[side];
+  }
+
+ private:
+  std::optional<TriangleTree> tree_[2];
+};
+
+// Step 2: pairs (ta, tb) whose boxes overlap; the trees it builds are kept in `trees`.
+Pairs candidate_pairs(const Mesh& a, const Mesh& b, OperandTrees& trees);
 
 // A point of a facet's cut, with the edges of that facet it lies on (bit i: the edge from corner i
 // to corner i + 1), so that the facet's triangulation takes those collinearities from the
@@ -150,8 +166,9 @@ struct ClassifyCounts {
   std::size_t patches = 0, by_orientation_rule = 0, by_ray_cast = 0;
   std::size_t rule_conflicts = 0;  // segments of one patch that disagree: must stay 0
 };
+// `trees` gives the other operand's tree (slot 1 - side) for the ray casts.
 Labels classify(const Mesh& mesh, const Mesh& other, int side, const Refined& refined,
-                const Intersection& x, ClassifyCounts& counts);
+                const Intersection& x, OperandTrees& trees, ClassifyCounts& counts);
 
 // A surface over point ids: vertex v is the point vertex_point[v] (the vertices of a separated
 // non-manifold feature share a point).

@@ -48,7 +48,7 @@ bool plane_may_cross(const IntervalPlane& p, const FloatBox& box) {
 
 }  // namespace
 
-Pairs candidate_pairs(const Mesh& a, const Mesh& b) {
+Pairs candidate_pairs(const Mesh& a, const Mesh& b, OperandTrees& trees) {
   if (a.empty() || b.empty()) return {};
   const std::size_t na = a.num_triangles(), nb = b.num_triangles();
   if (na * nb <= 4096) {
@@ -68,14 +68,13 @@ Pairs candidate_pairs(const Mesh& a, const Mesh& b) {
   }
   if (std::max(na, nb) < 8 * std::min(na, nb)) {
     // Both trees at once: the upper levels of a tree are built sequentially.
-    std::optional<TriangleTree> tree_a, tree_b;
-    tbb::parallel_invoke([&] { tree_a.emplace(a); }, [&] { tree_b.emplace(b); });
-    return TriangleTree::overlapping_pairs(*tree_a, *tree_b);
+    tbb::parallel_invoke([&] { trees.of(0, a); }, [&] { trees.of(1, b); });
+    return TriangleTree::overlapping_pairs(trees.of(0, a), trees.of(1, b));
   }
   const bool tree_on_a = na < nb;
   const Mesh& indexed = tree_on_a ? a : b;
   const Mesh& queries = tree_on_a ? b : a;
-  const TriangleTree tree(indexed);
+  const TriangleTree& tree = trees.of(tree_on_a ? 0 : 1, indexed);
   std::vector<IntervalPlane> planes(indexed.num_triangles());
   {
     const CGAL::Protect_FPU_rounding<true> upward;
@@ -84,14 +83,12 @@ Pairs candidate_pairs(const Mesh& a, const Mesh& b) {
   // Queries in blocks, each block's pairs in its own vector, concatenated in block order.
   constexpr std::uint32_t kBlock = 1024;
   const auto nq = std::uint32_t(queries.num_triangles());
+  const std::vector<FloatBox> query_boxes = triangle_boxes(queries);
   std::vector<Pairs> found((nq + kBlock - 1) / kBlock);
   tbb::parallel_for(std::uint32_t(0), std::uint32_t(found.size()), [&](std::uint32_t block) {
     const CGAL::Protect_FPU_rounding<true> upward;
     for (std::uint32_t q = block * kBlock; q < std::min(nq, (block + 1) * kBlock); ++q) {
-      const Triangle& f = queries.triangles[q];
-      FloatBox box = FloatBox::of(queries.points[f[0]]);
-      box += FloatBox::of(queries.points[f[1]]);
-      box += FloatBox::of(queries.points[f[2]]);
+      const FloatBox& box = query_boxes[q];
       tree.for_each_overlap(box, [&](std::uint32_t t) {
         if (plane_may_cross(planes[t], box))
           found[block].emplace_back(tree_on_a ? t : q, tree_on_a ? q : t);

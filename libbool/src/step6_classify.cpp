@@ -16,7 +16,6 @@
 // compare normals with the facet they lie on, the others take the exact ray-cast winding number
 // of a point inside one of their triangles.
 #include <algorithm>
-#include <memory>
 #include <type_traits>
 
 #include "boolean_internal.h"
@@ -126,7 +125,7 @@ UnionFind connect_patches(const Mesh& mesh, int side, const Refined& refined, co
 }
 
 Labels classify(const Mesh& mesh, const Mesh& other, int side, const Refined& refined,
-                const Intersection& x, ClassifyCounts& counts) {
+                const Intersection& x, OperandTrees& trees, ClassifyCounts& counts) {
   const std::size_t nf = mesh.num_triangles(), ns = refined.triangles.size();
   UnionFind patches = connect_patches(mesh, side, refined, x);
   const std::size_t nodes = patches.parent.size();
@@ -146,7 +145,6 @@ Labels classify(const Mesh& mesh, const Mesh& other, int side, const Refined& re
   std::vector<std::uint8_t> cut(nf, 0);
   for (std::uint32_t f : refined.facets) cut[f] = 1;
   std::vector<std::int8_t> patch_label(nodes, -1);
-  std::unique_ptr<TriangleTree> other_tree;
   auto label = [&](std::uint32_t node, auto&& test) {
     std::int8_t& l = patch_label[patches.find(node)];
     if (l < 0) {
@@ -156,8 +154,7 @@ Labels classify(const Mesh& mesh, const Mesh& other, int side, const Refined& re
         l = rule;
         ++counts.by_orientation_rule;
       } else {
-        if (!other_tree && !other.empty()) other_tree = std::make_unique<TriangleTree>(other);
-        l = std::int8_t(other.empty() ? Label::Outside : test(*other_tree));
+        l = std::int8_t(other.empty() ? Label::Outside : test(trees.of(1 - side, other)));
         ++counts.by_ray_cast;
       }
     }
