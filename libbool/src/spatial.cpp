@@ -149,45 +149,46 @@ std::vector<FloatBox> vertex_boxes_of(const Mesh& mesh) {
                     });
   return boxes;
 }
-
-FloatBox triangle_box(const Mesh& mesh, const std::vector<FloatBox>& vertex_boxes,
-                      std::uint32_t t) {
-  const Triangle& f = mesh.triangles[t];
-  FloatBox b = vertex_boxes[f[0]];
-  b += vertex_boxes[f[1]];
-  b += vertex_boxes[f[2]];
-  return b;
-}
 }  // namespace
 
-TriangleTree::TriangleTree(const Mesh& mesh) {
-  const std::uint32_t n = std::uint32_t(mesh.num_triangles());
-  if (n == 0) return;
+std::vector<FloatBox> triangle_boxes(const Mesh& mesh, const std::vector<std::uint32_t>* subset) {
+  const std::size_t n = subset ? subset->size() : mesh.num_triangles();
+  auto face = [&](std::size_t i) -> const Triangle& {
+    return mesh.triangles[subset ? (*subset)[i] : i];
+  };
+  std::vector<FloatBox> boxes(n);
+  if (3 * n < mesh.num_vertices()) {
+    // A small part of a large mesh: its corners only.
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i < r.end(); ++i)
+                          for (const VertexIndex v : face(i))
+                            boxes[i] += FloatBox::of(mesh.points[v]);
+                      });
+    return boxes;
+  }
   const std::vector<FloatBox> vertex_boxes = vertex_boxes_of(mesh);
-  boxes_.resize(n);
-  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, kGrain),
-                    [&](const tbb::blocked_range<std::uint32_t>& r) {
-                      for (std::uint32_t t = r.begin(); t < r.end(); ++t)
-                        boxes_[t] = triangle_box(mesh, vertex_boxes, t);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                        const Triangle& f = face(i);
+                        FloatBox b = vertex_boxes[f[0]];
+                        b += vertex_boxes[f[1]];
+                        b += vertex_boxes[f[2]];
+                        boxes[i] = b;
+                      }
                     });
+  return boxes;
+}
+
+TriangleTree::TriangleTree(const Mesh& mesh) {
+  if (mesh.num_triangles() == 0) return;
+  boxes_ = triangle_boxes(mesh);
   build(boxes_, nullptr);
 }
 
 TriangleTree::TriangleTree(const Mesh& mesh, const std::vector<std::uint32_t>& subset) {
-  if (subset.empty()) return;
-  // Boxes of the subset's vertices only: the subset may be a small part of a large mesh.
-  std::vector<FloatBox> boxes(subset.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, subset.size(), kGrain),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                        const Triangle& f = mesh.triangles[subset[i]];
-                        FloatBox b = FloatBox::of(mesh.points[f[0]]);
-                        b += FloatBox::of(mesh.points[f[1]]);
-                        b += FloatBox::of(mesh.points[f[2]]);
-                        boxes[i] = b;
-                      }
-                    });
-  build(std::move(boxes), &subset);
+  if (!subset.empty()) build(triangle_boxes(mesh, &subset), &subset);
 }
 
 TriangleTree::TriangleTree(std::vector<FloatBox> boxes, const std::vector<std::uint32_t>& ids) {

@@ -47,6 +47,12 @@ struct FloatBox {
   CGAL::Bbox_3 bbox() const { return {lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]}; }
 };
 
+// The boxes of the triangles of `mesh` (of subset[i] when a subset is given), in parallel. Each
+// vertex is boxed once when the triangles cover much of the mesh: a vertex is a corner of about
+// six triangles, and boxing it reads its point, often a cache miss.
+std::vector<FloatBox> triangle_boxes(const Mesh& mesh,
+                                     const std::vector<std::uint32_t>* subset = nullptr);
+
 // A bounding-volume hierarchy over the triangles of a mesh, on conservative boxes. Built in
 // linear time: triangles in Morton order of their box centres (a radix sort), grouped by
 // kLeafSize into leaves, and levels of boxes above them, each box covering two of the level below
