@@ -179,9 +179,9 @@ std::vector<std::uint8_t> coincident(const PointTable& table, const IdMesh& surf
 }
 
 // The face across each edge, at 3 f + k for edge k of face f (kNone on a border): edge k runs
-// tri[f][k] -> tri[f][k + 1], and its twin is the face around tri[f][k + 1] that runs back. Faces
-// around each vertex are listed contiguously, so the search stays in cache (a hash table of all
-// edges did not).
+// tri[f][k] -> tri[f][k + 1], and its twin is the edge leaving tri[f][k + 1] for tri[f][k]. The
+// edges leaving each vertex are listed contiguously with their ends, so the search reads one
+// short run of memory (a hash table of all edges, or the faces around the vertex, did not).
 std::vector<std::uint32_t> edge_twins(const std::vector<Triangle>& tri, std::size_t nv) {
   const std::size_t nf = tri.size();
   std::vector<std::uint32_t> twin(3 * nf, kNone);
@@ -189,19 +189,22 @@ std::vector<std::uint32_t> edge_twins(const std::vector<Triangle>& tri, std::siz
   for (const Triangle& t : tri)
     for (VertexIndex v : t) ++start[v + 1];
   for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  std::vector<std::uint32_t> faces_at(3 * nf), fill(start.begin(), start.end() - 1);
+  struct Leaving {
+    VertexIndex to;
+    std::uint32_t face;
+  };
+  std::vector<Leaving> leaving(3 * nf);
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
   for (std::uint32_t f = 0; f < nf; ++f)
-    for (VertexIndex v : tri[f]) faces_at[fill[v]++] = f;
+    for (int k = 0; k < 3; ++k) leaving[fill[tri[f][k]]++] = {tri[f][(k + 1) % 3], f};
   for (std::uint32_t f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k) {
       const VertexIndex u = tri[f][k], v = tri[f][(k + 1) % 3];
-      for (std::uint32_t i = start[v]; i < start[v + 1]; ++i) {
-        const Triangle& g = tri[faces_at[i]];
-        if ((g[0] == v && g[1] == u) || (g[1] == v && g[2] == u) || (g[2] == v && g[0] == u)) {
-          twin[3 * f + k] = faces_at[i];
+      for (std::uint32_t i = start[v]; i < start[v + 1]; ++i)
+        if (leaving[i].to == u) {
+          twin[3 * f + k] = leaving[i].face;
           break;
         }
-      }
     }
   return twin;
 }
@@ -216,6 +219,13 @@ class SamePlane {
 
   bool operator()(std::uint32_t a, std::uint32_t b) {
     if (a == b) return true;
+    // Most edges of a curved surface join two planes that the filter tells apart at once: no
+    // cache for them (looking it up would cost more than the filter).
+    for (const PointId q : planes_[b]) {
+      const CGAL::Uncertain<CGAL::Sign> s =
+          table_.orientation_filter(planes_[a][0], planes_[a][1], planes_[a][2], q);
+      if (s.is_certain() && s.make_certain() != CGAL::ZERO) return false;
+    }
     const std::uint64_t key = edge_key(std::min(a, b), std::max(a, b));
     if (const std::uint8_t* known = cache_.find(key)) return *known != 0;
     const auto &pa = planes_[a], &pb = planes_[b];
