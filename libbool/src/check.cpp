@@ -21,6 +21,7 @@
 #include "spatial.h"
 #include "static_filter.h"
 #include "triangle_overlap.h"
+#include "volume_internal.h"
 
 namespace morphex {
 
@@ -505,9 +506,13 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
     if (planar.patch_of[t] < 0 && !degenerate[t]) others.push_back(t);
   }
   // The triangles of the patches, for each patch's candidates among the later patches.
-  const TriangleTree patched(mesh, in_patches);
-  const TriangleTree tree =
-      planar.patches.empty() ? TriangleTree(mesh) : TriangleTree(mesh, others);
+  // The vertices' boxes from the table's copy of their intervals (contiguous), for every tree.
+  std::vector<FloatBox> vertex_boxes(mesh.num_vertices());
+  tbb::parallel_for(std::size_t(0), vertex_boxes.size(),
+                    [&](std::size_t v) { vertex_boxes[v] = FloatBox::of(table.approx(v)); });
+  const TriangleTree patched(mesh, vertex_boxes, in_patches);
+  const TriangleTree tree = planar.patches.empty() ? TriangleTree(mesh, vertex_boxes)
+                                                   : TriangleTree(mesh, vertex_boxes, others);
   const TrianglePairs test(table, position);
   const PlaneFilters planes(mesh, table.input_doubles());
   const bool list = options.list_self_intersections;
@@ -553,9 +558,9 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
     if (planar.patches[p].kind == detail::PlanarPatch::Kind::NearlyFlat) {
       slab_pairs(mesh, table, position, planar.patches[p], candidates, parts, test_pair);
     } else {
-      const TriangleTree patch(mesh, planar.patches[p].triangles);
+      const TriangleTree patch(mesh, vertex_boxes, planar.patches[p].triangles);
       for (const auto& [i, j] :
-           TriangleTree::overlapping_pairs(patch, TriangleTree(mesh, candidates)))
+           TriangleTree::overlapping_pairs(patch, TriangleTree(mesh, vertex_boxes, candidates)))
         test_pair(i, j);
     }
   });
@@ -587,11 +592,14 @@ std::vector<Mesh> split_shells(const Mesh& mesh, const std::vector<std::uint32_t
 
 // Outward: a shell nested in an even number of others bounds material (positive volume), in an
 // odd number a cavity (negative). Only meaningful for closed, consistently oriented meshes.
-bool is_outward(const Mesh& mesh, const std::vector<std::uint32_t>& component_of,
-                const CheckOptions& options, const MeshReport& r) {
+bool is_outward(const Mesh& mesh, const PointTable& table,
+                const std::vector<std::uint32_t>& component_of, const CheckOptions& options,
+                const MeshReport& r) {
   if (mesh.num_triangles() == 0) return true;
   const auto volume_sign = [&](const Mesh& m) {
-    return options.volume && &m == &mesh ? CGAL::sign(r.volume) : signed_volume_sign(m);
+    if (&m != &mesh) return signed_volume_sign(m);
+    return options.volume ? CGAL::sign(r.volume)
+                          : detail::signed_volume_sign(mesh, table.input_doubles());
   };
   if (!r.closed() || !r.consistently_oriented) return false;
   if (r.self_intersections != 0 || r.degenerate_faces != 0 || r.components <= 1)
@@ -627,8 +635,9 @@ MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
   MeshReport r;
   r.vertices = mesh.num_vertices();
   r.triangles = mesh.num_triangles();
-  for (const Point& p : mesh.points) r.bbox += p.bbox();
   const PointTable table(mesh, mesh, true);
+  // From the table's copy of the points' intervals: contiguous, where each point is a pointer.
+  for (VertexIndex v = 0; v < mesh.num_vertices(); ++v) r.bbox += table.approx(v).bbox();
   const std::vector<std::uint8_t> degenerate = find_degenerate_faces(mesh, table, r);
   UnionFind components(mesh.num_triangles());
   std::vector<std::uint8_t> proved;
@@ -640,7 +649,7 @@ MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
   r.genus = total_genus(mesh, component_of, r);
   if (options.self_intersections && mesh.num_triangles() > 1)
     find_self_intersections(mesh, table, degenerate, manifold, proved, options, r);
-  r.outward = is_outward(mesh, component_of, options, r);
+  r.outward = is_outward(mesh, table, component_of, options, r);
   return r;
 }
 

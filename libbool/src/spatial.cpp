@@ -101,7 +101,10 @@ FloatBox FloatBox::of(const CGAL::Bbox_3& b) {
 }
 
 FloatBox FloatBox::of(const Point& p) {
-  const auto& a = CGAL::approx(p);
+  return of(CGAL::approx(p));
+}
+
+FloatBox FloatBox::of(const Kernel::Approximate_kernel::Point_3& a) {
   FloatBox out;
   for (int k = 0; k < 3; ++k) {
     out.lo[k] = round_down(a.cartesian(k).inf());
@@ -151,32 +154,33 @@ std::vector<FloatBox> vertex_boxes_of(const Mesh& mesh) {
 }
 }  // namespace
 
-std::vector<FloatBox> triangle_boxes(const Mesh& mesh, const std::vector<std::uint32_t>* subset) {
+std::vector<FloatBox> triangle_boxes(const Mesh& mesh, const std::vector<FloatBox>& vertex_boxes,
+                                     const std::vector<std::uint32_t>* subset) {
   const std::size_t n = subset ? subset->size() : mesh.num_triangles();
-  auto face = [&](std::size_t i) -> const Triangle& {
-    return mesh.triangles[subset ? (*subset)[i] : i];
-  };
   std::vector<FloatBox> boxes(n);
-  if (3 * n < mesh.num_vertices()) {
-    // A small part of a large mesh: its corners only.
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t i = r.begin(); i < r.end(); ++i)
-                          for (const VertexIndex v : face(i))
-                            boxes[i] += FloatBox::of(mesh.points[v]);
-                      });
-    return boxes;
-  }
-  const std::vector<FloatBox> vertex_boxes = vertex_boxes_of(mesh);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                        const Triangle& f = face(i);
+                        const Triangle& f = mesh.triangles[subset ? (*subset)[i] : i];
                         FloatBox b = vertex_boxes[f[0]];
                         b += vertex_boxes[f[1]];
                         b += vertex_boxes[f[2]];
                         boxes[i] = b;
                       }
+                    });
+  return boxes;
+}
+
+std::vector<FloatBox> triangle_boxes(const Mesh& mesh, const std::vector<std::uint32_t>* subset) {
+  const std::size_t n = subset ? subset->size() : mesh.num_triangles();
+  if (3 * n >= mesh.num_vertices()) return triangle_boxes(mesh, vertex_boxes_of(mesh), subset);
+  // A small part of a large mesh: its corners only.
+  std::vector<FloatBox> boxes(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kGrain),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i < r.end(); ++i)
+                        for (const VertexIndex v : mesh.triangles[subset ? (*subset)[i] : i])
+                          boxes[i] += FloatBox::of(mesh.points[v]);
                     });
   return boxes;
 }
@@ -189,6 +193,17 @@ TriangleTree::TriangleTree(const Mesh& mesh) {
 
 TriangleTree::TriangleTree(const Mesh& mesh, const std::vector<std::uint32_t>& subset) {
   if (!subset.empty()) build(triangle_boxes(mesh, &subset), &subset);
+}
+
+TriangleTree::TriangleTree(const Mesh& mesh, const std::vector<FloatBox>& vertex_boxes) {
+  if (mesh.num_triangles() == 0) return;
+  boxes_ = triangle_boxes(mesh, vertex_boxes);
+  build(boxes_, nullptr);
+}
+
+TriangleTree::TriangleTree(const Mesh& mesh, const std::vector<FloatBox>& vertex_boxes,
+                           const std::vector<std::uint32_t>& subset) {
+  if (!subset.empty()) build(triangle_boxes(mesh, vertex_boxes, &subset), &subset);
 }
 
 TriangleTree::TriangleTree(std::vector<FloatBox> boxes, const std::vector<std::uint32_t>& ids) {

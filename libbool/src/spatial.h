@@ -30,6 +30,7 @@ struct FloatBox {
                  -std::numeric_limits<float>::infinity()};
 
   static FloatBox of(const Point& p);
+  static FloatBox of(const Kernel::Approximate_kernel::Point_3& p);
   static FloatBox of(const CGAL::Bbox_3& b);
   FloatBox& operator+=(const FloatBox& o) {
     for (int k = 0; k < 3; ++k) {
@@ -52,6 +53,9 @@ struct FloatBox {
 // six triangles, and boxing it reads its point, often a cache miss.
 std::vector<FloatBox> triangle_boxes(const Mesh& mesh,
                                      const std::vector<std::uint32_t>* subset = nullptr);
+// The same from the boxes of the vertices, by vertex index.
+std::vector<FloatBox> triangle_boxes(const Mesh& mesh, const std::vector<FloatBox>& vertex_boxes,
+                                     const std::vector<std::uint32_t>* subset = nullptr);
 
 // A bounding-volume hierarchy over the triangles of a mesh, on conservative boxes. Built in
 // linear time: triangles in Morton order of their box centres (a radix sort), grouped by
@@ -63,6 +67,11 @@ class TriangleTree {
   // Over the triangles `subset` of mesh only; traversals report the mesh's triangle indices.
   // box() and float_box() are not available on such a tree.
   TriangleTree(const Mesh& mesh, const std::vector<std::uint32_t>& subset);
+  // The same two from the boxes of the vertices (by vertex index), for callers that build several
+  // trees over one mesh.
+  TriangleTree(const Mesh& mesh, const std::vector<FloatBox>& vertex_boxes);
+  TriangleTree(const Mesh& mesh, const std::vector<FloatBox>& vertex_boxes,
+               const std::vector<std::uint32_t>& subset);
   // Over the given boxes, box i reporting ids[i]; several boxes may report one id (pieces of a
   // long thin triangle, each boxed on its own), and then a traversal reports it once per box.
   TriangleTree(std::vector<FloatBox> boxes, const std::vector<std::uint32_t>& ids);

@@ -13,6 +13,7 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <array>
 #include <climits>
 #include <cmath>
 #include <optional>
@@ -20,6 +21,7 @@
 #include <vector>
 
 #include "morphex/mesh.h"
+#include "volume_internal.h"
 #include "wide_integer.h"
 
 namespace morphex {
@@ -226,7 +228,8 @@ namespace {
 // terms within (n - 1) eps of the sum of their magnitudes in any order, eps = 2^-52 so that it
 // holds under any rounding mode; underflow adds at most 2^-1074 per operation. Undecided when
 // a coordinate is not a double or the magnitudes are out of range.
-std::optional<CGAL::Sign> volume_sign_by_doubles(const Mesh& mesh) {
+std::optional<CGAL::Sign> volume_sign_by_doubles(const Mesh& mesh,
+                                                 const std::vector<std::array<double, 3>>* xyz) {
   struct Sum {
     double det = 0, permanent = 0;
     bool doubles = true;
@@ -237,7 +240,12 @@ std::optional<CGAL::Sign> volume_sign_by_doubles(const Mesh& mesh) {
         for (std::size_t f = range.begin(); f != range.end() && s.doubles; ++f) {
           double x[3][3];
           for (int k = 0; k < 3; ++k) {
-            const auto& p = CGAL::approx(mesh.points[mesh.triangles[f][k]]);
+            const VertexIndex v = mesh.triangles[f][k];
+            if (xyz) {
+              for (int i = 0; i < 3; ++i) x[k][i] = (*xyz)[v][i];
+              continue;
+            }
+            const auto& p = CGAL::approx(mesh.points[v]);
             s.doubles = s.doubles && p.x().is_point() && p.y().is_point() && p.z().is_point();
             x[k][0] = p.x().inf(), x[k][1] = p.y().inf(), x[k][2] = p.z().inf();
           }
@@ -263,8 +271,16 @@ std::optional<CGAL::Sign> volume_sign_by_doubles(const Mesh& mesh) {
 }
 }  // namespace
 
+namespace detail {
+CGAL::Sign signed_volume_sign(const Mesh& mesh, const std::vector<std::array<double, 3>>& doubles) {
+  if (doubles.size() == mesh.num_vertices() && !doubles.empty())
+    if (const auto sign = volume_sign_by_doubles(mesh, &doubles)) return *sign;
+  return morphex::signed_volume_sign(mesh);
+}
+}  // namespace detail
+
 CGAL::Sign signed_volume_sign(const Mesh& mesh) {
-  if (const auto sign = volume_sign_by_doubles(mesh)) return *sign;
+  if (const auto sign = volume_sign_by_doubles(mesh, nullptr)) return *sign;
   {
     CGAL::Protect_FPU_rounding<true> rounding;
     CGAL::Interval_nt<false> sum = 0;
