@@ -219,38 +219,27 @@ class Fans {
 };
 
 // Output vertices: one per non-special point, one per fan of a special point, numbered in the
-// order of their first corner so that the output does not depend on the thread count (in
-// parallel: each corner's vertex key, the first corner of each key by an atomic minimum, then
-// ranks).
+// order of their first corner so that the output does not depend on the thread count. One pass
+// over the corners in order: it reads each corner's key once, where any parallel numbering in
+// that order needs several passes (first corner of each key, then ranks), and was slower even
+// on two threads.
 IdMesh number_vertices(const PointTable& points, const std::vector<Triangle>& faces,
                        const std::vector<std::uint8_t>& special, const Fans& fans) {
-  const Corners corner{faces};
   const std::size_t nf = faces.size();
   IdMesh out;
   out.triangles.resize(nf);
-  const std::size_t corners_total = nf * 3, keys = points.size() + fans.size();
-  std::vector<std::uint32_t> key_of(corners_total);
-  tbb::parallel_for(std::size_t(0), corners_total, [&](std::size_t c) {
-    const PointId p = corner.at(std::uint32_t(c));
-    key_of[c] = special[p] ? std::uint32_t(points.size() + fans.fan_of(c)) : p;
-  });
-  std::unique_ptr<std::atomic<std::uint32_t>[]> first(new std::atomic<std::uint32_t>[keys]);
-  tbb::parallel_for(std::size_t(0), keys, [&](std::size_t k) { first[k].store(kNone); });
-  tbb::parallel_for(std::size_t(0), corners_total, [&](std::size_t c) {
-    std::atomic<std::uint32_t>& f = first[key_of[c]];
-    std::uint32_t seen = f.load(std::memory_order_relaxed);
-    while (c < seen && !f.compare_exchange_weak(seen, std::uint32_t(c))) {
+  std::vector<VertexIndex> vertex_of_key(points.size() + fans.size(), kNone);
+  for (std::uint32_t f = 0; f < nf; ++f)
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      const PointId p = faces[f][k];
+      const std::size_t key = special[p] ? points.size() + fans.fan_of(3 * f + k) : p;
+      VertexIndex& v = vertex_of_key[key];
+      if (v == kNone) {
+        v = VertexIndex(out.vertex_point.size());
+        out.vertex_point.push_back(p);
+      }
+      out.triangles[f][k] = v;
     }
-  });
-  std::vector<std::uint32_t> rank(corners_total + 1, 0);
-  for (std::size_t c = 0; c < corners_total; ++c)
-    rank[c + 1] = rank[c] + (first[key_of[c]].load(std::memory_order_relaxed) == c);
-  out.vertex_point.resize(rank[corners_total]);
-  tbb::parallel_for(std::size_t(0), corners_total, [&](std::size_t c) {
-    const VertexIndex v = rank[first[key_of[c]].load(std::memory_order_relaxed)];
-    out.triangles[c / 3][c % 3] = v;
-    if (first[key_of[c]].load(std::memory_order_relaxed) == c) out.vertex_point[v] = corner.at(c);
-  });
   return out;
 }
 
