@@ -6,6 +6,8 @@
 
 #include "morphex/generators.h"
 #include "morphex/mesh.h"
+#include "morphex/parallel_points.h"
+#include "morphex/union_find.h"
 
 using namespace morphex;
 
@@ -173,4 +175,45 @@ TEST(DoubleMesh, RoundTripIsLosslessForDoubles) {
   ASSERT_EQ(back.points.size(), m.points.size());
   for (std::size_t i = 0; i < m.points.size(); ++i) EXPECT_EQ(back.points[i], m.points[i]);
   EXPECT_EQ(back.triangles, m.triangles);
+}
+
+// parallel_points keeps the order of make(i) across its blocks (n spans several blocks and a
+// partial last one).
+TEST(ParallelPoints, AreMadeInOrderAcrossBlocks) {
+  for (const std::size_t n :
+       {std::size_t(0), std::size_t(1), std::size_t(4096), std::size_t(4097), std::size_t(10000)}) {
+    const std::vector<Point> points =
+        parallel_points(n, [](std::size_t i) { return Point(FT(int(i)) / 3, int(i % 7), -1); });
+    ASSERT_EQ(points.size(), n);
+    for (std::size_t i = 0; i < n; ++i)
+      ASSERT_EQ(points[i], Point(FT(int(i)) / 3, int(i % 7), -1)) << i;
+  }
+}
+
+TEST(UnionFind, JoinsInAnyOrderGiveTheSetsOfThePairs) {
+  std::mt19937 random(7);
+  for (int round = 0; round < 20; ++round) {
+    const std::uint32_t n = 200;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    for (int k = 0; k < 150; ++k) pairs.emplace_back(random() % n, random() % n);
+    UnionFind sets(n);
+    for (const auto& [a, b] : pairs) sets.join(a, b);
+    // The same sets by repeated relabelling until nothing changes (no union-find).
+    std::vector<std::uint32_t> label(n);
+    for (std::uint32_t i = 0; i < n; ++i) label[i] = i;
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (const auto& [a, b] : pairs) {
+        const std::uint32_t least = std::min(label[a], label[b]);
+        for (std::uint32_t i = 0; i < n; ++i)
+          if ((label[i] == label[a] || label[i] == label[b]) && label[i] != least) {
+            label[i] = least;
+            changed = true;
+          }
+      }
+    }
+    for (std::uint32_t i = 0; i < n; ++i)
+      for (std::uint32_t j = 0; j < n; ++j)
+        ASSERT_EQ(sets.find(i) == sets.find(j), label[i] == label[j]) << i << " " << j;
+  }
 }

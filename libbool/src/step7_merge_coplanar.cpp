@@ -24,6 +24,7 @@
 #include "boolean_internal.h"
 #include "flat_map.h"
 #include "morphex/boolean.h"
+#include "morphex/parallel_points.h"
 #include "spatial.h"
 #include "table_traits.h"
 
@@ -568,22 +569,9 @@ void merge_coplanar(const PointTable& table, IdMesh& surface,
 }
 
 Mesh materialize(const PointTable& table, const IdMesh& surface) {
-  // Each block's points are made in parallel, then moved into place (moving a point touches no
-  // reference count). Assigning into default points instead would release one shared default
-  // point per vertex from every thread: an atomic on one cache line that no thread count helps.
-  constexpr std::size_t kBlock = 4096;
-  const std::size_t n = surface.vertex_point.size();
-  std::vector<std::vector<Point>> blocks((n + kBlock - 1) / kBlock);
-  tbb::parallel_for(std::size_t(0), blocks.size(), [&](std::size_t b) {
-    const std::size_t end = std::min(n, (b + 1) * kBlock);
-    blocks[b].reserve(end - b * kBlock);
-    for (std::size_t v = b * kBlock; v < end; ++v)
-      blocks[b].push_back(table.point(surface.vertex_point[v]));
-  });
   Mesh out;
-  out.points.reserve(n);
-  for (std::vector<Point>& block : blocks)
-    for (Point& p : block) out.points.push_back(std::move(p));
+  out.points = parallel_points(surface.vertex_point.size(),
+                               [&](std::size_t v) { return table.point(surface.vertex_point[v]); });
   out.triangles = surface.triangles;
   return out;
 }

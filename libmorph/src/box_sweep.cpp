@@ -28,6 +28,7 @@
 
 #include "minkowski_internal.h"
 #include "morphex/generators.h"
+#include "morphex/parallel_points.h"
 #include "morphex/winding.h"
 
 namespace morphex::detail {
@@ -70,11 +71,9 @@ LabelledSolid segment_sweep(const LabelledSolid& in, int axis, const FT& half_le
   for (const Point& p : a.points) CGAL::exact(p);
   const auto& h = CGAL::exact(half_length);
   Mesh chain;
-  chain.points.resize(2 * nv);  // vertex v at -h e is 2 v, at +h e is 2 v + 1
-  tbb::parallel_for(std::size_t(0), nv, [&](std::size_t v) {
-    const auto& p = CGAL::exact(a.points[v]);
-    chain.points[2 * v] = shifted(p, axis, -h);
-    chain.points[2 * v + 1] = shifted(p, axis, h);
+  // Vertex v at -h e is 2 v, at +h e is 2 v + 1.
+  chain.points = parallel_points(2 * nv, [&](std::size_t i) {
+    return shifted(CGAL::exact(a.points[i / 2]), axis, i % 2 ? h : -h);
   });
   // Which copy each corner takes: a facet with n_f . e > 0 (< 0 for an erosion) moves up, one
   // with the opposite sign down. A facet parallel to e (often a wall of an earlier sweep along
