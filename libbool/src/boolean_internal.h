@@ -185,6 +185,14 @@ struct IdMesh {
 IdMesh separate_non_manifold(PointTable& points, const std::vector<Triangle>& faces,
                              const std::vector<std::uint8_t>& special,
                              std::vector<FaceOrigin>* origin = nullptr);
+// The corners (3 f + k) of `faces` at special points as (point, corner), sorted.
+using SpecialCorners = std::vector<std::pair<PointId, std::uint32_t>>;
+SpecialCorners special_corners(const std::vector<Triangle>& faces,
+                               const std::vector<std::uint8_t>& special);
+// The same, given special_corners(faces, special).
+IdMesh separate_non_manifold(PointTable& points, const std::vector<Triangle>& faces,
+                             const std::vector<std::uint8_t>& special, SpecialCorners corners,
+                             std::vector<FaceOrigin>* origin);
 
 // merge_coplanar_faces on a surface over point ids, where face f lies in the plane of the
 // triangle planes[plane_of[f]] (three point ids, oriented as the face): coplanarity is decided on

@@ -76,31 +76,6 @@ struct Corners {
   PointId previous(std::uint32_t corner) const { return faces[corner / 3][(corner % 3 + 2) % 3]; }
 };
 
-// The corners at special points as (point, corner), sorted, so each point's corners are
-// contiguous. Gathered in parallel blocks of faces: the faces are many, the special corners few.
-std::vector<std::pair<PointId, std::uint32_t>> special_corners(
-    const std::vector<Triangle>& faces, const std::vector<std::uint8_t>& special) {
-  const std::size_t nf = faces.size();
-  std::vector<std::pair<PointId, std::uint32_t>> corners;
-  constexpr std::uint32_t kBlock = 4096;
-  const std::uint32_t blocks = std::uint32_t((nf + kBlock - 1) / kBlock);
-  std::vector<std::uint32_t> first(blocks + 1, 0);
-  tbb::parallel_for(std::uint32_t(0), blocks, [&](std::uint32_t k) {
-    for (std::uint32_t f = k * kBlock; f < std::min<std::size_t>(nf, (k + 1) * kBlock); ++f)
-      for (PointId p : faces[f]) first[k + 1] += special[p] != 0;
-  });
-  for (std::uint32_t k = 0; k < blocks; ++k) first[k + 1] += first[k];
-  corners.resize(first[blocks]);
-  tbb::parallel_for(std::uint32_t(0), blocks, [&](std::uint32_t k) {
-    std::uint32_t slot = first[k];
-    for (std::uint32_t f = k * kBlock; f < std::min<std::size_t>(nf, (k + 1) * kBlock); ++f)
-      for (int i = 0; i < 3; ++i)
-        if (special[faces[f][i]]) corners[slot++] = {faces[f][i], f * 3 + i};
-  });
-  tbb::parallel_sort(corners.begin(), corners.end());
-  return corners;
-}
-
 // A pair of faces along the non-manifold edge (lo, hi) that the radial order put together.
 struct WedgePair {
   PointId lo, hi;
@@ -291,10 +266,41 @@ void split_shared_pairs(PointTable& points, const std::vector<Triangle>& faces,
 // wedges along the edge but one piece around each end (a solid minus two boxes sharing an edge),
 // each end is a single fan, and both pairs of faces would share one edge. Each such extra pair is
 // split at the edge's midpoint, a vertex of its own (coincident midpoints only touch).
+// Sorted so that each point's corners are contiguous. Gathered in parallel blocks of faces: the
+// faces are many, the special corners few.
+SpecialCorners special_corners(const std::vector<Triangle>& faces,
+                               const std::vector<std::uint8_t>& special) {
+  const std::size_t nf = faces.size();
+  std::vector<std::pair<PointId, std::uint32_t>> corners;
+  constexpr std::uint32_t kBlock = 4096;
+  const std::uint32_t blocks = std::uint32_t((nf + kBlock - 1) / kBlock);
+  std::vector<std::uint32_t> first(blocks + 1, 0);
+  tbb::parallel_for(std::uint32_t(0), blocks, [&](std::uint32_t k) {
+    for (std::uint32_t f = k * kBlock; f < std::min<std::size_t>(nf, (k + 1) * kBlock); ++f)
+      for (PointId p : faces[f]) first[k + 1] += special[p] != 0;
+  });
+  for (std::uint32_t k = 0; k < blocks; ++k) first[k + 1] += first[k];
+  corners.resize(first[blocks]);
+  tbb::parallel_for(std::uint32_t(0), blocks, [&](std::uint32_t k) {
+    std::uint32_t slot = first[k];
+    for (std::uint32_t f = k * kBlock; f < std::min<std::size_t>(nf, (k + 1) * kBlock); ++f)
+      for (int i = 0; i < 3; ++i)
+        if (special[faces[f][i]]) corners[slot++] = {faces[f][i], f * 3 + i};
+  });
+  tbb::parallel_sort(corners.begin(), corners.end());
+  return corners;
+}
+
 IdMesh separate_non_manifold(PointTable& points, const std::vector<Triangle>& faces,
                              const std::vector<std::uint8_t>& special,
                              std::vector<FaceOrigin>* origin) {
-  Fans fans(points, faces, special_corners(faces, special));
+  return separate_non_manifold(points, faces, special, special_corners(faces, special), origin);
+}
+
+IdMesh separate_non_manifold(PointTable& points, const std::vector<Triangle>& faces,
+                             const std::vector<std::uint8_t>& special, SpecialCorners corners,
+                             std::vector<FaceOrigin>* origin) {
+  Fans fans(points, faces, std::move(corners));
   fans.join_all();
   IdMesh out = number_vertices(points, faces, special, fans);
   split_shared_pairs(points, faces, fans.wedge_pairs(), out, origin);
@@ -362,13 +368,9 @@ Mesh assemble(const Mesh& a, const Mesh& b, Intersection& x, const Refined refin
   // at most two planes. Around a special point the facets of each mesh are coplanar with each
   // other or the point stays (A's and B's facets meet there transversally, unless coplanar facets
   // overlapped, which already asks for the merge); one test usually refutes it.
+  SpecialCorners around = special_corners(faces, x.flags);  // (point, 3 face + k)
   bool may_merge = merge && x.coplanar_overlaps;
   if (merge && !may_merge) {
-    std::vector<std::pair<PointId, std::uint32_t>> around;  // (special point, face)
-    for (std::uint32_t f = 0; f < faces.size(); ++f)
-      for (PointId p : faces[f])
-        if (x.special(p)) around.emplace_back(p, f);
-    tbb::parallel_sort(around.begin(), around.end());
     auto corners_of = [&](const FaceOrigin& o) {
       const Triangle& t = meshes[o.mesh]->triangles[o.face];
       return std::array<PointId, 3>{x.points.vertex(o.mesh, t[0]), x.points.vertex(o.mesh, t[1]),
@@ -387,7 +389,7 @@ Mesh assemble(const Mesh& a, const Mesh& b, Intersection& x, const Refined refin
       bool flat[2] = {true, true};
       const FaceOrigin* first[2] = {nullptr, nullptr};
       for (std::size_t k = i; k < j && (flat[0] || flat[1]); ++k) {
-        const FaceOrigin& o = origin[around[k].second];
+        const FaceOrigin& o = origin[around[k].second / 3];
         if (!first[o.mesh])
           first[o.mesh] = &o;
         else if (flat[o.mesh])
@@ -398,7 +400,7 @@ Mesh assemble(const Mesh& a, const Mesh& b, Intersection& x, const Refined refin
     }
   }
 
-  IdMesh surface = separate_non_manifold(x.points, faces, x.flags, &origin);
+  IdMesh surface = separate_non_manifold(x.points, faces, x.flags, std::move(around), &origin);
   if (may_merge) {
     // Each face lies in its input facet's plane (oriented as the face: B's facets are reversed in
     // a difference), one plane per facet.
