@@ -27,6 +27,9 @@
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <array>
+#include <atomic>
+#include <memory>
 #include <numeric>
 #include <tuple>
 
@@ -70,22 +73,45 @@ void for_each_crossing_edge(const std::int8_t (&signs)[3], Visit&& visit) {
   }
 }
 
+// The facets of each side in some pair: marked in parallel (a facet is in many of the pairs,
+// which can be millions).
+using UsedFacets = std::array<std::vector<std::uint8_t>, 2>;
+UsedFacets used_facets(const Mesh& a, const Mesh& b, const Pairs& pairs) {
+  std::unique_ptr<std::atomic<std::uint8_t>[]> marks[2] = {
+      std::make_unique<std::atomic<std::uint8_t>[]>(a.num_triangles()),
+      std::make_unique<std::atomic<std::uint8_t>[]>(b.num_triangles())};
+  tbb::parallel_for(std::size_t(0), pairs.size(), [&](std::size_t k) {
+    marks[0][pairs[k].first].store(1, std::memory_order_relaxed);
+    marks[1][pairs[k].second].store(1, std::memory_order_relaxed);
+  });
+  UsedFacets used;
+  const std::size_t sizes[2] = {a.num_triangles(), b.num_triangles()};
+  for (int side = 0; side < 2; ++side) {
+    used[side].resize(sizes[side]);
+    tbb::parallel_for(std::size_t(0), sizes[side], [&](std::size_t f) {
+      used[side][f] = marks[side][f].load(std::memory_order_relaxed);
+    });
+  }
+  return used;
+}
+
 // 1. Coincident vertices near the other mesh get the first one's id (Intersection::vertex_rep),
 // so that a position has one name wherever the two meshes meet (and where separated features of
 // one mesh touch). Coincident points have overlapping interval boxes: near vertices sorted by
 // their boxes' lower x bound are swept for overlaps, and only those are compared exactly.
 // Returns the representatives that stand for more than one vertex.
 std::vector<PointId> identify_vertices(Intersection& x, const Mesh& a, const Mesh& b,
-                                       const Pairs& pairs) {
+                                       const UsedFacets& used) {
   const PointTable& table = x.points;
   const std::size_t num_inputs = table.num_inputs();
   x.vertex_rep.resize(num_inputs);
   std::iota(x.vertex_rep.begin(), x.vertex_rep.end(), PointId(0));
   std::vector<std::uint8_t> near(num_inputs, 0);
-  for (const auto& [ia, ib] : pairs) {
-    for (VertexIndex v : a.triangles[ia]) near[table.vertex(0, v)] = 1;
-    for (VertexIndex v : b.triangles[ib]) near[table.vertex(1, v)] = 1;
-  }
+  const Mesh* meshes[2] = {&a, &b};
+  for (int side = 0; side < 2; ++side)
+    for (std::uint32_t f = 0; f < used[side].size(); ++f)
+      if (used[side][f])
+        for (VertexIndex v : meshes[side]->triangles[f]) near[table.vertex(side, v)] = 1;
   std::vector<PointId> ids;
   for (PointId id = 0; id < num_inputs; ++id)
     if (near[id]) ids.push_back(id);
@@ -100,10 +126,8 @@ std::vector<PointId> identify_vertices(Intersection& x, const Mesh& a, const Mes
 
 // A facet meets many pairs: its interval normal is computed once, and a point's side of its
 // plane is then one interval dot product rather than a 3x3 determinant.
-void facet_normals(const PairContext& c, std::vector<ApproxVector> (&normals)[2]) {
-  std::vector<std::uint8_t> used[2];
-  for (int side = 0; side < 2; ++side) used[side].assign(c.meshes[side]->num_triangles(), 0);
-  for (const auto& [ia, ib] : c.pairs) used[0][ia] = used[1][ib] = 1;
+void facet_normals(const PairContext& c, const UsedFacets& used,
+                   std::vector<ApproxVector> (&normals)[2]) {
   for (int side = 0; side < 2; ++side) {
     normals[side].resize(used[side].size());
     for_each_upward(used[side].size(), [&](std::size_t f) {
@@ -392,6 +416,25 @@ void summarize(Intersection& x, const std::vector<PairOutcome>& outcomes,
     if (x.flags[id] & kOnSurface) ++x.constructed_points;
 }
 
+// The indices of the pairs whose triangles no plane separates, in order (in parallel blocks).
+std::vector<std::uint32_t> unseparated(const std::vector<PairSigns>& signs) {
+  constexpr std::size_t kBlock = 1 << 14;
+  const std::size_t n = signs.size(), blocks = (n + kBlock - 1) / kBlock;
+  std::vector<std::size_t> first(blocks + 1, 0);
+  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+    for (std::size_t k = b * kBlock; k < std::min(n, (b + 1) * kBlock); ++k)
+      first[b + 1] += !signs[k].separated;
+  });
+  for (std::size_t b = 0; b < blocks; ++b) first[b + 1] += first[b];
+  std::vector<std::uint32_t> live(first[blocks]);
+  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+    std::size_t slot = first[b];
+    for (std::size_t k = b * kBlock; k < std::min(n, (b + 1) * kBlock); ++k)
+      if (!signs[k].separated) live[slot++] = std::uint32_t(k);
+  });
+  return live;
+}
+
 }  // namespace
 
 // The phases run in parallel where the pairs are independent and end with one sequential pass in
@@ -400,25 +443,32 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
                        const IntersectOptions& options) {
   Intersection x;
   x.points = PointTable(a, b, options.soup);
-  const std::vector<PointId> merged = identify_vertices(x, a, b, pairs);
+  const UsedFacets used = used_facets(a, b, pairs);
+  const std::vector<PointId> merged = identify_vertices(x, a, b, used);
   // Corners are named by the ids of their positions from here on: predicates on coincident
   // corners of the two meshes (identical meshes, shared vertices) are decided by the ids alone.
   const PairContext c{{&a, &b}, pairs, options, x.points, x.vertex_rep};
   std::vector<ApproxVector> normals[2];
-  facet_normals(c, normals);
+  facet_normals(c, used, normals);
   const std::vector<PairSigns> signs = pair_signs(c, normals);
   const Crossings crossings(c, signs);
 
-  std::vector<PairOutcome> outcomes(pairs.size());
-  for_each_upward(pairs.size(), [&](std::size_t k) {
-    if (signs[k].separated) return;
-    if (signs[k].coplanar) return coplanar_outcome(c, k, outcomes[k]);
+  // Most candidate pairs are separated by a plane (only their boxes overlap: 1.5 million of them
+  // between two finely tessellated parallel plates): the outcomes, and the passes over them, are
+  // for the pairs left, in their order.
+  const std::vector<std::uint32_t> live = unseparated(signs);
+  Pairs live_pairs(live.size());
+  std::vector<PairOutcome> outcomes(live.size());
+  for_each_upward(live.size(), [&](std::size_t j) {
+    const std::uint32_t k = live[j];
+    live_pairs[j] = pairs[k];
+    if (signs[k].coplanar) return coplanar_outcome(c, k, outcomes[j]);
     const ApproxVector line =
         CGAL::cross_product(normals[0][pairs[k].first], normals[1][pairs[k].second]);
-    chord_outcome(c, crossings, signs[k], line, k, outcomes[k]);
+    chord_outcome(c, crossings, signs[k], line, k, outcomes[j]);
   });
   name_points(x, outcomes, options.soup);
-  build_cuts(x, pairs, outcomes);  // step 4
+  build_cuts(x, live_pairs, outcomes);  // step 4
   summarize(x, outcomes, merged);
   return x;
 }
