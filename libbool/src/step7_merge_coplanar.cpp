@@ -11,6 +11,7 @@
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -268,11 +269,39 @@ struct Regions {
   std::uint32_t twin_face(std::uint32_t f, int k) const { return twin[3 * f + k]; }
 };
 
+// Whether the faces across each edge lie in one plane, alike oriented, at 3 f + k for edge k of
+// face f < its twin (the flood fill reads the lower face's entry). Decided in parallel, each
+// thread with its own cache of plane pairs: the decisions, exact wherever the planes are one, are
+// the costly part of finding the regions.
+std::vector<std::uint8_t> coplanar_edges(const Regions& s) {
+  const std::size_t nf = s.surface.triangles.size();
+  std::vector<std::uint8_t> same(3 * nf, 0);
+  tbb::enumerable_thread_specific<SamePlane> planes([&] { return SamePlane(s.table, s.planes); });
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, std::uint32_t(nf), 1024),
+                    [&](const tbb::blocked_range<std::uint32_t>& range) {
+                      SamePlane& same_plane = planes.local();
+                      for (std::uint32_t f = range.begin(); f < range.end(); ++f)
+                        for (int k = 0; k < 3; ++k) {
+                          const std::uint32_t g = s.twin_face(f, k);
+                          if (g != kNone && f < g)
+                            same[3 * f + k] = same_plane(s.plane_of[f], s.plane_of[g]);
+                        }
+                    });
+  return same;
+}
+
 // Numbers the coplanar regions: flood fill across edges whose two faces lie in one plane, alike
 // oriented.
 void find_regions(Regions& s) {
   const std::size_t nf = s.surface.triangles.size();
-  SamePlane same_plane(s.table, s.planes);
+  const std::vector<std::uint8_t> same = coplanar_edges(s);
+  // The entry of the edge f -> g, kept at the lower face.
+  auto across = [&](std::uint32_t f, int k, std::uint32_t g) {
+    if (f < g) return same[3 * f + k] != 0;
+    for (int j = 0; j < 3; ++j)
+      if (s.twin_face(g, j) == f) return same[3 * g + j] != 0;
+    return false;
+  };
   s.region.assign(nf, kNone);
   std::vector<std::uint32_t> stack;
   for (std::uint32_t start = 0; start < nf; ++start) {
@@ -285,8 +314,7 @@ void find_regions(Regions& s) {
       stack.pop_back();
       for (int i = 0; i < 3; ++i) {
         const std::uint32_t g = s.twin_face(f, i);
-        if (g == kNone || s.region[g] != kNone || !same_plane(s.plane_of[f], s.plane_of[g]))
-          continue;
+        if (g == kNone || s.region[g] != kNone || !across(f, i, g)) continue;
         s.region[g] = r;
         stack.push_back(g);
       }
