@@ -193,28 +193,49 @@ class Fans {
   Slots leaving_, arriving_;  // scratch for join_at, reused from point to point
 };
 
-// Output vertices: one per non-special point, one per fan of a special point, numbered in the
-// order of their first corner so that the output does not depend on the thread count. One pass
-// over the corners in order: it reads each corner's key once, where any parallel numbering in
-// that order needs several passes (first corner of each key, then ranks), and was slower even
-// on two threads.
+// Output vertices: one per non-special point, one per fan of a special point (its key: the point
+// id, or the number of points plus the fan), numbered in the order of their keys so that the
+// output does not depend on the thread count: in parallel, the keys in use are marked, ranked by
+// blocks, and each corner takes its key's rank. In that order the result's points are read from
+// the table in order too.
 IdMesh number_vertices(const PointTable& points, const std::vector<Triangle>& faces,
                        const std::vector<std::uint8_t>& special, const Fans& fans) {
-  const std::size_t nf = faces.size();
+  const std::size_t nf = faces.size(), np = points.size(), keys = np + fans.size();
+  auto key_of = [&](std::size_t c) {
+    const PointId p = faces[c / 3][c % 3];
+    return special[p] ? np + fans.fan_of(std::uint32_t(c)) : std::size_t(p);
+  };
+  const auto used = std::make_unique<std::atomic<std::uint8_t>[]>(keys);
+  const auto fan_point = std::make_unique<std::atomic<PointId>[]>(fans.size());
+  tbb::parallel_for(std::size_t(0), 3 * nf, [&](std::size_t c) {
+    const std::size_t key = key_of(c);
+    used[key].store(1, std::memory_order_relaxed);
+    // Every corner of a fan is at its point: they all store the same id.
+    if (key >= np) fan_point[key - np].store(faces[c / 3][c % 3], std::memory_order_relaxed);
+  });
+  constexpr std::size_t kBlock = 1 << 14;
+  const std::size_t blocks = (keys + kBlock - 1) / kBlock;
+  std::vector<VertexIndex> first(blocks + 1, 0);
+  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+    for (std::size_t k = b * kBlock; k < std::min(keys, (b + 1) * kBlock); ++k)
+      first[b + 1] += used[k].load(std::memory_order_relaxed);
+  });
+  for (std::size_t b = 0; b < blocks; ++b) first[b + 1] += first[b];
   IdMesh out;
-  out.triangles.resize(nf);
-  std::vector<VertexIndex> vertex_of_key(points.size() + fans.size(), kNone);
-  for (std::uint32_t f = 0; f < nf; ++f)
-    for (std::uint32_t k = 0; k < 3; ++k) {
-      const PointId p = faces[f][k];
-      const std::size_t key = special[p] ? points.size() + fans.fan_of(3 * f + k) : p;
-      VertexIndex& v = vertex_of_key[key];
-      if (v == kNone) {
-        v = VertexIndex(out.vertex_point.size());
-        out.vertex_point.push_back(p);
+  out.vertex_point.resize(first[blocks]);
+  std::vector<VertexIndex> vertex_of_key(keys, kNone);
+  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+    VertexIndex v = first[b];
+    for (std::size_t k = b * kBlock; k < std::min(keys, (b + 1) * kBlock); ++k)
+      if (used[k].load(std::memory_order_relaxed)) {
+        out.vertex_point[v] =
+            k < np ? PointId(k) : fan_point[k - np].load(std::memory_order_relaxed);
+        vertex_of_key[k] = v++;
       }
-      out.triangles[f][k] = v;
-    }
+  });
+  out.triangles.resize(nf);
+  tbb::parallel_for(std::size_t(0), 3 * nf,
+                    [&](std::size_t c) { out.triangles[c / 3][c % 3] = vertex_of_key[key_of(c)]; });
   return out;
 }
 
