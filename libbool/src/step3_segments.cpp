@@ -33,6 +33,7 @@
 #include <numeric>
 #include <tuple>
 
+#include "block_offsets.h"
 #include "filtered.h"
 #include "flat_map.h"
 #include "segments_internal.h"
@@ -419,17 +420,15 @@ void summarize(Intersection& x, const std::vector<PairOutcome>& outcomes,
 // The indices of the pairs whose triangles no plane separates, in order (in parallel blocks).
 std::vector<std::uint32_t> unseparated(const std::vector<PairSigns>& signs) {
   constexpr std::size_t kBlock = 1 << 14;
-  const std::size_t n = signs.size(), blocks = (n + kBlock - 1) / kBlock;
-  std::vector<std::size_t> first(blocks + 1, 0);
-  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
-    for (std::size_t k = b * kBlock; k < std::min(n, (b + 1) * kBlock); ++k)
-      first[b + 1] += !signs[k].separated;
-  });
-  for (std::size_t b = 0; b < blocks; ++b) first[b + 1] += first[b];
-  std::vector<std::uint32_t> live(first[blocks]);
-  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+  const std::vector<std::size_t> first =
+      block_offsets(signs.size(), kBlock, [&](std::size_t begin, std::size_t end) {
+        return std::size_t(std::count_if(signs.begin() + begin, signs.begin() + end,
+                                         [](const PairSigns& s) { return !s.separated; }));
+      });
+  std::vector<std::uint32_t> live(first.back());
+  tbb::parallel_for(std::size_t(0), first.size() - 1, [&](std::size_t b) {
     std::size_t slot = first[b];
-    for (std::size_t k = b * kBlock; k < std::min(n, (b + 1) * kBlock); ++k)
+    for (std::size_t k = b * kBlock; k < std::min(signs.size(), (b + 1) * kBlock); ++k)
       if (!signs[k].separated) live[slot++] = std::uint32_t(k);
   });
   return live;

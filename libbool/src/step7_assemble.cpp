@@ -22,6 +22,7 @@
 #include <numeric>
 #include <vector>
 
+#include "block_offsets.h"
 #include "boolean_internal.h"
 #include "filtered.h"
 #include "flat_map.h"
@@ -214,18 +215,17 @@ IdMesh number_vertices(const PointTable& points, const std::vector<Triangle>& fa
     if (key >= np) fan_point[key - np].store(faces[c / 3][c % 3], std::memory_order_relaxed);
   });
   constexpr std::size_t kBlock = 1 << 14;
-  const std::size_t blocks = (keys + kBlock - 1) / kBlock;
-  std::vector<VertexIndex> first(blocks + 1, 0);
-  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
-    for (std::size_t k = b * kBlock; k < std::min(keys, (b + 1) * kBlock); ++k)
-      first[b + 1] += used[k].load(std::memory_order_relaxed);
-  });
-  for (std::size_t b = 0; b < blocks; ++b) first[b + 1] += first[b];
+  const std::vector<std::size_t> first =
+      block_offsets(keys, kBlock, [&](std::size_t begin, std::size_t end) {
+        std::size_t n = 0;
+        for (std::size_t k = begin; k < end; ++k) n += used[k].load(std::memory_order_relaxed);
+        return n;
+      });
   IdMesh out;
-  out.vertex_point.resize(first[blocks]);
+  out.vertex_point.resize(first.back());
   std::vector<VertexIndex> vertex_of_key(keys, kNone);
-  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
-    VertexIndex v = first[b];
+  tbb::parallel_for(std::size_t(0), first.size() - 1, [&](std::size_t b) {
+    auto v = VertexIndex(first[b]);
     for (std::size_t k = b * kBlock; k < std::min(keys, (b + 1) * kBlock); ++k)
       if (used[k].load(std::memory_order_relaxed)) {
         out.vertex_point[v] =
@@ -279,6 +279,29 @@ void split_shared_pairs(PointTable& points, const std::vector<Triangle>& faces,
 
 }  // namespace
 
+// Sorted so that each point's corners are contiguous. Gathered in parallel blocks of faces: the
+// faces are many, the special corners few.
+SpecialCorners special_corners(const std::vector<Triangle>& faces,
+                               const std::vector<std::uint8_t>& special) {
+  constexpr std::size_t kBlock = 4096;
+  const std::vector<std::size_t> first =
+      block_offsets(faces.size(), kBlock, [&](std::size_t begin, std::size_t end) {
+        std::size_t n = 0;
+        for (std::size_t f = begin; f < end; ++f)
+          for (const PointId p : faces[f]) n += special[p] != 0;
+        return n;
+      });
+  SpecialCorners corners(first.back());
+  tbb::parallel_for(std::size_t(0), first.size() - 1, [&](std::size_t b) {
+    std::size_t slot = first[b];
+    for (std::size_t f = b * kBlock; f < std::min(faces.size(), (b + 1) * kBlock); ++f)
+      for (std::uint32_t i = 0; i < 3; ++i)
+        if (special[faces[f][i]]) corners[slot++] = {faces[f][i], std::uint32_t(3 * f + i)};
+  });
+  tbb::parallel_sort(corners.begin(), corners.end());
+  return corners;
+}
+
 // At a special point, each corner is attached to the corner of the face across each of its two
 // edges there; a non-manifold edge pairs its faces by the solid wedges between them. Each fan of
 // attached corners becomes one vertex.
@@ -287,31 +310,6 @@ void split_shared_pairs(PointTable& points, const std::vector<Triangle>& faces,
 // wedges along the edge but one piece around each end (a solid minus two boxes sharing an edge),
 // each end is a single fan, and both pairs of faces would share one edge. Each such extra pair is
 // split at the edge's midpoint, a vertex of its own (coincident midpoints only touch).
-// Sorted so that each point's corners are contiguous. Gathered in parallel blocks of faces: the
-// faces are many, the special corners few.
-SpecialCorners special_corners(const std::vector<Triangle>& faces,
-                               const std::vector<std::uint8_t>& special) {
-  const std::size_t nf = faces.size();
-  std::vector<std::pair<PointId, std::uint32_t>> corners;
-  constexpr std::uint32_t kBlock = 4096;
-  const std::uint32_t blocks = std::uint32_t((nf + kBlock - 1) / kBlock);
-  std::vector<std::uint32_t> first(blocks + 1, 0);
-  tbb::parallel_for(std::uint32_t(0), blocks, [&](std::uint32_t k) {
-    for (std::uint32_t f = k * kBlock; f < std::min<std::size_t>(nf, (k + 1) * kBlock); ++f)
-      for (PointId p : faces[f]) first[k + 1] += special[p] != 0;
-  });
-  for (std::uint32_t k = 0; k < blocks; ++k) first[k + 1] += first[k];
-  corners.resize(first[blocks]);
-  tbb::parallel_for(std::uint32_t(0), blocks, [&](std::uint32_t k) {
-    std::uint32_t slot = first[k];
-    for (std::uint32_t f = k * kBlock; f < std::min<std::size_t>(nf, (k + 1) * kBlock); ++f)
-      for (int i = 0; i < 3; ++i)
-        if (special[faces[f][i]]) corners[slot++] = {faces[f][i], f * 3 + i};
-  });
-  tbb::parallel_sort(corners.begin(), corners.end());
-  return corners;
-}
-
 IdMesh separate_non_manifold(PointTable& points, const std::vector<Triangle>& faces,
                              const std::vector<std::uint8_t>& special,
                              std::vector<FaceOrigin>* origin) {
@@ -368,16 +366,18 @@ Mesh assemble(const Mesh& a, const Mesh& b, Intersection& x, const Refined refin
               f);
       }
     };
-    std::vector<std::size_t> first(blocks + 1, 0);
+    const std::vector<std::size_t> first =
+        block_offsets(nf, kBlock, [&](std::size_t begin, std::size_t) {
+          std::size_t n = 0;
+          for_each_kept(std::uint32_t(begin / kBlock),
+                        [&](const std::array<PointId, 3>&, std::uint32_t) { ++n; });
+          return n;
+        });
+    const std::size_t base = faces.size();
+    faces.resize(base + first.back());
+    origin.resize(base + first.back());
     tbb::parallel_for(std::uint32_t(0), blocks, [&](std::uint32_t k) {
-      for_each_kept(k, [&](const std::array<PointId, 3>&, std::uint32_t) { ++first[k + 1]; });
-    });
-    first[0] = faces.size();
-    for (std::uint32_t k = 0; k < blocks; ++k) first[k + 1] += first[k];
-    faces.resize(first[blocks]);
-    origin.resize(first[blocks]);
-    tbb::parallel_for(std::uint32_t(0), blocks, [&](std::uint32_t k) {
-      std::size_t slot = first[k];
+      std::size_t slot = base + first[k];
       for_each_kept(k, [&](const std::array<PointId, 3>& v, std::uint32_t f) {
         faces[slot] = reverse ? Triangle{v[0], v[2], v[1]} : Triangle{v[0], v[1], v[2]};
         origin[slot++] = {std::uint8_t(side), f};
