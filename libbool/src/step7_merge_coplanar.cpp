@@ -221,35 +221,29 @@ class SamePlane {
 
   bool operator()(std::uint32_t a, std::uint32_t b) {
     if (a == b) return true;
-    // Most edges of a curved surface join two planes that the filter tells apart at once: no
-    // cache for them (looking it up would cost more than the filter).
-    for (const PointId q : planes_[b]) {
-      const CGAL::Uncertain<CGAL::Sign> s =
-          table_.orientation_filter(planes_[a][0], planes_[a][1], planes_[a][2], q);
+    // The filter first, on each corner of b: most edges of a curved surface join two planes it
+    // tells apart at once, and those need no cache (a lookup costs more than the filter).
+    const auto &pa = planes_[a], &pb = planes_[b];
+    bool undecided[3];
+    for (int k = 0; k < 3; ++k) {
+      const CGAL::Uncertain<CGAL::Sign> s = table_.orientation_filter(pa[0], pa[1], pa[2], pb[k]);
       if (s.is_certain() && s.make_certain() != CGAL::ZERO) return false;
+      undecided[k] = !s.is_certain();
     }
     const std::uint64_t key = edge_key(std::min(a, b), std::max(a, b));
     if (const std::uint8_t* known = cache_.find(key)) return *known != 0;
-    const auto &pa = planes_[a], &pb = planes_[b];
-    const bool same =
-        std::all_of(pb.begin(), pb.end(), [&](PointId q) { return on_plane(a, q); }) &&
-        table_.normal_dot(pa, pb) == CGAL::POSITIVE;
+    // The corners the filter left undecided, exactly (fixed-size integers when they fit). Most
+    // pairs that get here lie in one plane, where no filter can decide; each facet meets a few
+    // others, so an exact plane equation per facet (GMP integers) would cost more than it saves.
+    bool same = true;
+    for (int k = 0; k < 3 && same; ++k)
+      same = !undecided[k] || table_.orientation_exact(pa[0], pa[1], pa[2], pb[k]) == CGAL::ZERO;
+    same = same && table_.normal_dot(pa, pb) == CGAL::POSITIVE;
     cache_.emplace(key, same);
     return same;
   }
 
  private:
-  // Intervals first, then the exact orientation (fixed-size integers when they fit). Most of
-  // the pairs that get here lie in one plane, where no filter can decide; each facet meets a
-  // few others, so an exact plane equation per facet (GMP integers) would cost more than it
-  // saves.
-  bool on_plane(std::uint32_t a, PointId q) {
-    const auto& pa = planes_[a];
-    const CGAL::Uncertain<CGAL::Sign> s = table_.orientation_filter(pa[0], pa[1], pa[2], q);
-    if (s.is_certain()) return s.make_certain() == CGAL::ZERO;
-    return table_.orientation_exact(pa[0], pa[1], pa[2], q) == CGAL::ZERO;
-  }
-
   const PointTable& table_;
   const std::vector<std::array<PointId, 3>>& planes_;
   FlatMap<std::uint64_t, std::uint8_t, Hash64> cache_;
