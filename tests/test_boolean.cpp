@@ -460,6 +460,26 @@ TEST(Parallel, ResultsAreIdenticalForAnyNumberOfThreads) {
   }
 }
 
+// With the input check, step 2 and step 6 use the trees the check built (check_internal.h): the
+// result is the one the operation gives on inputs taken as valid, triangle for triangle.
+TEST(Boolean, CheckedInputsGiveTheResultOfTrustedOnes) {
+  const Mesh a = make_icosphere(3, FT(1));
+  const Mesh b = translated(transformed(a, quaternion_rotation(7, 1, 2, 3)),
+                            Vector(FT(1) / 2, FT(1) / 3, FT(0)));
+  BooleanOptions trusted;
+  trusted.validate_inputs = false;
+  for (const BooleanOp op : {BooleanOp::Union, BooleanOp::Intersection, BooleanOp::Difference}) {
+    const BooleanResult checked = compute_boolean(a, b, op),
+                        plain = compute_boolean(a, b, op, trusted);
+    ASSERT_TRUE(checked.ok()) << checked.message;
+    ASSERT_TRUE(plain.ok()) << plain.message;
+    EXPECT_GT(checked.stats.intersecting_pairs, 0u);
+    EXPECT_EQ(checked.stats.candidate_pairs, plain.stats.candidate_pairs);
+    EXPECT_EQ(checked.mesh.triangles, plain.mesh.triangles);
+    EXPECT_EQ(checked.mesh.points, plain.mesh.points);
+  }
+}
+
 // Large enough that the parallel passes split into several blocks: the candidate pairs compacted
 // by blocks of 16,384, the output vertices numbered by blocks of 16,384 keys, the points made by
 // blocks of 4,096.

@@ -3,10 +3,13 @@
 // each kind of defect is detected and described; CGAL's self-intersection test is the oracle.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <random>
 
+#include "check_internal.h"
 #include "check_planar.h"
 #include "check_test_support.h"
 #include "morphex/check.h"
@@ -262,6 +265,33 @@ TEST(Spatial, OverlappingPairsOfTwoTreesAreThoseOfAllPairs) {
       if (tb.float_box(i).overlaps(tb.float_box(j))) self_expected.emplace_back(i, j);
   std::sort(self.begin(), self.end());
   EXPECT_EQ(self, self_expected);
+}
+
+// The tree the check hands to the Boolean (check_internal.h) is the one the Boolean would build:
+// the same boxes of every triangle, so the same candidate pairs in the same order. A mesh whose
+// flat faces are proved as patches has no such tree (theirs are left out of it).
+TEST(Check, HandsTheBooleanATreeOverEveryTriangleOnly) {
+  const Mesh smooth = make_icosphere(3, FT(1));
+  const Mesh other = translated(make_icosphere(2, FT(1)), Vector(FT(1) / 3, FT(1) / 5, FT(1) / 7));
+  std::optional<TriangleTree> kept;
+  const MeshReport r = detail::check_mesh_keeping_tree(smooth, kValidityOnly, kept);
+  EXPECT_TRUE(r.valid_solid());
+  ASSERT_TRUE(kept.has_value());
+  ASSERT_EQ(kept->size(), smooth.num_triangles());
+  const TriangleTree fresh(smooth), tb(other);
+  for (std::uint32_t t = 0; t < smooth.num_triangles(); ++t) {
+    const FloatBox &x = kept->float_box(t), &y = fresh.float_box(t);
+    EXPECT_TRUE(std::equal(x.lo, x.lo + 3, y.lo) && std::equal(x.hi, x.hi + 3, y.hi))
+        << "triangle " << t;
+  }
+  const auto pairs = TriangleTree::overlapping_pairs(*kept, tb);
+  EXPECT_FALSE(pairs.empty());
+  EXPECT_EQ(pairs, TriangleTree::overlapping_pairs(fresh, tb));
+
+  const Mesh fans = make_fan_prism(64, 1.0, 1.0);  // two flat caps of 64 triangles each
+  const MeshReport f = detail::check_mesh_keeping_tree(fans, kValidityOnly, kept);
+  EXPECT_TRUE(f.valid_solid());
+  EXPECT_FALSE(kept.has_value());
 }
 
 // Self-intersection detection against CGAL's on pairs of shapes that cross, touch on the 1/4 grid

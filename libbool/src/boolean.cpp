@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "boolean_internal.h"
+#include "check_internal.h"
 #include "morphex/check.h"
 #include "morphex/stopwatch.h"
 
@@ -37,12 +38,17 @@ BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
                               const BooleanOptions& options) {
   BooleanResult result;
   Stopwatch clock;
+  // The input check's trees, when it built them over whole meshes, serve step 2 and step 6.
+  detail::OperandTrees trees;
   if (options.validate_inputs) {
     // Both operands at once: each check is parallel inside, but its sequential parts (edge
     // records, patch proofs) leave threads idle that the other check can use.
     MeshReport reports[2];
-    tbb::parallel_invoke([&] { reports[0] = check_mesh(a, kValidityOnly); },
-                         [&] { reports[1] = check_mesh(b, kValidityOnly); });
+    std::optional<TriangleTree> checked[2];
+    tbb::parallel_invoke(
+        [&] { reports[0] = detail::check_mesh_keeping_tree(a, kValidityOnly, checked[0]); },
+        [&] { reports[1] = detail::check_mesh_keeping_tree(b, kValidityOnly, checked[1]); });
+    for (int side = 0; side < 2; ++side) trees.adopt(side, std::move(checked[side]));
     for (int side = 0; side < 2; ++side) {
       const MeshReport& report = reports[side];
       if (!report.valid_solid()) {
@@ -56,7 +62,6 @@ BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
   BooleanStats& stats = result.stats;
   stats.seconds.validate = clock.lap();
 
-  detail::OperandTrees trees;
   const auto pairs = detail::candidate_pairs(a, b, trees);
   stats.candidate_pairs = pairs.size();
   stats.seconds.pairs = clock.lap();

@@ -37,14 +37,19 @@ inline std::uint64_t edge_key(const Edge& e) {
 
 using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
 
-// The box trees of the two operands, each built at most once per Boolean: by step 2 when it
-// indexes that operand, else by step 6 when a patch of the other operand needs a ray cast. The
-// two sides' classifications run at once, each reading only the other side's slot.
+// The box trees of the two operands, each built at most once per Boolean: by the input check,
+// else by step 2 when it indexes that operand, else by step 6 when a patch of the other operand
+// needs a ray cast. The two sides' classifications run at once, each reading only the other side's
+// slot.
 class OperandTrees {
  public:
   const TriangleTree& of(int side, const Mesh& mesh) {
     if (!tree_[side]) tree_[side].emplace(mesh);
     return *tree_[side];
+  }
+  // A tree over every triangle of that side's mesh, built elsewhere (by the input check).
+  void adopt(int side, std::optional<TriangleTree>&& tree) {
+    if (tree) tree_[side] = std::move(tree);
   }
 
  private:

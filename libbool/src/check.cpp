@@ -13,6 +13,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "check_internal.h"
 #include "check_planar.h"
 #include "check_stars.h"
 #include "morphex/union_find.h"
@@ -483,10 +484,12 @@ void slab_pairs(const Mesh& mesh, const PointTable& table, const std::vector<Poi
 // Self-intersections: flat patches proved embedded, the other triangles by their tree against
 // itself, and each patch against the triangles that reach its plane; each pair is tested
 // exactly, once (i < j).
+// `kept` gets the tree over every triangle, when there is one (no patches).
 void find_self_intersections(const Mesh& mesh, const PointTable& table,
                              const std::vector<std::uint8_t>& degenerate,
                              const ManifoldEdges& manifold, const std::vector<std::uint8_t>& proved,
-                             const CheckOptions& options, MeshReport& r) {
+                             const CheckOptions& options, MeshReport& r,
+                             std::optional<TriangleTree>* kept) {
   // Vertices by position: coincident ones (separated features) are one position.
   std::vector<PointId> position(mesh.num_vertices());
   {
@@ -511,8 +514,8 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
   tbb::parallel_for(std::size_t(0), vertex_boxes.size(),
                     [&](std::size_t v) { vertex_boxes[v] = FloatBox::of(table.approx(v)); });
   const TriangleTree patched(mesh, vertex_boxes, in_patches);
-  const TriangleTree tree = planar.patches.empty() ? TriangleTree(mesh, vertex_boxes)
-                                                   : TriangleTree(mesh, vertex_boxes, others);
+  TriangleTree tree = planar.patches.empty() ? TriangleTree(mesh, vertex_boxes)
+                                             : TriangleTree(mesh, vertex_boxes, others);
   const TrianglePairs test(table, position);
   const PlaneFilters planes(mesh, table.input_doubles());
   const bool list = options.list_self_intersections;
@@ -565,6 +568,7 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
     }
   });
   report(found, r);
+  if (kept && planar.patches.empty()) kept->emplace(std::move(tree));
 }
 
 // The mesh's shells as separate meshes, by component.
@@ -632,6 +636,13 @@ bool is_outward(const Mesh& mesh, const PointTable& table,
 }  // namespace
 
 MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
+  std::optional<TriangleTree> unused;
+  return detail::check_mesh_keeping_tree(mesh, options, unused);
+}
+
+MeshReport detail::check_mesh_keeping_tree(const Mesh& mesh, const CheckOptions& options,
+                                           std::optional<TriangleTree>& tree) {
+  tree.reset();
   MeshReport r;
   r.vertices = mesh.num_vertices();
   r.triangles = mesh.num_triangles();
@@ -648,7 +659,7 @@ MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
   if (options.volume) r.volume = signed_volume(mesh);
   r.genus = total_genus(mesh, component_of, r);
   if (options.self_intersections && mesh.num_triangles() > 1)
-    find_self_intersections(mesh, table, degenerate, manifold, proved, options, r);
+    find_self_intersections(mesh, table, degenerate, manifold, proved, options, r, &tree);
   r.outward = is_outward(mesh, table, component_of, options, r);
   return r;
 }
