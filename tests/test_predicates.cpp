@@ -208,6 +208,63 @@ TEST(StaticFilter, SignOfSumIsExact) {
   EXPECT_GT(zeros, 100);
 }
 
+// The exact stage on doubles (static_filter.h) against CGAL's exact orientations, on the cases it
+// exists for: nearby points (coordinates of one magnitude, as a facet's neighbours have) exactly
+// on a plane or a line (binary fractions, as CAD models and grids have), a rounding away from a
+// plane, and in general position. It must decide them all at ordinary magnitudes (else the
+// integers would still do the work), and leave alone magnitudes where products would underflow
+// or overflow, and differences that are not exact doubles.
+TEST(StaticFilter, ExactOrientationsOfDoublesAgreeWithCgal) {
+  std::mt19937 random(61);
+  std::uniform_int_distribution<int> small(-64, 64), kind(0, 3), axis(0, 2);
+  std::uniform_real_distribution<double> unit(1, 2), middle(1.25, 1.75);
+  int decided = 0, zeros = 0, ordinary = 0;
+  for (const double scale : {1.0, 0x1p-40, 0x1p40, 0x1p-300, 0x1p300}) {
+    for (int i = 0; i < 4000; ++i) {
+      const int k = kind(random);
+      auto point = [&]() -> detail::Xyz {  // every coordinate in [1, 2) before scaling
+        const double x = 1.5 + small(random) / 256.0, y = 1.5 + small(random) / 256.0;
+        switch (k) {
+          case 0:  // on the plane x - y + 2z = 3
+            return {x * scale, y * scale, (3 - x + y) / 2 * scale};
+          case 1: {  // a rounding away from the plane x + y - z = 1.5
+            const double a = middle(random), b = middle(random);
+            return {a * scale, b * scale, std::nextafter(a + b - 1.5, 4.0) * scale};
+          }
+          case 2:  // on the line x = y = z
+            return {x * scale, x * scale, x * scale};
+          default:
+            return {unit(random) * scale, unit(random) * scale, unit(random) * scale};
+        }
+      };
+      const detail::Xyz p = point(), q = point(), r = point(), t = point();
+      auto cgal = [](const detail::Xyz& x) { return Point(x[0], x[1], x[2]); };
+      const int expected = int(CGAL::orientation(cgal(p), cgal(q), cgal(r), cgal(t)));
+      const bool in_range = scale > 0x1p-100 && scale < 0x1p100;
+      ordinary += in_range;
+      const auto o = detail::exact_orientation_of_doubles(p, q, r, t);
+      EXPECT_EQ(o.has_value(), in_range) << "scale " << scale << " case " << i;
+      if (o) {
+        ASSERT_EQ(*o, expected) << "scale " << scale << " case " << i;
+        ++decided;
+        zeros += *o == 0;
+      }
+      const int u = axis(random), v = (u + 1 + axis(random) % 2) % 3;
+      const auto project = [&](const detail::Xyz& x) { return Kernel::Point_2(x[u], x[v]); };
+      const auto o2 = detail::exact_orientation_2_of_doubles(u, v, p, q, r);
+      EXPECT_EQ(o2.has_value(), in_range);
+      if (o2)
+        ASSERT_EQ(*o2, int(CGAL::orientation(project(p), project(q), project(r))))
+            << "scale " << scale << " case " << i;
+    }
+  }
+  EXPECT_EQ(decided, ordinary);
+  EXPECT_GT(zeros, ordinary / 8);
+  // A difference that is not one double (1 + 2^-60 - 2^-60 needs more bits) is left alone.
+  EXPECT_FALSE(
+      detail::exact_orientation_of_doubles({1, 1, 1}, {0x1p-60, 1, 1}, {1, 2, 1}, {1, 1, 2}));
+}
+
 // The point table's predicates on ids (intervals, then homogeneous integers) against CGAL's on
 // the same points, among them constructions (edge/plane crossings kept as recipes, lazy).
 // When every input is a double the table decides most signs by plain double arithmetic and an

@@ -192,19 +192,25 @@ PointTable::PointTable(const Mesh& a, const Mesh& b, bool same_mesh)
   input_xyz_.resize(num_inputs_);
   input_approx_.resize(num_inputs_);
   // Each coordinate's double is its interval's lower end, within the interval's width of it.
-  input_error_ = tbb::parallel_reduce(
-      tbb::blocked_range<PointId>(0, num_inputs_, 4096), 0.0,
-      [&](const tbb::blocked_range<PointId>& range, double widest) {
-        for (PointId i = range.begin(); i != range.end(); ++i) {
-          const auto& a = CGAL::approx(input(i));
-          input_approx_[i] = a;
-          input_xyz_[i] = {a.x().inf(), a.y().inf(), a.z().inf()};
-          for (int k = 0; k < 3; ++k)
-            widest = std::max(widest, a.cartesian(k).sup() - a.cartesian(k).inf());
-        }
-        return widest;
-      },
-      [](double a, double b) { return std::max(a, b); });
+  auto widest_in = [&](PointId begin, PointId end) {
+    return tbb::parallel_reduce(
+        tbb::blocked_range<PointId>(begin, end, 4096), 0.0,
+        [&](const tbb::blocked_range<PointId>& range, double widest) {
+          for (PointId i = range.begin(); i != range.end(); ++i) {
+            const auto& a = CGAL::approx(input(i));
+            input_approx_[i] = a;
+            input_xyz_[i] = {a.x().inf(), a.y().inf(), a.z().inf()};
+            for (int k = 0; k < 3; ++k)
+              widest = std::max(widest, a.cartesian(k).sup() - a.cartesian(k).inf());
+          }
+          return widest;
+        },
+        [](double a, double b) { return std::max(a, b); });
+  };
+  const double widest_a = widest_in(0, num_a_), widest_b = widest_in(num_a_, num_inputs_);
+  input_error_ = std::max(widest_a, widest_b);
+  doubles_[0] = widest_a == 0;
+  doubles_[1] = same_mesh ? doubles_[0] : widest_b == 0;
   // The widths were rounded in the caller's mode: one unit up covers it. A width that is not
   // finite leaves the static filters out.
   if (input_error_ > 0) input_error_ = std::nextafter(input_error_, HUGE_VAL);
@@ -328,6 +334,16 @@ CGAL::Uncertain<CGAL::Sign> PointTable::orientation_filter(PointId p, PointId q,
 }
 
 CGAL::Sign PointTable::orientation_exact(PointId p, PointId q, PointId r, PointId s) const {
+  // Inputs that are doubles: most often exactly in doubles (static_filter.h), without the
+  // integers' conversions and allocations (nearly coplanar facets of a rounded rotation, exactly
+  // coplanar ones of a CAD model, come here by the thousand).
+  if (!input_xyz_.empty() && is_double(p) && is_double(q) && is_double(r) && is_double(s)) {
+    // Error-free transformations need round to nearest, whatever scope the caller is in.
+    const CGAL::Protect_FPU_rounding<true> nearest(CGAL_FE_TONEAREST);
+    if (const auto o = exact_orientation_of_doubles(input_xyz_[p], input_xyz_[q], input_xyz_[r],
+                                                    input_xyz_[s]))
+      return CGAL::Sign(*o);
+  }
   // det [p 1; q 1; r 1; s 1] = -det(q - p, r - p, s - p), and the W factors are positive.
   const Homogeneous* rows[4] = {&exact(p), &exact(q), &exact(r), &exact(s)};
   if (const auto sign = fixed_sign_of_det4(rows)) return CGAL::Sign(-*sign);
@@ -360,6 +376,12 @@ CGAL::Sign PointTable::orientation_2(int dropped, PointId p, PointId q, PointId 
     const auto o = CGAL::orientationC2(ap.cartesian(u), ap.cartesian(v), aq.cartesian(u),
                                        aq.cartesian(v), ar.cartesian(u), ar.cartesian(v));
     if (CGAL::is_certain(o)) return CGAL::get_certain(o);
+  }
+  if (!input_xyz_.empty() && is_double(p) && is_double(q) && is_double(r)) {
+    const CGAL::Protect_FPU_rounding<true> nearest(CGAL_FE_TONEAREST);
+    if (const auto o =
+            exact_orientation_2_of_doubles(u, v, input_xyz_[p], input_xyz_[q], input_xyz_[r]))
+      return CGAL::Sign(*o);
   }
   const Homogeneous &hp = exact(p), &hq = exact(q), &hr = exact(r);
   // det [p 1; q 1; r 1] in homogeneous rows, the W factors positive: in fixed-size integers

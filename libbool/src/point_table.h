@@ -228,6 +228,10 @@ class PointTable {
   // (static_filter.h).
   std::vector<std::array<double, 3>> input_xyz_;
   double input_error_ = 0;
+  // Whether each side's points are all exactly their doubles (the exact stages on doubles apply
+  // to a side's points even when the other side's are rational).
+  bool doubles_[2] = {false, false};
+  bool is_double(PointId id) const { return id < num_inputs_ && doubles_[id < num_a_ ? 0 : 1]; }
   // The inputs' interval approximations side by side: predicates read them without following
   // each lazy point to its representation.
   std::vector<ApproxPoint> input_approx_;

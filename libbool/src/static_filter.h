@@ -153,4 +153,87 @@ inline int sign_of_sum(std::initializer_list<double> terms) {
   return m == 0 ? 0 : e[m - 1] > 0 ? 1 : -1;
 }
 
+// The exact stage of orient3d and orient2d on doubles, without integers: the differences of
+// nearby coordinates are exact doubles (Sterbenz), a product of doubles is exactly a sum of two
+// (Veltkamp's split, Dekker's product), so a determinant of differences is exactly a sum of a few
+// dozen doubles, whose sign a growing expansion gives. Round to nearest (the caller ensures it).
+// nullopt when a difference is not exact or a magnitude leaves the range where products are
+// (then integer arithmetic decides, as before).
+
+// a - b exactly, or false.
+inline bool exact_difference(double a, double b, double& d) {
+  d = a - b;
+  const double b_virtual = a - d, a_virtual = d + b_virtual;
+  if ((a - a_virtual) + (b_virtual - b) != 0) return false;
+  // Products of three such differences, and their rounding errors, stay normal doubles.
+  return d == 0 || (std::fabs(d) > 0x1p-250 && std::fabs(d) < 0x1p250);
+}
+
+// a * b = hi + lo exactly (|a|, |b| well inside the range checked above).
+inline void exact_product(double a, double b, double& hi, double& lo) {
+  constexpr double kSplitter = 134217729.0;  // 2^27 + 1
+  const double ca = kSplitter * a, a_hi = ca - (ca - a), a_lo = a - a_hi;
+  const double cb = kSplitter * b, b_hi = cb - (cb - b), b_lo = b - b_hi;
+  hi = a * b;
+  lo = ((a_hi * b_hi - hi) + a_hi * b_lo + a_lo * b_hi) + a_lo * b_lo;
+}
+
+// The sign of the sum of terms[0 .. n) (n at most 32), exactly: sign_of_sum's expansion.
+inline int sign_of_terms(const double* terms, int n) {
+  double e[32];
+  int m = 0;
+  for (int t = 0; t < n; ++t) {
+    double q = terms[t];
+    int k = 0;
+    for (int i = 0; i < m; ++i) {
+      const double x = q + e[i], b_virtual = x - q, a_virtual = x - b_virtual;
+      const double y = (q - a_virtual) + (e[i] - b_virtual);
+      q = x;
+      if (y != 0) e[k++] = y;
+    }
+    if (q != 0) e[k++] = q;
+    m = k;
+  }
+  return m == 0 ? 0 : e[m - 1] > 0 ? 1 : -1;
+}
+
+// sign det [q - p, r - p, s - p] exactly (CGAL's orientation(p, q, r, s)), or nullopt.
+inline std::optional<int> exact_orientation_of_doubles(const Xyz& p, const Xyz& q, const Xyz& r,
+                                                       const Xyz& s) {
+  double u[3], v[3], w[3];
+  for (int k = 0; k < 3; ++k)
+    if (!exact_difference(q[k], p[k], u[k]) || !exact_difference(r[k], p[k], v[k]) ||
+        !exact_difference(s[k], p[k], w[k]))
+      return std::nullopt;
+  // u . (v x w): six products u_i v_j w_k, each exactly four doubles.
+  static constexpr int kTerms[6][4] = {{0, 1, 2, 1},  {0, 2, 1, -1}, {1, 2, 0, 1},
+                                       {1, 0, 2, -1}, {2, 0, 1, 1},  {2, 1, 0, -1}};
+  double terms[24];
+  int n = 0;
+  for (const auto& t : kTerms) {
+    double h, l, hh, hl, lh, ll;
+    exact_product(v[t[1]], w[t[2]], h, l);
+    exact_product(u[t[0]], h, hh, hl);
+    exact_product(u[t[0]], l, lh, ll);
+    for (const double x : {hh, hl, lh, ll}) terms[n++] = t[3] * x;
+  }
+  return sign_of_terms(terms, n);
+}
+
+// sign det [q - p, r - p] in the coordinates u, v exactly (orientation_2 of the projections), or
+// nullopt.
+inline std::optional<int> exact_orientation_2_of_doubles(int u, int v, const Xyz& p, const Xyz& q,
+                                                         const Xyz& r) {
+  double qu, qv, ru, rv;
+  if (!exact_difference(q[u], p[u], qu) || !exact_difference(q[v], p[v], qv) ||
+      !exact_difference(r[u], p[u], ru) || !exact_difference(r[v], p[v], rv))
+    return std::nullopt;
+  double terms[4];
+  exact_product(qu, rv, terms[0], terms[1]);
+  exact_product(qv, ru, terms[2], terms[3]);
+  terms[2] = -terms[2];
+  terms[3] = -terms[3];
+  return sign_of_terms(terms, 4);
+}
+
 }  // namespace morphex::detail
