@@ -131,15 +131,15 @@ inline std::optional<int> static_orientation_2(int u, int v, const Xyz& p, const
   return static_orientation_2_of_differences(q[u] - p[u], q[v] - p[v], r[u] - p[u], r[v] - p[v]);
 }
 
-// The exact sign of a sum of at most 8 doubles (finite, no overflow in the partial sums), by
-// Shewchuk's growing expansion: each Two-Sum is exact when the FPU rounds to nearest, which the
-// caller must ensure; the expansion's components do not overlap and grow in magnitude, so the
-// last one carries the sign.
-inline int sign_of_sum(std::initializer_list<double> terms) {
-  double e[8];
+// The exact sign of the sum of terms[0 .. n) (finite, no overflow in the partial sums; n at most
+// 32), by Shewchuk's growing expansion: each Two-Sum is exact when the FPU rounds to nearest,
+// which the caller must ensure; the expansion's components do not overlap and grow in magnitude,
+// so the last one carries the sign.
+inline int sign_of_terms(const double* terms, int n) {
+  double e[32];
   int m = 0;
-  for (const double b : terms) {
-    double q = b;
+  for (int t = 0; t < n; ++t) {
+    double q = terms[t];
     int k = 0;
     for (int i = 0; i < m; ++i) {
       const double x = q + e[i], b_virtual = x - q, a_virtual = x - b_virtual;
@@ -151,6 +151,11 @@ inline int sign_of_sum(std::initializer_list<double> terms) {
     m = k;
   }
   return m == 0 ? 0 : e[m - 1] > 0 ? 1 : -1;
+}
+
+// The same for at most 8 terms written out.
+inline int sign_of_sum(std::initializer_list<double> terms) {
+  return sign_of_terms(terms.begin(), int(terms.size()));
 }
 
 // The exact stage of orient3d and orient2d on doubles, without integers: the differences of
@@ -176,25 +181,6 @@ inline void exact_product(double a, double b, double& hi, double& lo) {
   const double cb = kSplitter * b, b_hi = cb - (cb - b), b_lo = b - b_hi;
   hi = a * b;
   lo = ((a_hi * b_hi - hi) + a_hi * b_lo + a_lo * b_hi) + a_lo * b_lo;
-}
-
-// The sign of the sum of terms[0 .. n) (n at most 32), exactly: sign_of_sum's expansion.
-inline int sign_of_terms(const double* terms, int n) {
-  double e[32];
-  int m = 0;
-  for (int t = 0; t < n; ++t) {
-    double q = terms[t];
-    int k = 0;
-    for (int i = 0; i < m; ++i) {
-      const double x = q + e[i], b_virtual = x - q, a_virtual = x - b_virtual;
-      const double y = (q - a_virtual) + (e[i] - b_virtual);
-      q = x;
-      if (y != 0) e[k++] = y;
-    }
-    if (q != 0) e[k++] = q;
-    m = k;
-  }
-  return m == 0 ? 0 : e[m - 1] > 0 ? 1 : -1;
 }
 
 // sign det [q - p, r - p, s - p] exactly (CGAL's orientation(p, q, r, s)), or nullopt.
