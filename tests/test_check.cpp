@@ -18,6 +18,7 @@
 #include "point_index.h"
 #include "point_table.h"
 #include "spatial.h"
+#include "volume_internal.h"
 
 using namespace morphex;
 
@@ -298,6 +299,74 @@ TEST(Check, HandsTheBooleanATreeOverEveryTriangleOnly) {
 // (faces, edges, vertices meeting other features) or miss each other, under axis-preserving and
 // rational rotations. Meshes where two distinct vertices coincide are left out: there CGAL's test
 // (by vertex index) and ours (contacts at common positions are allowed) differ by design.
+// The check's outward test reads the table's doubles, each coordinate within an error of the
+// exact one (a rational mesh: a rotated input, a Boolean's output). Doubles moved by up to that
+// error from flat or nearly flat solids, whose exact volume is 0 or tiny: the sign is still the
+// exact one, though the doubles' own sum is far from it.
+TEST(Check, VolumeSignFromDoublesWithinAnErrorIsTheExactOne) {
+  // A flat pillow (a square, triangulated on one side along one diagonal and on the other along
+  // the other) of volume 0, and a tetrahedron of height h.
+  Mesh pillow;
+  pillow.points = {Point(0, 0, 0), Point(4, 0, 0), Point(4, 3, 0), Point(0, 3, 0)};
+  pillow.triangles = {{0, 1, 2}, {0, 2, 3}, {1, 0, 3}, {1, 3, 2}};
+  const double h = 0x1p-30, error = 0x1p-20;
+  Mesh tetrahedron;
+  tetrahedron.points = {Point(0, 0, 0), Point(4, 0, 0), Point(0, 3, 0), Point(1, 1, h)};
+  tetrahedron.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> move(-error, error);
+  int misled = 0;
+  for (int i = 0; i < 40; ++i) {
+    for (const Mesh* m : {&pillow, &tetrahedron}) {
+      std::vector<std::array<double, 3>> xyz;
+      for (const Point& p : m->points)
+        xyz.push_back({CGAL::to_double(p.x()) + move(random), CGAL::to_double(p.y()) + move(random),
+                       CGAL::to_double(p.z()) + move(random)});
+      const CGAL::Sign exact = CGAL::sign(signed_volume(*m));
+      ASSERT_EQ(exact, m == &pillow ? CGAL::ZERO : CGAL::POSITIVE);
+      EXPECT_EQ(detail::signed_volume_sign(*m, xyz, error), exact) << "case " << i;
+      // The same doubles taken as exact (error 0) decide another sign: the error's term is what
+      // keeps their sum from being taken.
+      misled += detail::signed_volume_sign(*m, xyz, 0) != exact;
+    }
+  }
+  EXPECT_GT(misled, 40);
+  // A solid of ordinary size keeps its sign with its doubles moved.
+  const Mesh cube = make_cube(FT(1));
+  std::vector<std::array<double, 3>> xyz;
+  for (const Point& p : cube.points)
+    xyz.push_back({CGAL::to_double(p.x()) + move(random), CGAL::to_double(p.y()) + move(random),
+                   CGAL::to_double(p.z()) + move(random)});
+  EXPECT_EQ(detail::signed_volume_sign(cube, xyz, error), CGAL::POSITIVE);
+  EXPECT_EQ(detail::signed_volume_sign(reversed(cube), xyz, error), CGAL::NEGATIVE);
+}
+
+// Under a rational rotation the coordinates are no longer doubles, and the check's filters run
+// on doubles known within an error (the planes' side test, the stars' proofs, the coplanar
+// search, the outward test): every verdict is the one on the unrotated mesh, and CGAL's.
+TEST(Check, RationalMeshesGetTheVerdictsOfTheirDoubles) {
+  const Transformation rotation = quaternion_rotation(1, 2, 3, 5);
+  const std::vector<std::pair<const char*, Mesh>> cases = {
+      {"icosphere", make_icosphere(3, FT(1))},
+      {"torus", make_torus(24, 12, 1.0, 0.25)},
+      {"fan prism", make_fan_prism(40, 2.0, 1.0)},
+      {"crossing cubes", concatenate(make_cube(FT(1)), make_cube(FT(1), Point(1, 1, 1)))},
+      {"touching cube and octahedron", concatenate(make_cube(FT(1)), make_octahedron(FT(1)))},
+      {"hollow cube", concatenate(make_cube(FT(2)), reversed(make_cube(FT(1))))},
+      {"cavity oriented outward", concatenate(make_cube(FT(2)), make_cube(FT(1)))},
+      {"inverted icosphere", reversed(make_icosphere(2, FT(1)))}};
+  for (const auto& [what, m] : cases) {
+    const Mesh turned = transformed(m, rotation);
+    ASSERT_FALSE(CGAL::approx(turned.points[1].x()).is_point()) << what;
+    const MeshReport before = check_mesh(m, kValidityOnly),
+                     after = check_mesh(turned, kValidityOnly);
+    EXPECT_EQ(after.valid_solid(), before.valid_solid()) << what;
+    EXPECT_EQ(after.outward, before.outward) << what;
+    EXPECT_EQ(after.self_intersections, before.self_intersections) << what;
+    EXPECT_EQ(after.self_intersections > 0, cgal_self_intersects(turned)) << what;
+  }
+}
+
 TEST(Check, SelfIntersectionsAgreeWithCgalOnRandomContacts) {
   std::mt19937 random(19);
   auto pick = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(random); };

@@ -37,16 +37,20 @@ EdgeKey key(VertexIndex a, VertexIndex b) {
   return (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
 }
 
-// Each triangle's plane in doubles (inputs that are all doubles), for a side test before a
-// pair's exact tests: long thin facets around a thin tube have boxes that overlap by the million
-// and are settled by one side; precomputing the plane halves the work of each. The side of x is
-// the sign of (x - p) . N with N = (q - p) x (r - p), the orientation's determinant in another
-// order: rounding the differences, the cross product and the dot product errs by less than
-// 9 units of 2^-52 of sum_k |x - p|_k M_k, M_k the magnitudes of N_k's two products; 1e-14 of it
-// leaves a wide margin under any rounding mode.
+// Each triangle's plane in doubles, for a side test before a pair's exact tests: long thin facets
+// around a thin tube have boxes that overlap by the million and are settled by one side;
+// precomputing the plane halves the work of each. The side of x is the sign of (x - p) . N with
+// N = (q - p) x (r - p), the orientation's determinant in another order: rounding the
+// differences, the cross product and the dot product errs by less than 9 units of 2^-52 of
+// sum_k |x - p|_k M_k, M_k the magnitudes of N_k's two products; 1e-14 of it leaves a wide margin
+// under any rounding mode. When the points are only known within `error` of their doubles (a
+// rational mesh: a rotated input, a Boolean's output), the exact determinant is moreover within
+// 36 error m^2 of the doubles' one, m bounding the differences and their errors (the slack of
+// static_orientation_near, which this test is).
 class PlaneFilters {
  public:
-  PlaneFilters(const Mesh& mesh, const std::vector<detail::Xyz>& xyz) : mesh_(mesh), xyz_(xyz) {
+  PlaneFilters(const Mesh& mesh, const std::vector<detail::Xyz>& xyz, double error)
+      : mesh_(mesh), xyz_(xyz), error_(error) {
     if (xyz.empty()) return;
     planes_.resize(mesh.num_triangles());
     tbb::parallel_for(std::size_t(0), mesh.num_triangles(), [&](std::size_t t) {
@@ -55,10 +59,12 @@ class PlaneFilters {
       const double a[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
       const double b[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
       Plane& plane = planes_[t];
+      plane.reach = 0;
       for (int k = 0; k < 3; ++k) {
         const int i = (k + 1) % 3, j = (k + 2) % 3;
         plane.normal[k] = a[i] * b[j] - a[j] * b[i];
         plane.magnitude[k] = std::fabs(a[i] * b[j]) + std::fabs(a[j] * b[i]);
+        plane.reach = std::max({plane.reach, std::fabs(a[k]), std::fabs(b[k])});
       }
     });
   }
@@ -78,7 +84,12 @@ class PlaneFilters {
                                std::fabs(c[1]) * plane.magnitude[1] +
                                std::fabs(c[2]) * plane.magnitude[2];
       if (!(permanent > detail::kStaticTiny && permanent < detail::kStaticHuge)) return false;
-      const double bound = 1e-14 * permanent;
+      double bound = 1e-14 * permanent;
+      if (error_ > 0) {
+        const double m = std::max({plane.reach, std::fabs(c[0]), std::fabs(c[1]), std::fabs(c[2])});
+        const double e = detail::entry_bound(m, error_);
+        bound += std::max(37 * error_ * e * e, detail::kNearSlackFloor);
+      }
       const int s = det > bound ? 1 : -det > bound ? -1 : 0;
       if (s == 0 || (side != 0 && s != side)) return false;
       side = s;
@@ -89,9 +100,11 @@ class PlaneFilters {
  private:
   struct Plane {
     double normal[3], magnitude[3];
+    double reach;  // the largest coordinate of q - p and r - p
   };
   const Mesh& mesh_;
   const std::vector<detail::Xyz>& xyz_;
+  const double error_;
   std::vector<Plane> planes_;
 };
 
@@ -517,7 +530,7 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
   TriangleTree tree = planar.patches.empty() ? TriangleTree(mesh, vertex_boxes)
                                              : TriangleTree(mesh, vertex_boxes, others);
   const TrianglePairs test(table, position);
-  const PlaneFilters planes(mesh, table.input_doubles());
+  const PlaneFilters planes(mesh, table.input_near_doubles(), table.input_error());
   const bool list = options.list_self_intersections;
   // Triangles with a common vertex whose star is proved embedded near it meet properly (the
   // neighbours of every triangle: most of the pairs the traversal meets); the traversal drops
@@ -602,8 +615,9 @@ bool is_outward(const Mesh& mesh, const PointTable& table,
   if (mesh.num_triangles() == 0) return true;
   const auto volume_sign = [&](const Mesh& m) {
     if (&m != &mesh) return signed_volume_sign(m);
-    return options.volume ? CGAL::sign(r.volume)
-                          : detail::signed_volume_sign(mesh, table.input_doubles());
+    return options.volume
+               ? CGAL::sign(r.volume)
+               : detail::signed_volume_sign(mesh, table.input_near_doubles(), table.input_error());
   };
   if (!r.closed() || !r.consistently_oriented) return false;
   if (r.self_intersections != 0 || r.degenerate_faces != 0 || r.components <= 1)

@@ -37,11 +37,14 @@ bool coplanar_across(const Mesh& mesh, const PointTable& table,
   // Most edges of a curved surface are not flat: the static filter on the vertices (by index)
   // says so without the positions. Only a certain nonzero sign is taken; a vertex coincident
   // with one of f's gives zero and goes on below.
-  if (const auto& xyz = table.input_doubles(); !xyz.empty()) {
+  if (const auto& xyz = table.input_near_doubles(); !xyz.empty()) {
     const Triangle &tf = mesh.triangles[fi], &tg = mesh.triangles[gi];
+    const double error = table.input_error();
     for (const VertexIndex w : tg)
       if (w != tf[0] && w != tf[1] && w != tf[2]) {
-        const auto o = static_orientation(xyz[tf[0]], xyz[tf[1]], xyz[tf[2]], xyz[w]);
+        const Xyz &p = xyz[tf[0]], &q = xyz[tf[1]], &r = xyz[tf[2]], &s = xyz[w];
+        const auto o = error == 0 ? static_orientation(p, q, r, s)
+                                  : static_orientation_near(p, q, r, s, error);
         if (o && *o != 0) return false;
         break;
       }

@@ -182,7 +182,7 @@ class StarExaminer {
 
   // The star's mean normal, in doubles (a poor one only makes the proofs fail, never wrong).
   std::array<double, 3> mean_normal(VertexIndex v) const {
-    const auto& doubles = table_.input_doubles();
+    const auto& doubles = table_.input_near_doubles();
     auto xyz = [&](VertexIndex p) {
       if (!doubles.empty()) return doubles[p];
       const ApproxPoint& a = table_.approx(p);
@@ -246,33 +246,47 @@ class StarExaminer {
   // that turns less than half a turn one way crosses exactly (q(end) - q(start)) mod 4 quadrant
   // boundaries (0, 1 or 2; 3 is impossible). Around a closed loop they add up to 4 per winding.
   bool covers_once(VertexIndex v, int axis) const {
-    const auto& doubles = table_.input_doubles();
+    const auto& doubles = table_.input_near_doubles();
     if (doubles.empty()) return covers_once_exactly(v, axis);
+    const double error = table_.input_error();
     const int u = axis == 0 ? 1 : 0, w = axis == 2 ? 1 : 2;
     const double ou = doubles[v][u], ow = doubles[v][w];
+    // A difference's sign: the doubles' one when the points are doubles (rounding keeps it),
+    // else when it clears the two points' errors (and its own rounding); else exactly.
+    const double margin = 2 * error * (1 + 0x1p-40);
+    auto sign = [&](double d, VertexIndex p, int k) {
+      if (error == 0 || std::fabs(d) > margin) return d;
+      return exact_sign(p, v, k);
+    };
     int turn = 0, quarters = 0;
     for (const Angle& a : star_) {
       const double fu = doubles[a.from][u] - ou, fw = doubles[a.from][w] - ow,
                    tu = doubles[a.to][u] - ou, tw = doubles[a.to][w] - ow;
-      const std::optional<int> f = static_orientation_2_of_differences(fu, fw, tu, tw);
+      const std::optional<int> f =
+          error == 0
+              ? static_orientation_2_of_differences(fu, fw, tu, tw)
+              : static_orientation_2_near(u, w, doubles[v], doubles[a.from], doubles[a.to], error);
       const int s = f ? *f : int(table_.orientation_2(axis, v, a.from, a.to));
       if (s == 0 || s == -turn) return false;
       turn = s;
-      quarters += quarters_turned(s, quadrant(fu, fw), quadrant(tu, tw));
+      quarters += quarters_turned(s, quadrant(sign(fu, a.from, u), sign(fw, a.from, w)),
+                                  quadrant(sign(tu, a.to, u), sign(tw, a.to, w)));
     }
     return quarters == 4;
+  }
+
+  // The sign of p - v along k: by the intervals when they are apart, else exactly.
+  double exact_sign(VertexIndex p, VertexIndex v, int k) const {
+    const auto &a = table_.approx(p).cartesian(k), &o = table_.approx(v).cartesian(k);
+    if (a.inf() > o.sup()) return 1.0;
+    if (a.sup() < o.inf()) return -1.0;
+    return double(CGAL::compare(table_.input(p).cartesian(k), table_.input(v).cartesian(k)));
   }
 
   // The same without doubles: exact coordinate comparisons and orientations.
   bool covers_once_exactly(VertexIndex v, int axis) const {
     const int u = axis == 0 ? 1 : 0, w = axis == 2 ? 1 : 2;
-    // The sign of p - v along k: by the intervals when they are apart, else exactly.
-    auto sign = [&](VertexIndex p, int k) {
-      const auto &a = table_.approx(p).cartesian(k), &o = table_.approx(v).cartesian(k);
-      if (a.inf() > o.sup()) return 1.0;
-      if (a.sup() < o.inf()) return -1.0;
-      return double(CGAL::compare(table_.input(p).cartesian(k), table_.input(v).cartesian(k)));
-    };
+    auto sign = [&](VertexIndex p, int k) { return exact_sign(p, v, k); };
     int turn = 0, quarters = 0;
     for (const Angle& a : star_) {
       const int s = int(table_.orientation_2(axis, v, a.from, a.to));

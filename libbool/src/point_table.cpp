@@ -212,9 +212,12 @@ PointTable::PointTable(const Mesh& a, const Mesh& b, bool same_mesh)
   doubles_[0] = widest_a == 0;
   doubles_[1] = same_mesh ? doubles_[0] : widest_b == 0;
   // The widths were rounded in the caller's mode: one unit up covers it. A width that is not
-  // finite leaves the static filters out.
+  // finite leaves the static filters and the exact stages on doubles out.
   if (input_error_ > 0) input_error_ = std::nextafter(input_error_, HUGE_VAL);
-  if (!std::isfinite(input_error_)) input_xyz_ = {};
+  if (!std::isfinite(input_error_)) {
+    input_xyz_ = {};
+    doubles_[0] = doubles_[1] = false;
+  }
 }
 
 PointTable::~PointTable() {
@@ -337,7 +340,7 @@ CGAL::Sign PointTable::orientation_exact(PointId p, PointId q, PointId r, PointI
   // Inputs that are doubles: most often exactly in doubles (static_filter.h), without the
   // integers' conversions and allocations (nearly coplanar facets of a rounded rotation, exactly
   // coplanar ones of a CAD model, come here by the thousand).
-  if (!input_xyz_.empty() && is_double(p) && is_double(q) && is_double(r) && is_double(s)) {
+  if (is_double(p) && is_double(q) && is_double(r) && is_double(s)) {
     // Error-free transformations need round to nearest, whatever scope the caller is in.
     const CGAL::Protect_FPU_rounding<true> nearest(CGAL_FE_TONEAREST);
     if (const auto o = exact_orientation_of_doubles(input_xyz_[p], input_xyz_[q], input_xyz_[r],
@@ -377,7 +380,7 @@ CGAL::Sign PointTable::orientation_2(int dropped, PointId p, PointId q, PointId 
                                        aq.cartesian(v), ar.cartesian(u), ar.cartesian(v));
     if (CGAL::is_certain(o)) return CGAL::get_certain(o);
   }
-  if (!input_xyz_.empty() && is_double(p) && is_double(q) && is_double(r)) {
+  if (is_double(p) && is_double(q) && is_double(r)) {
     const CGAL::Protect_FPU_rounding<true> nearest(CGAL_FE_TONEAREST);
     if (const auto o =
             exact_orientation_2_of_doubles(u, v, input_xyz_[p], input_xyz_[q], input_xyz_[r]))

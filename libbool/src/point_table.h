@@ -145,6 +145,11 @@ class PointTable {
     static const std::vector<std::array<double, 3>> none;
     return input_error_ == 0 ? input_xyz_ : none;
   }
+  // The input points as doubles, by id, each coordinate within input_error() of the exact one
+  // (0 when input_doubles() is not empty); empty when a coordinate's error is not finite. For the
+  // filters of callers that bound that error themselves (static_orientation_near's slack).
+  const std::vector<std::array<double, 3>>& input_near_doubles() const { return input_xyz_; }
+  double input_error() const { return input_error_; }
   std::size_t size() const { return num_inputs_ + recipes_.size(); }
   bool is_input(PointId id) const { return id < num_inputs_; }
   const Recipe& recipe(PointId id) const { return recipes_[id - num_inputs_]; }
@@ -228,8 +233,9 @@ class PointTable {
   // (static_filter.h).
   std::vector<std::array<double, 3>> input_xyz_;
   double input_error_ = 0;
-  // Whether each side's points are all exactly their doubles (the exact stages on doubles apply
-  // to a side's points even when the other side's are rational).
+  // Whether each side's points are all exactly their doubles in input_xyz_ (the exact stages on
+  // doubles apply to a side's points even when the other side's are rational; false for both
+  // when input_xyz_ is empty).
   bool doubles_[2] = {false, false};
   bool is_double(PointId id) const { return id < num_inputs_ && doubles_[id < num_a_ ? 0 : 1]; }
   // The inputs' interval approximations side by side: predicates read them without following

@@ -10,6 +10,7 @@
 // unit in the last place instead of half), so his coefficients are doubled and rounded up.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <initializer_list>
@@ -96,14 +97,14 @@ inline std::optional<int> static_orientation_near(const Xyz& p, const Xyz& q, co
   const double ax = q[0] - p[0], ay = q[1] - p[1], az = q[2] - p[2], bx = r[0] - p[0],
                by = r[1] - p[1], bz = r[2] - p[2], cx = s[0] - p[0], cy = s[1] - p[1],
                cz = s[2] - p[2];
-  const double m = std::fmax(
-      std::fmax(std::fmax(std::fabs(ax), std::fabs(ay)), std::fmax(std::fabs(az), std::fabs(bx))),
-      std::fmax(std::fmax(std::fabs(by), std::fabs(bz)),
-                std::fmax(std::fabs(cx), std::fmax(std::fabs(cy), std::fabs(cz)))));
+  // std::max, not std::fmax (a library call): a NaN fails the permanent's test below anyway.
+  const double m =
+      std::max({std::fabs(ax), std::fabs(ay), std::fabs(az), std::fabs(bx), std::fabs(by),
+                std::fabs(bz), std::fabs(cx), std::fabs(cy), std::fabs(cz)});
   const auto [det, permanent] = det_and_permanent(ax, ay, az, bx, by, bz, cx, cy, cz);
   if (!(permanent < kStaticHuge) || !(permanent > kStaticTiny)) return std::nullopt;
   const double e = entry_bound(m, error);
-  const double bound = 1.6e-15 * permanent + std::fmax(37 * error * e * e, kNearSlackFloor);
+  const double bound = 1.6e-15 * permanent + std::max(37 * error * e * e, kNearSlackFloor);
   if (det > bound) return 1;
   if (-det > bound) return -1;
   return std::nullopt;
@@ -114,12 +115,11 @@ inline std::optional<int> static_orientation_near(const Xyz& p, const Xyz& q, co
 inline std::optional<int> static_orientation_2_near(int u, int v, const Xyz& p, const Xyz& q,
                                                     const Xyz& r, double error) {
   const double qu = q[u] - p[u], qv = q[v] - p[v], ru = r[u] - p[u], rv = r[v] - p[v];
-  const double m =
-      std::fmax(std::fmax(std::fabs(qu), std::fabs(qv)), std::fmax(std::fabs(ru), std::fabs(rv)));
+  const double m = std::max({std::fabs(qu), std::fabs(qv), std::fabs(ru), std::fabs(rv)});
   const double left = qu * rv, right = qv * ru;
   const double det = left - right, sum = std::fabs(left) + std::fabs(right);
   if (!(sum < kStaticHuge) || !(sum > kStaticTiny)) return std::nullopt;
-  const double bound = 7e-16 * sum + std::fmax(9 * error * entry_bound(m, error), kNearSlackFloor);
+  const double bound = 7e-16 * sum + std::max(9 * error * entry_bound(m, error), kNearSlackFloor);
   if (det > bound) return 1;
   if (-det > bound) return -1;
   return std::nullopt;
@@ -162,8 +162,8 @@ inline int sign_of_sum(std::initializer_list<double> terms) {
 // nearby coordinates are exact doubles (Sterbenz), a product of doubles is exactly a sum of two
 // (Veltkamp's split, Dekker's product), so a determinant of differences is exactly a sum of a few
 // dozen doubles, whose sign a growing expansion gives. Round to nearest (the caller ensures it).
-// nullopt when a difference is not exact or a magnitude leaves the range where products are
-// (then integer arithmetic decides, as before).
+// nullopt when a difference is not exact or a magnitude leaves [2^-250, 2^250], the range where
+// every product and its rounding error are normal doubles; the caller then decides in integers.
 
 // a - b exactly, or false.
 inline bool exact_difference(double a, double b, double& d) {

@@ -232,9 +232,10 @@ class SamePlane {
     }
     const std::uint64_t key = edge_key(std::min(a, b), std::max(a, b));
     if (const std::uint8_t* known = cache_.find(key)) return *known != 0;
-    // The corners the filter left undecided, exactly (fixed-size integers when they fit). Most
-    // pairs that get here lie in one plane, where no filter can decide; each facet meets a few
-    // others, so an exact plane equation per facet (GMP integers) would cost more than it saves.
+    // The corners the filter left undecided, exactly (orientation_exact: in doubles for double
+    // inputs, else in fixed-size integers when they fit). Most pairs that get here lie in one
+    // plane, where no filter can decide; each facet meets a few others, so an exact plane
+    // equation per facet (GMP integers) would cost more than it saves.
     bool same = true;
     for (int k = 0; k < 3 && same; ++k)
       same = !undecided[k] || table_.orientation_exact(pa[0], pa[1], pa[2], pb[k]) == CGAL::ZERO;

@@ -226,12 +226,16 @@ namespace {
 // The sign of the sum of det(a, b, c) in doubles, when the rounding errors cannot change it:
 // each term is within 8 eps of its permanent (|ax| (|by cz| + |bz cy|) + ...), and a sum of n
 // terms within (n - 1) eps of the sum of their magnitudes in any order, eps = 2^-52 so that it
-// holds under any rounding mode; underflow adds at most 2^-1074 per operation. Undecided when
-// a coordinate is not a double or the magnitudes are out of range.
+// holds under any rounding mode; underflow adds at most 2^-1074 per operation. With `xyz` whose
+// coordinates are within `error` of the exact ones, each exact determinant is moreover within
+// 18 error (m + error)^2 of the doubles' one (six products of three coordinates, each moving by
+// at most 3 error (m + error)^2), m the largest magnitude. Undecided when a coordinate is not a
+// double (without `xyz`) or the magnitudes are out of range.
 std::optional<CGAL::Sign> volume_sign_by_doubles(const Mesh& mesh,
-                                                 const std::vector<std::array<double, 3>>* xyz) {
+                                                 const std::vector<std::array<double, 3>>* xyz,
+                                                 double error) {
   struct Sum {
-    double det = 0, permanent = 0;
+    double det = 0, permanent = 0, reach = 0;
     bool doubles = true;
   };
   const Sum sum = tbb::parallel_reduce(
@@ -255,16 +259,22 @@ std::optional<CGAL::Sign> volume_sign_by_doubles(const Mesh& mesh,
           s.permanent += std::fabs(a[0]) * (std::fabs(b[1] * c[2]) + std::fabs(b[2] * c[1])) +
                          std::fabs(a[1]) * (std::fabs(b[2] * c[0]) + std::fabs(b[0] * c[2])) +
                          std::fabs(a[2]) * (std::fabs(b[0] * c[1]) + std::fabs(b[1] * c[0]));
+          for (int k = 0; k < 3; ++k)
+            s.reach = std::fmax(
+                s.reach, std::fmax(std::fabs(a[k]), std::fmax(std::fabs(b[k]), std::fabs(c[k]))));
         }
         return s;
       },
       [](const Sum& a, const Sum& b) {
-        return Sum{a.det + b.det, a.permanent + b.permanent, a.doubles && b.doubles};
+        return Sum{a.det + b.det, a.permanent + b.permanent, std::fmax(a.reach, b.reach),
+                   a.doubles && b.doubles};
       });
-  if (!sum.doubles || !(sum.permanent < 1e300)) return std::nullopt;  // also NaN
+  if (!sum.doubles || !(sum.permanent < 1e300) || !(sum.reach < 1e100)) return std::nullopt;
   const double n = double(mesh.num_triangles()), eps = 0x1p-52;
-  // The permanents' own sum is rounded too: a factor 2 covers it.
-  const double bound = 2 * (n + 8) * eps * sum.permanent + 16 * n * 0x1p-1074;
+  // The permanents' own sum is rounded too: a factor 2 covers it, and the errors' term.
+  const double m = (sum.reach + error) * (1 + 0x1p-50);
+  const double bound = 2 * (n + 8) * eps * sum.permanent + 16 * n * 0x1p-1074 +
+                       (error > 0 ? 2 * n * 18 * error * m * m : 0);
   if (sum.det > bound) return CGAL::POSITIVE;
   if (-sum.det > bound) return CGAL::NEGATIVE;
   return std::nullopt;
@@ -272,15 +282,16 @@ std::optional<CGAL::Sign> volume_sign_by_doubles(const Mesh& mesh,
 }  // namespace
 
 namespace detail {
-CGAL::Sign signed_volume_sign(const Mesh& mesh, const std::vector<std::array<double, 3>>& doubles) {
-  if (doubles.size() == mesh.num_vertices() && !doubles.empty())
-    if (const auto sign = volume_sign_by_doubles(mesh, &doubles)) return *sign;
+CGAL::Sign signed_volume_sign(const Mesh& mesh, const std::vector<std::array<double, 3>>& doubles,
+                              double error) {
+  if (doubles.size() == mesh.num_vertices() && !doubles.empty() && std::isfinite(error))
+    if (const auto sign = volume_sign_by_doubles(mesh, &doubles, error)) return *sign;
   return morphex::signed_volume_sign(mesh);
 }
 }  // namespace detail
 
 CGAL::Sign signed_volume_sign(const Mesh& mesh) {
-  if (const auto sign = volume_sign_by_doubles(mesh, nullptr)) return *sign;
+  if (const auto sign = volume_sign_by_doubles(mesh, nullptr, 0)) return *sign;
   {
     CGAL::Protect_FPU_rounding<true> rounding;
     CGAL::Interval_nt<false> sum = 0;
