@@ -53,10 +53,11 @@ inline detail::PlanarPatches proved_patches_of(const Mesh& m, bool near_flat) {
   detail::ManifoldEdges manifold;
   for (const auto& [key, faces] : uses)
     if (faces.size() == 2) manifold.push_back({key, {faces[0], faces[1]}});
+  const detail::FacePlanes planes(m, table.input_near_doubles(), table.input_error());
   detail::PlanarPatches patches =
-      detail::verified_planar_patches(m, table, position, degenerate, manifold, 16);
+      detail::verified_planar_patches(m, table, planes, position, degenerate, manifold, 16);
   if (near_flat)
-    detail::add_near_flat_patches(m, table, position, degenerate, manifold, 16, patches);
+    detail::add_near_flat_patches(m, table, planes, position, degenerate, manifold, 16, patches);
   return patches;
 }
 

@@ -15,6 +15,7 @@
 
 #include "check_internal.h"
 #include "check_planar.h"
+#include "check_planes.h"
 #include "check_stars.h"
 #include "morphex/union_find.h"
 #include "point_index.h"
@@ -36,77 +37,6 @@ using EdgeKey = std::uint64_t;
 EdgeKey key(VertexIndex a, VertexIndex b) {
   return (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
 }
-
-// Each triangle's plane in doubles, for a side test before a pair's exact tests: long thin facets
-// around a thin tube have boxes that overlap by the million and are settled by one side;
-// precomputing the plane halves the work of each. The side of x is the sign of (x - p) . N with
-// N = (q - p) x (r - p), the orientation's determinant in another order: rounding the
-// differences, the cross product and the dot product errs by less than 9 units of 2^-52 of
-// sum_k |x - p|_k M_k, M_k the magnitudes of N_k's two products; 1e-14 of it leaves a wide margin
-// under any rounding mode. When the points are only known within `error` of their doubles (a
-// rational mesh: a rotated input, a Boolean's output), the exact determinant is moreover within
-// 36 error m^2 of the doubles' one, m bounding the differences and their errors (the slack of
-// static_orientation_near, which this test is).
-class PlaneFilters {
- public:
-  PlaneFilters(const Mesh& mesh, const std::vector<detail::Xyz>& xyz, double error)
-      : mesh_(mesh), xyz_(xyz), error_(error) {
-    if (xyz.empty()) return;
-    planes_.resize(mesh.num_triangles());
-    tbb::parallel_for(std::size_t(0), mesh.num_triangles(), [&](std::size_t t) {
-      const Triangle& f = mesh.triangles[t];
-      const detail::Xyz &p = xyz[f[0]], &q = xyz[f[1]], &r = xyz[f[2]];
-      const double a[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-      const double b[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
-      Plane& plane = planes_[t];
-      plane.reach = 0;
-      for (int k = 0; k < 3; ++k) {
-        const int i = (k + 1) % 3, j = (k + 2) % 3;
-        plane.normal[k] = a[i] * b[j] - a[j] * b[i];
-        plane.magnitude[k] = std::fabs(a[i] * b[j]) + std::fabs(a[j] * b[i]);
-        plane.reach = std::max({plane.reach, std::fabs(a[k]), std::fabs(b[k])});
-      }
-    });
-  }
-
-  // All corners of triangle f lie strictly on one side of triangle g's plane (by doubles alone:
-  // false when undecided). Then f and g do not meet.
-  bool beside(std::uint32_t f, std::uint32_t g) const {
-    if (planes_.empty()) return false;
-    const Plane& plane = planes_[g];
-    const detail::Xyz& p = xyz_[mesh_.triangles[g][0]];
-    int side = 0;
-    for (const VertexIndex v : mesh_.triangles[f]) {
-      const detail::Xyz& x = xyz_[v];
-      const double c[3] = {x[0] - p[0], x[1] - p[1], x[2] - p[2]};
-      const double det = c[0] * plane.normal[0] + c[1] * plane.normal[1] + c[2] * plane.normal[2];
-      const double permanent = std::fabs(c[0]) * plane.magnitude[0] +
-                               std::fabs(c[1]) * plane.magnitude[1] +
-                               std::fabs(c[2]) * plane.magnitude[2];
-      if (!(permanent > detail::kStaticTiny && permanent < detail::kStaticHuge)) return false;
-      double bound = 1e-14 * permanent;
-      if (error_ > 0) {
-        const double m = std::max({plane.reach, std::fabs(c[0]), std::fabs(c[1]), std::fabs(c[2])});
-        const double e = detail::entry_bound(m, error_);
-        bound += std::max(37 * error_ * e * e, detail::kNearSlackFloor);
-      }
-      const int s = det > bound ? 1 : -det > bound ? -1 : 0;
-      if (s == 0 || (side != 0 && s != side)) return false;
-      side = s;
-    }
-    return true;
-  }
-
- private:
-  struct Plane {
-    double normal[3], magnitude[3];
-    double reach;  // the largest coordinate of q - p and r - p
-  };
-  const Mesh& mesh_;
-  const std::vector<detail::Xyz>& xyz_;
-  const double error_;
-  std::vector<Plane> planes_;
-};
 
 // Exact tests between two triangles of one mesh, on ids of positions (coincident vertices share
 // one id, so that triangles touching at separated features meet "at a common vertex").
@@ -511,10 +441,11 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
     for (VertexIndex v = 0; v < mesh.num_vertices(); ++v)
       position[v] = index.find_or_insert(mesh.points[v], v);
   }
-  detail::PlanarPatches planar =
-      detail::verified_planar_patches(mesh, table, position, degenerate, manifold, kMinPlanarPatch);
-  detail::add_near_flat_patches(mesh, table, position, degenerate, manifold, kMinPlanarPatch,
-                                planar);
+  const detail::FacePlanes planes(mesh, table.input_near_doubles(), table.input_error());
+  detail::PlanarPatches planar = detail::verified_planar_patches(
+      mesh, table, planes, position, degenerate, manifold, kMinPlanarPatch);
+  detail::add_near_flat_patches(mesh, table, planes, position, degenerate, manifold,
+                                kMinPlanarPatch, planar);
   detail::add_proved_stars(mesh, table, position, degenerate, kMinStar, planar);
   std::vector<std::uint32_t> others, in_patches;
   for (std::uint32_t t = 0; t < mesh.num_triangles(); ++t) {
@@ -530,7 +461,6 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
   TriangleTree tree = planar.patches.empty() ? TriangleTree(mesh, vertex_boxes)
                                              : TriangleTree(mesh, vertex_boxes, others);
   const TrianglePairs test(table, position);
-  const PlaneFilters planes(mesh, table.input_near_doubles(), table.input_error());
   const bool list = options.list_self_intersections;
   // Triangles with a common vertex whose star is proved embedded near it meet properly (the
   // neighbours of every triangle: most of the pairs the traversal meets); the traversal drops

@@ -28,27 +28,21 @@ std::array<PointId, 3> corners(const Mesh& mesh, const std::vector<PointId>& pos
 
 // The two faces of a manifold edge lie in one plane on either side of the edge (the same turn
 // seen along the plane's dominant axis).
-bool coplanar_across(const Mesh& mesh, const PointTable& table,
+bool coplanar_across(const Mesh& mesh, const PointTable& table, const FacePlanes& planes,
                      const std::vector<PointId>& position,
                      const std::vector<std::uint8_t>& degenerate,
                      const std::pair<std::uint64_t, std::array<std::uint32_t, 2>>& link) {
   const auto [fi, gi] = link.second;
   if (degenerate[fi] || degenerate[gi]) return false;
-  // Most edges of a curved surface are not flat: the static filter on the vertices (by index)
-  // says so without the positions. Only a certain nonzero sign is taken; a vertex coincident
-  // with one of f's gives zero and goes on below.
-  if (const auto& xyz = table.input_near_doubles(); !xyz.empty()) {
-    const Triangle &tf = mesh.triangles[fi], &tg = mesh.triangles[gi];
-    const double error = table.input_error();
-    for (const VertexIndex w : tg)
-      if (w != tf[0] && w != tf[1] && w != tf[2]) {
-        const Xyz &p = xyz[tf[0]], &q = xyz[tf[1]], &r = xyz[tf[2]], &s = xyz[w];
-        const auto o = error == 0 ? static_orientation(p, q, r, s)
-                                  : static_orientation_near(p, q, r, s, error);
-        if (o && *o != 0) return false;
-        break;
-      }
-  }
+  // Most edges of a curved surface are not flat: f's plane in doubles says so without the
+  // positions. Only a certain nonzero side is taken; a vertex coincident with one of f's gives
+  // zero and goes on below.
+  const Triangle &tf = mesh.triangles[fi], &tg = mesh.triangles[gi];
+  for (const VertexIndex w : tg)
+    if (w != tf[0] && w != tf[1] && w != tf[2]) {
+      if (const auto side = planes.side(fi, w); side && *side != 0) return false;
+      break;
+    }
   const auto f = corners(mesh, position, fi), g = corners(mesh, position, gi);
   for (int k = 0; k < 3; ++k) {
     const PointId x = g[k];
@@ -61,7 +55,7 @@ bool coplanar_across(const Mesh& mesh, const PointTable& table,
 }
 
 // Faces joined across manifold edges when they lie in one plane on either side of the edge.
-UnionFind coplanar_neighbours(const Mesh& mesh, const PointTable& table,
+UnionFind coplanar_neighbours(const Mesh& mesh, const PointTable& table, const FacePlanes& planes,
                               const std::vector<PointId>& position,
                               const std::vector<std::uint8_t>& degenerate,
                               const ManifoldEdges& links) {
@@ -70,7 +64,8 @@ UnionFind coplanar_neighbours(const Mesh& mesh, const PointTable& table,
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       const UpwardRounding rounding;  // once per range: setting it costs
                       for (std::size_t l = range.begin(); l != range.end(); ++l)
-                        join[l] = coplanar_across(mesh, table, position, degenerate, links[l]);
+                        join[l] =
+                            coplanar_across(mesh, table, planes, position, degenerate, links[l]);
                     });
   UnionFind patches(mesh.num_triangles());
   for (std::size_t l = 0; l < links.size(); ++l)
@@ -418,19 +413,20 @@ void set_slab(const PointTable& table, const std::vector<Normal>& normal, Planar
 }  // namespace
 
 PlanarPatches verified_planar_patches(const Mesh& mesh, const PointTable& table,
+                                      const FacePlanes& planes,
                                       const std::vector<PointId>& position,
                                       const std::vector<std::uint8_t>& degenerate,
                                       const ManifoldEdges& manifold, std::size_t min_triangles) {
   PlanarPatches out;
   out.patch_of.assign(mesh.num_triangles(), -1);
-  UnionFind joined = coplanar_neighbours(mesh, table, position, degenerate, manifold);
+  UnionFind joined = coplanar_neighbours(mesh, table, planes, position, degenerate, manifold);
   std::vector<std::uint8_t> eligible(mesh.num_triangles());
   for (std::size_t f = 0; f < eligible.size(); ++f) eligible[f] = !degenerate[f];
   append(proved_groups(mesh, table, position, joined, eligible, min_triangles), out);
   return out;
 }
 
-void add_near_flat_patches(const Mesh& mesh, const PointTable& table,
+void add_near_flat_patches(const Mesh& mesh, const PointTable& table, const FacePlanes& planes,
                            const std::vector<PointId>& position,
                            const std::vector<std::uint8_t>& degenerate,
                            const ManifoldEdges& manifold, std::size_t min_triangles,
@@ -442,7 +438,9 @@ void add_near_flat_patches(const Mesh& mesh, const PointTable& table,
   std::vector<Normal> normal(nf);
   tbb::parallel_for(std::size_t(0), nf, [&](std::size_t f) {
     eligible[f] = !degenerate[f] && groups.patch_of[f] < 0;
-    if (eligible[f]) normal[f] = rough_normal(mesh, table, position, std::uint32_t(f));
+    if (!eligible[f]) return;
+    normal[f] = planes.empty() ? rough_normal(mesh, table, position, std::uint32_t(f))
+                               : planes.unit_normal(std::uint32_t(f));
   });
   std::vector<std::uint8_t> join(manifold.size());
   tbb::parallel_for(std::size_t(0), manifold.size(), [&](std::size_t l) {

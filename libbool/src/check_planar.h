@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "check_planes.h"
 #include "morphex/mesh.h"
 #include "point_table.h"
 
@@ -57,6 +58,7 @@ struct PlanarPatches {
 // where they lie in one plane on either side of the edge (positions as given by `position`),
 // kept when proved embedded.
 PlanarPatches verified_planar_patches(const Mesh& mesh, const PointTable& table,
+                                      const FacePlanes& planes,
                                       const std::vector<PointId>& position,
                                       const std::vector<std::uint8_t>& degenerate,
                                       const ManifoldEdges& manifold, std::size_t min_triangles);
@@ -67,7 +69,7 @@ PlanarPatches verified_planar_patches(const Mesh& mesh, const PointTable& table,
 // projection of the patch means no two of its triangles meet elsewhere than at common features).
 // Such patches are the flat faces of a mesh after a rounded rotation: long thin facets that are
 // no longer exactly coplanar. Appended as Kind::NearlyFlat.
-void add_near_flat_patches(const Mesh& mesh, const PointTable& table,
+void add_near_flat_patches(const Mesh& mesh, const PointTable& table, const FacePlanes& planes,
                            const std::vector<PointId>& position,
                            const std::vector<std::uint8_t>& degenerate,
                            const ManifoldEdges& manifold, std::size_t min_triangles,

@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Each triangle's plane in doubles, computed once per check and read by three of its passes: the
+// coplanar search (which edges certainly do not join two faces of one plane), the near-flat
+// search (the faces' rough normals) and the self-intersection traversal (pairs settled by one
+// side of a plane).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "morphex/mesh.h"
+#include "static_filter.h"
+
+namespace morphex::detail {
+
+// The side of x is the sign of (x - p) . N with N = (q - p) x (r - p), the orientation's
+// determinant in another order: rounding the differences, the cross product and the dot product
+// errs by less than 9 units of 2^-52 of sum_k |x - p|_k M_k, M_k the magnitudes of N_k's two
+// products; 1e-14 of it leaves a wide margin under any rounding mode. When the points are only
+// known within `error` of their doubles (a rational mesh: a rotated input, a Boolean's output),
+// the exact determinant is moreover within 36 error m^2 of the doubles' one, m bounding the
+// differences and their errors (the slack of static_orientation_near, which this test is).
+class FacePlanes {
+ public:
+  // Without doubles (`xyz` empty: coordinates out of the filters' range) every test declines.
+  FacePlanes(const Mesh& mesh, const std::vector<Xyz>& xyz, double error);
+
+  bool empty() const { return planes_.empty(); }
+
+  // The sign of vertex x's side of triangle g's plane, when the doubles decide it.
+  std::optional<int> side(std::uint32_t g, VertexIndex x) const {
+    if (planes_.empty()) return std::nullopt;
+    const Plane& plane = planes_[g];
+    const Xyz &p = xyz_[mesh_.triangles[g][0]], &v = xyz_[x];
+    const double c[3] = {v[0] - p[0], v[1] - p[1], v[2] - p[2]};
+    const double det = c[0] * plane.normal[0] + c[1] * plane.normal[1] + c[2] * plane.normal[2];
+    const double permanent = std::fabs(c[0]) * plane.magnitude[0] +
+                             std::fabs(c[1]) * plane.magnitude[1] +
+                             std::fabs(c[2]) * plane.magnitude[2];
+    if (!(permanent > kStaticTiny && permanent < kStaticHuge)) return std::nullopt;
+    double bound = 1e-14 * permanent;
+    if (error_ > 0) {
+      const double m = std::max({plane.reach, std::fabs(c[0]), std::fabs(c[1]), std::fabs(c[2])});
+      const double e = entry_bound(m, error_);
+      bound += std::max(37 * error_ * e * e, kNearSlackFloor);
+    }
+    if (det > bound) return 1;
+    if (-det > bound) return -1;
+    return std::nullopt;
+  }
+
+  // All corners of triangle f lie strictly on one side of triangle g's plane (by doubles alone:
+  // false when undecided). Then f and g do not meet.
+  bool beside(std::uint32_t f, std::uint32_t g) const {
+    int side_of_f = 0;
+    for (const VertexIndex v : mesh_.triangles[f]) {
+      const std::optional<int> s = side(g, v);
+      if (!s || (side_of_f != 0 && *s != side_of_f)) return false;
+      side_of_f = *s;
+    }
+    return true;
+  }
+
+  // Triangle f's normal of unit length (zero when too small to normalize): a rough quantity, to
+  // group faces, never a decision. Not on an empty set of planes.
+  std::array<double, 3> unit_normal(std::uint32_t f) const {
+    const double* n = planes_[f].normal;
+    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(length > 0) || !std::isfinite(length)) return {0, 0, 0};
+    return {n[0] / length, n[1] / length, n[2] / length};
+  }
+
+ private:
+  struct Plane {
+    double normal[3], magnitude[3];
+    double reach;  // the largest coordinate of q - p and r - p
+  };
+  const Mesh& mesh_;
+  const std::vector<Xyz>& xyz_;
+  const double error_;
+  std::vector<Plane> planes_;
+};
+
+}  // namespace morphex::detail
