@@ -7,7 +7,7 @@
 namespace morphex::detail {
 
 FacePlanes::FacePlanes(const Mesh& mesh, const std::vector<Xyz>& xyz, double error)
-    : mesh_(mesh), xyz_(xyz), error_(error) {
+    : xyz_(xyz), error_(error) {
   if (xyz.empty()) return;
   planes_.resize(mesh.num_triangles());
   tbb::parallel_for(std::size_t(0), mesh.num_triangles(), [&](std::size_t t) {
@@ -17,6 +17,7 @@ FacePlanes::FacePlanes(const Mesh& mesh, const std::vector<Xyz>& xyz, double err
     const double b[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
     Plane& plane = planes_[t];
     plane.reach = 0;
+    plane.corner[0] = p, plane.corner[1] = q, plane.corner[2] = r;
     for (int k = 0; k < 3; ++k) {
       const int i = (k + 1) % 3, j = (k + 2) % 3;
       plane.normal[k] = a[i] * b[j] - a[j] * b[i];
