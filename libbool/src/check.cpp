@@ -400,27 +400,31 @@ void slab_pairs(const Mesh& mesh, const PointTable& table, const std::vector<Poi
     const Triangle& f = mesh.triangles[t];
     return std::array<PointId, 3>{position[f[0]], position[f[1]], position[f[2]]};
   };
+  // The tree reports the slab's triangles by their place in slab.triangles, whose edge lines are
+  // computed once: each is tested against many candidates.
   std::vector<CGAL::Bbox_3> pieces;
   std::vector<FloatBox> boxes;
   std::vector<std::uint32_t> ids;
-  for (const std::uint32_t t : slab.triangles) {
+  std::vector<detail::EdgeLines> lines(slab.triangles.size());
+  for (std::uint32_t k = 0; k < slab.triangles.size(); ++k) {
     pieces.clear();
-    const std::array<PointId, 3> c = corners(t);
+    const std::array<PointId, 3> c = corners(slab.triangles[k]);
+    lines[k] = detail::edge_lines(table, slab, c);
     detail::add_pieces(table, c, detail::pieces_for(table, c), pieces);
     for (const CGAL::Bbox_3& b : pieces) {
       boxes.push_back(FloatBox::of(b));
-      ids.push_back(t);
+      ids.push_back(k);
     }
   }
   const TriangleTree tree(std::move(boxes), ids);
   std::vector<std::uint32_t> near;
   for (std::size_t c = 0; c < candidates.size(); ++c) {
     near.clear();
-    tree.for_each_overlap(parts[c], [&](std::uint32_t i) { near.push_back(i); });
+    tree.for_each_overlap(parts[c], [&](std::uint32_t k) { near.push_back(k); });
     std::sort(near.begin(), near.end());
     near.erase(std::unique(near.begin(), near.end()), near.end());
-    for (const std::uint32_t i : near)
-      if (!detail::apart_along_axis(table, slab, parts[c], corners(i))) test(i, candidates[c]);
+    for (const std::uint32_t k : near)
+      if (!detail::apart_along_axis(lines[k], parts[c])) test(slab.triangles[k], candidates[c]);
   }
 }
 

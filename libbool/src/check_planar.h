@@ -80,11 +80,26 @@ void add_near_flat_patches(const Mesh& mesh, const PointTable& table, const Face
 std::optional<CGAL::Bbox_3> part_in_slab(const PointTable& table, const PlanarPatch& patch,
                                          const std::array<PointId, 3>& t);
 
-// Seen along the slab patch's axis, triangle t (by positions) and the box `part` are certainly
-// apart (a line through an edge of t has the box strictly on its outer side): then they do not
-// meet. The caller rounds upward.
-bool apart_along_axis(const PointTable& table, const PlanarPatch& patch, const CGAL::Bbox_3& part,
-                      const std::array<PointId, 3>& t);
+// Triangle t (by positions) seen along the slab patch's axis: the lines of its edges that tell
+// its inside (those whose third corner is certainly on one side), in interval arithmetic, with
+// the corner of a box each line reaches first. The caller rounds upward.
+struct EdgeLines {
+  struct Line {
+    CGAL::Interval_nt<false> ex, ey, x, y;  // the edge's direction and first corner
+    bool positive;                          // the inside is where the side is positive
+    int u_first, u_last, v_first, v_last;   // the box corners to test
+  };
+  int u, v;  // the coordinates seen
+  int count = 0;
+  Line line[3];
+};
+EdgeLines edge_lines(const PointTable& table, const PlanarPatch& patch,
+                     const std::array<PointId, 3>& t);
+
+// Seen along the slab patch's axis, the triangle of `lines` and the box `part` are certainly
+// apart (a line through an edge has the box strictly on its outer side): then they do not meet.
+// The caller rounds upward.
+bool apart_along_axis(const EdgeLines& lines, const CGAL::Bbox_3& part);
 
 // (q - p) x (r - p) for triangle t = (p, q, r), in doubles from the lower ends of the corners'
 // intervals: a rough quantity (to group faces, to count slices), never a decision.

@@ -13,36 +13,46 @@ namespace {
 using I = CGAL::Interval_nt<false>;
 }  // namespace
 
-bool apart_along_axis(const PointTable& table, const PlanarPatch& patch, const CGAL::Bbox_3& part,
-                      const std::array<PointId, 3>& t) {
-  const int u = patch.dropped == 0 ? 1 : 0, v = patch.dropped == 2 ? 1 : 2;
+EdgeLines edge_lines(const PointTable& table, const PlanarPatch& patch,
+                     const std::array<PointId, 3>& t) {
+  EdgeLines out;
+  out.u = patch.dropped == 0 ? 1 : 0, out.v = patch.dropped == 2 ? 1 : 2;
   I x[3], y[3];
   for (int k = 0; k < 3; ++k) {
-    x[k] = table.approx(t[k]).cartesian(u);
-    y[k] = table.approx(t[k]).cartesian(v);
+    x[k] = table.approx(t[k]).cartesian(out.u);
+    y[k] = table.approx(t[k]).cartesian(out.v);
   }
-  const double bx[2] = {part.min(u), part.max(u)}, by[2] = {part.min(v), part.max(v)};
   for (int k = 0; k < 3; ++k) {
     const int j = (k + 1) % 3, o = (k + 2) % 3;
     // side(p) = (b - a) x (p - a) for the edge a b; the triangle's third corner fixes the inside.
-    const I ex = x[j] - x[k], ey = y[j] - y[k];
-    auto side = [&](const I& px, const I& py) { return ex * (py - y[k]) - ey * (px - x[k]); };
-    const I inner = side(x[o], y[o]);
-    const bool positive = inner.inf() > 0;
-    if (!positive && !(inner.sup() < 0)) continue;
+    EdgeLines::Line l;
+    l.ex = x[j] - x[k], l.ey = y[j] - y[k], l.x = x[k], l.y = y[k];
+    const I inner = l.ex * (y[o] - l.y) - l.ey * (x[o] - l.x);
+    l.positive = inner.inf() > 0;
+    if (!l.positive && !(inner.sup() < 0)) continue;
     // The box is outside when its corner most to the inside is: the one the gradient of the
     // inside's side (-ey, ex) points to, or both along an axis where its sign is uncertain.
-    const I gu = positive ? -ey : ey, gv = positive ? ex : -ex;
+    const I gu = l.positive ? -l.ey : l.ey, gv = l.positive ? l.ex : -l.ex;
     // (A gradient component that is exactly zero takes either corner.)
-    int u_first = gu.inf() >= 0 ? 1 : 0, u_last = gu.sup() <= 0 ? 0 : 1;
-    int v_first = gv.inf() >= 0 ? 1 : 0, v_last = gv.sup() <= 0 ? 0 : 1;
-    if (u_first > u_last) u_first = u_last = 0;
-    if (v_first > v_last) v_first = v_last = 0;
+    l.u_first = gu.inf() >= 0 ? 1 : 0, l.u_last = gu.sup() <= 0 ? 0 : 1;
+    l.v_first = gv.inf() >= 0 ? 1 : 0, l.v_last = gv.sup() <= 0 ? 0 : 1;
+    if (l.u_first > l.u_last) l.u_first = l.u_last = 0;
+    if (l.v_first > l.v_last) l.v_first = l.v_last = 0;
+    out.line[out.count++] = l;
+  }
+  return out;
+}
+
+bool apart_along_axis(const EdgeLines& lines, const CGAL::Bbox_3& part) {
+  const double bx[2] = {part.min(lines.u), part.max(lines.u)},
+               by[2] = {part.min(lines.v), part.max(lines.v)};
+  for (int k = 0; k < lines.count; ++k) {
+    const EdgeLines::Line& l = lines.line[k];
     bool all_out = true;
-    for (int cu = u_first; cu <= u_last && all_out; ++cu)
-      for (int cv = v_first; cv <= v_last && all_out; ++cv) {
-        const I s = side(I(bx[cu]), I(by[cv]));
-        all_out = positive ? s.sup() < 0 : s.inf() > 0;
+    for (int cu = l.u_first; cu <= l.u_last && all_out; ++cu)
+      for (int cv = l.v_first; cv <= l.v_last && all_out; ++cv) {
+        const I s = l.ex * (I(by[cv]) - l.y) - l.ey * (I(bx[cu]) - l.x);
+        all_out = l.positive ? s.sup() < 0 : s.inf() > 0;
       }
     if (all_out) return true;
   }
