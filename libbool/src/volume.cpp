@@ -259,14 +259,14 @@ std::optional<CGAL::Sign> volume_sign_by_doubles(const Mesh& mesh,
           s.permanent += std::fabs(a[0]) * (std::fabs(b[1] * c[2]) + std::fabs(b[2] * c[1])) +
                          std::fabs(a[1]) * (std::fabs(b[2] * c[0]) + std::fabs(b[0] * c[2])) +
                          std::fabs(a[2]) * (std::fabs(b[0] * c[1]) + std::fabs(b[1] * c[0]));
+          // (std::max, not a library call to std::fmax: a NaN fails the permanent's test.)
           for (int k = 0; k < 3; ++k)
-            s.reach = std::fmax(
-                s.reach, std::fmax(std::fabs(a[k]), std::fmax(std::fabs(b[k]), std::fabs(c[k]))));
+            s.reach = std::max({s.reach, std::fabs(a[k]), std::fabs(b[k]), std::fabs(c[k])});
         }
         return s;
       },
       [](const Sum& a, const Sum& b) {
-        return Sum{a.det + b.det, a.permanent + b.permanent, std::fmax(a.reach, b.reach),
+        return Sum{a.det + b.det, a.permanent + b.permanent, std::max(a.reach, b.reach),
                    a.doubles && b.doubles};
       });
   if (!sum.doubles || !(sum.permanent < 1e300) || !(sum.reach < 1e100)) return std::nullopt;
