@@ -4,6 +4,8 @@
 #include <cmath>
 #include <random>
 
+#include <gmpxx.h>
+
 #include "morphex/generators.h"
 #include "morphex/mesh.h"
 #include "morphex/parallel_points.h"
@@ -138,6 +140,33 @@ TEST(Volume, RationalCoordinatesEqualTheDefinition) {
     p = Point(c[0], c[1], c[2]);
   }
   EXPECT_EQ(signed_volume(primes), volume_by_rationals(primes));
+}
+
+// Rational coordinates over their common denominator are summed in fixed-size integers of three
+// widths, chosen by the largest numerator times its quotient, and in GMP's past them: numerators
+// of one bit below, at and above each width's limit (100, 160 and 250 bits), of both signs, over
+// denominators 3 and 9 (quotients 3 and 1), give the rational sum every time.
+TEST(Volume, RationalCoordinatesAtEveryIntegerWidth) {
+  gmp_randclass random(gmp_randinit_default);
+  random.seed(2026);
+  for (const int limit : {100, 160, 250}) {
+    for (const int bits : {limit - 3, limit - 2, limit - 1, limit, limit + 1}) {
+      Mesh m = random_double_triangles(unsigned(bits), 0, 40);
+      int k = 0;
+      for (Point& p : m.points) {
+        mpq_class c[3];
+        for (mpq_class& x : c) {
+          mpz_class n = random.get_z_bits(bits);
+          mpz_setbit(n.get_mpz_t(), bits - 1);  // exactly `bits` bits
+          if (++k % 3 == 0) n = -n;
+          x = mpq_class(n, k % 2 == 0 ? 3 : 9);
+          x.canonicalize();
+        }
+        p = Point(FT(c[0]), FT(c[1]), FT(c[2]));
+      }
+      EXPECT_EQ(signed_volume(m), volume_by_rationals(m)) << bits << " bits";
+    }
+  }
 }
 
 // The sign of the volume (the outward test) is decided by doubles when the rounding errors

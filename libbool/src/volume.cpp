@@ -58,47 +58,6 @@ Exact rational_volume_times_6(const Mesh& mesh) {
   return sum_balanced(terms);
 }
 
-// Rational coordinates (a rotated mesh, a Boolean's output) mostly share their denominators: over
-// their least common multiple D they are integers, and the sum of determinants is a sum of
-// integers (GMP, no gcd per face) divided by D^3 once. Nullopt when D grows past
-// kMaxDenominatorBits (denominators with nothing in common), for the sum of rationals.
-constexpr std::size_t kMaxDenominatorBits = 4096;
-
-std::optional<Exact> common_denominator_volume_times_6(const Mesh& mesh) {
-  static_assert(std::is_same_v<Exact, mpq_class>, "Epeck's exact number type is GMP's");
-  const std::size_t n = mesh.points.size();
-  std::vector<const mpq_class*> coordinate(3 * n);
-  mpz_class common = 1;
-  for (std::size_t v = 0; v < n; ++v) {
-    const auto& p = CGAL::exact(mesh.points[v]);
-    for (int k = 0; k < 3; ++k) {
-      const mpq_class& c = p.cartesian(k);
-      coordinate[3 * v + k] = &c;
-      if (mpz_divisible_p(common.get_mpz_t(), c.get_den_mpz_t())) continue;
-      mpz_lcm(common.get_mpz_t(), common.get_mpz_t(), c.get_den_mpz_t());
-      if (mpz_sizeinbase(common.get_mpz_t(), 2) > kMaxDenominatorBits) return std::nullopt;
-    }
-  }
-  std::vector<mpz_class> integer(3 * n);
-  tbb::parallel_for(std::size_t(0), 3 * n, [&](std::size_t i) {
-    const mpq_class& c = *coordinate[i];
-    mpz_divexact(integer[i].get_mpz_t(), common.get_mpz_t(), c.get_den_mpz_t());
-    integer[i] *= c.get_num();
-  });
-  std::vector<mpz_class> terms(mesh.triangles.size());
-  tbb::parallel_for(std::size_t(0), terms.size(), [&](std::size_t i) {
-    const Triangle& t = mesh.triangles[i];
-    const mpz_class *a = &integer[3 * t[0]], *b = &integer[3 * t[1]], *c = &integer[3 * t[2]];
-    // a . (b x c)
-    terms[i] = a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) +
-               a[2] * (b[0] * c[1] - b[1] * c[0]);
-  });
-  const mpz_class cube = common * common * common;
-  Exact out(sum_balanced(terms), cube);
-  out.canonicalize();
-  return out;
-}
-
 // The widths of one exact sum: coordinates below 2^Bits in magnitude, 2x2 minors below
 // 2^(2 Bits + 1), determinants below 3 * 2^(3 Bits + 1), and a sum of up to 2^32 of them below
 // 2^(3 Bits + 35), each with a sign bit to spare in its limbs.
@@ -115,6 +74,9 @@ struct Widths {
 // a radius of 10) need the second.
 using NarrowWidths = Widths<100, 2, 4, 6>;
 using WideWidths = Widths<160, 3, 6, 9>;
+// Rational coordinates over their common denominator (a rotated mesh: the rotation's denominator
+// times the doubles' powers of two) need more.
+using WiderWidths = Widths<250, 4, 8, 13>;
 
 // The spread of the mesh's double coordinates: exponents of the lowest set bit and of the bound
 // above the largest magnitude; nullopt when some coordinate is not a double.
@@ -168,16 +130,10 @@ typename W::Sum determinant(const std::array<typename W::Coordinate, 3>& a,
   return d;
 }
 
+// The sum over the faces of det(a, b, c), each vertex's integer coordinates in `points`.
 template <class W>
-Exact integer_volume_times_6(const Mesh& mesh, int lowest) {
-  using Coordinate = typename W::Coordinate;
-  std::vector<std::array<Coordinate, 3>> points(mesh.points.size());
-  tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t v) {
-    const auto& a = CGAL::approx(mesh.points[v]);
-    points[v] = {scaled_integer<Coordinate>(a.x().inf(), lowest),
-                 scaled_integer<Coordinate>(a.y().inf(), lowest),
-                 scaled_integer<Coordinate>(a.z().inf(), lowest)};
-  });
+mpz_class sum_of_determinants(const Mesh& mesh,
+                              const std::vector<std::array<typename W::Coordinate, 3>>& points) {
   tbb::combinable<typename W::Sum> partial;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.triangles.size(), 4096),
                     [&](const tbb::blocked_range<std::size_t>& range) {
@@ -189,8 +145,21 @@ Exact integer_volume_times_6(const Mesh& mesh, int lowest) {
                     });
   typename W::Sum total;
   partial.combine_each([&](const typename W::Sum& s) { total += s; });
+  return total.to_mpz();
+}
+
+template <class W>
+Exact integer_volume_times_6(const Mesh& mesh, int lowest) {
+  using Coordinate = typename W::Coordinate;
+  std::vector<std::array<Coordinate, 3>> points(mesh.points.size());
+  tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t v) {
+    const auto& a = CGAL::approx(mesh.points[v]);
+    points[v] = {scaled_integer<Coordinate>(a.x().inf(), lowest),
+                 scaled_integer<Coordinate>(a.y().inf(), lowest),
+                 scaled_integer<Coordinate>(a.z().inf(), lowest)};
+  });
   // Each determinant is a product of three coordinates: scale by 2^(3 lowest).
-  mpq_class volume(total.to_mpz());
+  mpq_class volume(sum_of_determinants<W>(mesh, points));
   const long shift = 3L * lowest;
   if (shift >= 0)
     mpz_mul_2exp(volume.get_num_mpz_t(), volume.get_num_mpz_t(), shift);
@@ -198,6 +167,104 @@ Exact integer_volume_times_6(const Mesh& mesh, int lowest) {
     mpz_mul_2exp(volume.get_den_mpz_t(), volume.get_den_mpz_t(), -shift);
   volume.canonicalize();
   return Exact(volume);
+}
+
+// Past this many bits of common denominator, the sum of rationals.
+constexpr std::size_t kMaxDenominatorBits = 4096;
+
+// Coordinate i over the common denominator: its numerator times quotient[quotient_of[i]], the
+// common denominator over its own. Consecutive coordinates mostly share their denominator, so
+// the quotients are few.
+struct OverCommon {
+  std::vector<const mpq_class*> coordinate;
+  mpz_class common = 1;
+  std::vector<mpz_class> quotient;
+  std::vector<std::uint32_t> quotient_of;
+  std::size_t bits = 0;  // bounds the bits of every numerator times its quotient
+};
+
+std::optional<OverCommon> over_common_denominator(const Mesh& mesh) {
+  OverCommon o;
+  const std::size_t n = mesh.points.size();
+  o.coordinate.resize(3 * n);
+  for (std::size_t v = 0; v < n; ++v) {
+    const auto& p = CGAL::exact(mesh.points[v]);
+    for (int k = 0; k < 3; ++k) {
+      const mpq_class& c = p.cartesian(k);
+      o.coordinate[3 * v + k] = &c;
+      if (mpz_divisible_p(o.common.get_mpz_t(), c.get_den_mpz_t())) continue;
+      mpz_lcm(o.common.get_mpz_t(), o.common.get_mpz_t(), c.get_den_mpz_t());
+      if (mpz_sizeinbase(o.common.get_mpz_t(), 2) > kMaxDenominatorBits) return std::nullopt;
+    }
+  }
+  o.quotient_of.resize(3 * n);
+  const mpz_class* last = nullptr;  // the denominator of the last quotient
+  for (std::size_t i = 0; i < 3 * n; ++i) {
+    const mpz_class& den = o.coordinate[i]->get_den();
+    if (last == nullptr || *last != den) {
+      o.quotient.emplace_back();
+      mpz_divexact(o.quotient.back().get_mpz_t(), o.common.get_mpz_t(), den.get_mpz_t());
+      last = &den;
+    }
+    o.quotient_of[i] = std::uint32_t(o.quotient.size() - 1);
+    o.bits = std::max(o.bits, mpz_sizeinbase(o.coordinate[i]->get_num_mpz_t(), 2) +
+                                  mpz_sizeinbase(o.quotient.back().get_mpz_t(), 2));
+  }
+  return o;
+}
+
+// The sum of determinants over the common denominator in fixed-size integers: no allocation per
+// coordinate or product. Every numerator times its quotient is below 2^W::kBits.
+template <class W>
+mpz_class sum_of_determinants(const Mesh& mesh, const OverCommon& o) {
+  using Coordinate = typename W::Coordinate;
+  std::vector<std::array<Coordinate, 3>> points(mesh.points.size());
+  tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t v) {
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t i = 3 * v + k;
+      points[v][k] =
+          detail::multiply<Coordinate::kLimbs>(Coordinate::of_mpz(o.coordinate[i]->get_num()),
+                                               Coordinate::of_mpz(o.quotient[o.quotient_of[i]]));
+    }
+  });
+  return sum_of_determinants<W>(mesh, points);
+}
+
+// Rational coordinates (a rotated mesh, a Boolean's output) mostly share their denominators: over
+// their least common multiple D they are integers, and the sum of determinants is a sum of
+// integers (fixed-size when they fit, else GMP's; no gcd per face) divided by D^3 once. Nullopt
+// when D grows past kMaxDenominatorBits (denominators with nothing in common), for the sum of
+// rationals.
+std::optional<Exact> common_denominator_volume_times_6(const Mesh& mesh) {
+  static_assert(std::is_same_v<Exact, mpq_class>, "Epeck's exact number type is GMP's");
+  const std::optional<OverCommon> o = over_common_denominator(mesh);
+  if (!o) return std::nullopt;
+  const mpz_class cube = o->common * o->common * o->common;
+  if (o->bits <= std::size_t(WiderWidths::kBits) &&
+      mesh.triangles.size() < (std::size_t(1) << 32)) {
+    const mpz_class sum =
+        o->bits <= std::size_t(NarrowWidths::kBits) ? sum_of_determinants<NarrowWidths>(mesh, *o)
+        : o->bits <= std::size_t(WideWidths::kBits) ? sum_of_determinants<WideWidths>(mesh, *o)
+                                                    : sum_of_determinants<WiderWidths>(mesh, *o);
+    Exact out(sum, cube);
+    out.canonicalize();
+    return out;
+  }
+  std::vector<mpz_class> integer(o->coordinate.size());
+  tbb::parallel_for(std::size_t(0), integer.size(), [&](std::size_t i) {
+    integer[i] = o->coordinate[i]->get_num() * o->quotient[o->quotient_of[i]];
+  });
+  std::vector<mpz_class> terms(mesh.triangles.size());
+  tbb::parallel_for(std::size_t(0), terms.size(), [&](std::size_t i) {
+    const Triangle& t = mesh.triangles[i];
+    const mpz_class *a = &integer[3 * t[0]], *b = &integer[3 * t[1]], *c = &integer[3 * t[2]];
+    // a . (b x c)
+    terms[i] = a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) +
+               a[2] * (b[0] * c[1] - b[1] * c[0]);
+  });
+  Exact out(sum_balanced(terms), cube);
+  out.canonicalize();
+  return out;
 }
 
 // The exact sum by integers when the coordinates allow it.

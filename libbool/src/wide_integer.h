@@ -73,6 +73,14 @@ struct WideInt {
     return r;
   }
 
+  // z, which must be below 2^(64 N - 1) in magnitude.
+  static WideInt of_mpz(const mpz_class& z) {
+    WideInt w;
+    std::size_t count = 0;
+    mpz_export(w.limb, &count, -1, sizeof(std::uint64_t), 0, 0, z.get_mpz_t());  // |z|
+    return sgn(z) < 0 ? -w : w;
+  }
+
   mpz_class to_mpz() const {
     const WideInt magnitude = negative() ? -*this : *this;
     mpz_class z;
