@@ -50,6 +50,19 @@ struct WideInt {
     return r;
   }
   WideInt& operator-=(const WideInt& o) { return *this += -o; }
+  // -x when `negate`, else x, without a branch: signs of products in a determinant are coin
+  // tosses, and a mispredicted branch costs more than the limbs' arithmetic.
+  WideInt negated_if(bool negate) const {
+    const std::uint64_t mask = 0 - std::uint64_t(negate);
+    WideInt r;
+    unsigned __int128 carry = negate;  // (x ^ mask) + 1 = ~x + 1 when negating
+    for (int i = 0; i < N; ++i) {
+      carry += static_cast<unsigned __int128>(limb[i] ^ mask);
+      r.limb[i] = std::uint64_t(carry);
+      carry >>= 64;
+    }
+    return r;
+  }
 
   // this * 2^bits, 0 <= bits < 64 N (truncated to N limbs).
   WideInt shifted_left(int bits) const {
@@ -93,8 +106,8 @@ struct WideInt {
 template <int N, int A, int B>
 WideInt<N> multiply(const WideInt<A>& a, const WideInt<B>& b) {
   const bool negative = a.negative() != b.negative();
-  const WideInt<A> ma = a.negative() ? -a : a;
-  const WideInt<B> mb = b.negative() ? -b : b;
+  const WideInt<A> ma = a.negated_if(a.negative());
+  const WideInt<B> mb = b.negated_if(b.negative());
   WideInt<N> r;
   for (int i = 0; i < A && i < N; ++i) {
     unsigned __int128 carry = 0;
@@ -105,7 +118,7 @@ WideInt<N> multiply(const WideInt<A>& a, const WideInt<B>& b) {
     }
     if (i + B < N) r.limb[i + B] = std::uint64_t(carry);
   }
-  return negative ? -r : r;
+  return r.negated_if(negative);
 }
 
 }  // namespace morphex::detail
