@@ -22,8 +22,8 @@ namespace morphex::detail {
 // errs by less than 9 units of 2^-52 of sum_k |x - p|_k M_k, M_k the magnitudes of N_k's two
 // products; 1e-14 of it leaves a wide margin under any rounding mode. When the points are only
 // known within `error` of their doubles (a rational mesh: a rotated input, a Boolean's output),
-// the exact determinant is moreover within 36 error m^2 of the doubles' one, m bounding the
-// differences and their errors (the slack of static_orientation_near, which this test is).
+// the exact determinant is moreover within orientation_near_slack of the doubles' one, as in
+// static_orientation_near (this test is that determinant, evaluated from a precomputed normal).
 class FacePlanes {
  public:
   // Without doubles (`xyz` empty: coordinates out of the filters' range) every test declines.
@@ -77,11 +77,9 @@ class FacePlanes {
                              std::fabs(c[2]) * plane.magnitude[2];
     if (!(permanent > kStaticTiny && permanent < kStaticHuge)) return std::nullopt;
     double bound = 1e-14 * permanent;
-    if (error_ > 0) {
-      const double m = std::max({plane.reach, std::fabs(c[0]), std::fabs(c[1]), std::fabs(c[2])});
-      const double e = entry_bound(m, error_);
-      bound += std::max(37 * error_ * e * e, kNearSlackFloor);
-    }
+    if (error_ > 0)
+      bound += orientation_near_slack(
+          std::max({plane.reach, std::fabs(c[0]), std::fabs(c[1]), std::fabs(c[2])}), error_);
     if (det > bound) return 1;
     if (-det > bound) return -1;
     return std::nullopt;

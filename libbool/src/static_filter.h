@@ -90,8 +90,15 @@ inline constexpr double kNearSlackFloor = 1e-280;
 // Points known only within `error` of the doubles given, in each coordinate (a rational input's
 // interval's lower end): each difference is then off by up to 2 error besides its rounding, which
 // moves each of the six products of the determinant by at most 3 (2 error) m^2, with m bounding the
-// entries and their errors: 36 error m^2 in all, added to the bound (37: the rounding of the
-// bound itself). No shortcut for coordinates that agree: the points they stand for may not.
+// entries and their errors (entry_bound of the largest difference): 36 error m^2 in all, added to
+// the bound (37: the rounding of the bound itself). No shortcut for coordinates that agree: the
+// points they stand for may not. This slack serves every evaluation of that determinant (the
+// check's precomputed planes too).
+inline double orientation_near_slack(double m, double error) {
+  const double e = entry_bound(m, error);
+  return std::max(37 * error * e * e, kNearSlackFloor);
+}
+
 inline std::optional<int> static_orientation_near(const Xyz& p, const Xyz& q, const Xyz& r,
                                                   const Xyz& s, double error) {
   const double ax = q[0] - p[0], ay = q[1] - p[1], az = q[2] - p[2], bx = r[0] - p[0],
@@ -103,8 +110,7 @@ inline std::optional<int> static_orientation_near(const Xyz& p, const Xyz& q, co
                 std::fabs(bz), std::fabs(cx), std::fabs(cy), std::fabs(cz)});
   const auto [det, permanent] = det_and_permanent(ax, ay, az, bx, by, bz, cx, cy, cz);
   if (!(permanent < kStaticHuge) || !(permanent > kStaticTiny)) return std::nullopt;
-  const double e = entry_bound(m, error);
-  const double bound = 1.6e-15 * permanent + std::max(37 * error * e * e, kNearSlackFloor);
+  const double bound = 1.6e-15 * permanent + orientation_near_slack(m, error);
   if (det > bound) return 1;
   if (-det > bound) return -1;
   return std::nullopt;

@@ -39,16 +39,7 @@ struct WideInt {
     }
     return *this;
   }
-  WideInt operator-() const {
-    WideInt r;
-    unsigned __int128 carry = 1;  // ~x + 1
-    for (int i = 0; i < N; ++i) {
-      carry += static_cast<unsigned __int128>(~limb[i]);
-      r.limb[i] = std::uint64_t(carry);
-      carry >>= 64;
-    }
-    return r;
-  }
+  WideInt operator-() const { return negated_if(true); }
   WideInt& operator-=(const WideInt& o) { return *this += -o; }
   // -x when `negate`, else x, without a branch: signs of products in a determinant are coin
   // tosses, and a mispredicted branch costs more than the limbs' arithmetic.
