@@ -265,6 +265,18 @@ void TriangleTree::build(std::vector<FloatBox> boxes, const std::vector<std::uin
     }
     levels_.push_back(std::move(level));
   }
+  quads_.resize(levels_.size());
+  for (std::size_t l = 0; l < levels_.size(); ++l) {
+    const std::vector<FloatBox>& level = levels_[l];
+    quads_[l].resize((level.size() + 3) / 4);
+    for (std::size_t i = 0; i < 4 * quads_[l].size(); ++i) {
+      const FloatBox box = i < level.size() ? level[i] : FloatBox{};
+      for (int k = 0; k < 3; ++k) {
+        quads_[l][i / 4].lo[k][i % 4] = box.lo[k];
+        quads_[l][i / 4].hi[k][i % 4] = box.hi[k];
+      }
+    }
+  }
 }
 
 std::vector<std::pair<std::uint32_t, std::uint32_t>> TriangleTree::overlapping_pairs(
@@ -298,7 +310,21 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> TriangleTree::overlapping_p
         });
         continue;
       }
-      // Descend the higher node (the one covering more triangles).
+      // Descend the higher node (the one covering more triangles): two levels at once, to those
+      // of its grandchildren that overlap the other node, when it has grandchildren.
+      if (std::max(na.level, nb.level) >= 2) {
+        const bool a_higher = na.level >= nb.level;
+        const TriangleTree& high = a_higher ? a : b;
+        const Node h = a_higher ? na : nb;
+        const std::uint32_t below = h.level - 2;
+        for (std::uint32_t hits = overlaps(high.quads_[below][h.index],
+                                           a_higher ? b.node_box(nb) : a.node_box(na));
+             hits != 0; hits &= hits - 1) {
+          const Node g{below, 4 * h.index + std::uint32_t(__builtin_ctz(hits))};
+          stack[top++] = a_higher ? std::make_pair(g, nb) : std::make_pair(na, g);
+        }
+        continue;
+      }
       Node kids[2];
       if (na.level >= nb.level) {
         const FloatBox& box_b = b.node_box(nb);

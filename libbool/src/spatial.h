@@ -78,9 +78,7 @@ class TriangleTree {
 
   // Calls f(triangle index) for every triangle whose box overlaps `box`.
   template <class F>
-  void for_each_overlap(const FloatBox& box, F&& f) const {
-    traverse([&](const FloatBox& b) { return b.overlaps(box); }, f);
-  }
+  void for_each_overlap(const FloatBox& box, F&& f) const;
   template <class F>
   void for_each_overlap(const CGAL::Bbox_3& box, F&& f) const {
     for_each_overlap(FloatBox::of(box), f);
@@ -175,15 +173,24 @@ class TriangleTree {
   std::vector<FloatBox> boxes_;         // by triangle
   std::vector<std::uint32_t> order_;    // triangles in Morton order
   std::vector<FloatBox> sorted_boxes_;  // boxes_ in that order
-  // The same boxes by leaf, coordinates side by side (structure of arrays), so that one box is
-  // tested against a whole leaf at once; the slots past the last triangle hold empty boxes.
-  struct LeafBoxes {
-    alignas(16) float lo[3][kLeafSize];
-    alignas(16) float hi[3][kLeafSize];
+  // Four boxes, coordinates side by side (structure of arrays), so that one box is tested against
+  // all four at once; missing ones are empty.
+  struct FourBoxes {
+    alignas(16) float lo[3][4];
+    alignas(16) float hi[3][4];
   };
-  std::vector<LeafBoxes> leaf_boxes_;
+  // Bit i set: the i-th of `four` overlaps `box`.
+  static std::uint32_t overlaps(const FourBoxes& four, const FloatBox& box);
+  // The boxes by leaf (the slots past the last triangle hold empty boxes).
+  std::vector<FourBoxes> leaf_boxes_;
   // Bit i set: the box of the leaf's i-th triangle overlaps `box`.
-  std::uint32_t leaf_overlaps(std::uint32_t leaf, const FloatBox& box) const;
+  std::uint32_t leaf_overlaps(std::uint32_t leaf, const FloatBox& box) const {
+    return overlaps(leaf_boxes_[leaf], box);
+  }
+  // By level, the node boxes four at a time: quads_[l][i] holds nodes 4i .. 4i + 3 of level l,
+  // the grandchildren of node i of level l + 2. A traversal descends two levels at once with
+  // one test of the four, instead of visiting the level between.
+  std::vector<std::vector<FourBoxes>> quads_;
   // The keys by leaf, side by side like the boxes (kNoKey in empty slots).
   struct LeafKeys {
     alignas(16) std::uint32_t key[3][kLeafSize];
@@ -196,8 +203,7 @@ class TriangleTree {
 };
 
 // Inline: they run once per triangle of a leaf in the traversals' innermost loops.
-inline std::uint32_t TriangleTree::leaf_overlaps(std::uint32_t leaf, const FloatBox& box) const {
-  const LeafBoxes& l = leaf_boxes_[leaf];
+inline std::uint32_t TriangleTree::overlaps(const FourBoxes& l, const FloatBox& box) {
 #if defined(__SSE2__)
   static_assert(kLeafSize == 4, "one SSE register per coordinate of a leaf");
   __m128 all = _mm_castsi128_ps(_mm_set1_epi32(-1));
@@ -208,7 +214,7 @@ inline std::uint32_t TriangleTree::leaf_overlaps(std::uint32_t leaf, const Float
   return std::uint32_t(_mm_movemask_ps(all));
 #else
   std::uint32_t mask = 0;
-  for (std::uint32_t i = 0; i < kLeafSize; ++i) {
+  for (std::uint32_t i = 0; i < 4; ++i) {
     bool overlap = true;
     for (int k = 0; k < 3; ++k)
       overlap = overlap && l.lo[k][i] <= box.hi[k] && box.lo[k] <= l.hi[k][i];
@@ -254,13 +260,14 @@ void TriangleTree::for_each_self_pair(Visit&& visit, const TriangleKeys* keys) c
   };
   parallel_tasks(std::size_t(levels_[task_level].size()), [&](std::size_t task) {
     [[maybe_unused]] const TaskScope scope{};
-    std::pair<Node, Node> stack[256];
+    // Node pairs on the stack have overlapping boxes: they are tested before they are pushed.
+    std::pair<Node, Node> stack[256];  // at most 3 pending pairs per 2 levels descended
     int top = 0;
-    stack[top++] = {Node{task_level, std::uint32_t(task)}, root};
+    const Node start{task_level, std::uint32_t(task)};
+    if (node_box(start).overlaps(node_box(root))) stack[top++] = {start, root};
     while (top > 0) {
       const auto [na, nb] = stack[--top];
       if (range(nb).second <= range(na).first) continue;  // every position of nb is before na's
-      if (!node_box(na).overlaps(node_box(nb))) continue;
       if (na.level == 0 && nb.level == 0) {
         const std::uint32_t a_end = std::min<std::uint32_t>(std::uint32_t(order_.size()),
                                                             (na.index + 1) * kLeafSize),
@@ -279,16 +286,57 @@ void TriangleTree::for_each_self_pair(Visit&& visit, const TriangleKeys* keys) c
         }
         continue;
       }
-      Node kids[2];
-      if (na.level >= nb.level) {
-        const std::uint32_t count = children(na, kids);
-        for (std::uint32_t k = 0; k < count; ++k) stack[top++] = {kids[k], nb};
-      } else {
-        const std::uint32_t count = children(nb, kids);
-        for (std::uint32_t k = 0; k < count; ++k) stack[top++] = {na, kids[k]};
+      // Descend the higher node: two levels at once, to those of its grandchildren that overlap
+      // the other node, when it has grandchildren.
+      const bool a_higher = na.level >= nb.level;
+      const Node high = a_higher ? na : nb, low = a_higher ? nb : na;
+      if (high.level >= 2) {
+        const std::uint32_t below = high.level - 2;
+        for (std::uint32_t hits = overlaps(quads_[below][high.index], node_box(low)); hits != 0;
+             hits &= hits - 1) {
+          const Node g{below, 4 * high.index + std::uint32_t(__builtin_ctz(hits))};
+          stack[top++] = a_higher ? std::make_pair(g, nb) : std::make_pair(na, g);
+        }
+        continue;
       }
+      Node kids[2];
+      const std::uint32_t count = children(high, kids);
+      for (std::uint32_t k = 0; k < count; ++k)
+        if (node_box(kids[k]).overlaps(node_box(low)))
+          stack[top++] = a_higher ? std::make_pair(kids[k], nb) : std::make_pair(na, kids[k]);
     }
   });
+}
+
+template <class F>
+void TriangleTree::for_each_overlap(const FloatBox& box, F&& f) const {
+  if (levels_.empty()) return;
+  // As traverse, with the nodes tested four at a time two levels down: nodes on the stack
+  // overlap `box`, and are pushed last first (triangles are reported in the tree's order).
+  Node stack[64];  // at most 3 pending nodes per 2 levels descended
+  int top = 0;
+  const Node root{std::uint32_t(levels_.size() - 1), 0};
+  if (node_box(root).overlaps(box)) stack[top++] = root;
+  while (top > 0) {
+    const Node node = stack[--top];
+    if (node.level == 0) {
+      const std::uint32_t first = node.index * kLeafSize;
+      for (std::uint32_t hits = leaf_overlaps(node.index, box); hits != 0; hits &= hits - 1)
+        f(order_[first + std::uint32_t(__builtin_ctz(hits))]);
+    } else if (node.level >= 2) {
+      const std::uint32_t below = node.level - 2;
+      for (std::uint32_t hits = overlaps(quads_[below][node.index], box); hits != 0;) {
+        const std::uint32_t last = std::uint32_t(31 - __builtin_clz(hits));
+        stack[top++] = {below, 4 * node.index + last};
+        hits &= ~(1u << last);
+      }
+    } else {
+      Node kids[2];
+      const std::uint32_t count = children(node, kids);
+      for (std::uint32_t k = count; k-- > 0;)
+        if (node_box(kids[k]).overlaps(box)) stack[top++] = kids[k];
+    }
+  }
 }
 
 template <class F>

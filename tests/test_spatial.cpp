@@ -1,0 +1,102 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The box tree's three traversals (a box query, the self traversal, two trees together) against
+// every pair of boxes, at sizes around every power of two: the traversals descend two levels at
+// once with four boxes tested together, and a level's last four may be incomplete.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <mutex>
+#include <random>
+#include <utility>
+#include <vector>
+
+#include "spatial.h"
+
+using namespace morphex;
+
+namespace {
+
+using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
+
+// n boxes in the unit cube, most small (a surface's triangles), a few long (slivers).
+std::vector<FloatBox> random_boxes(std::size_t n, std::mt19937& random) {
+  std::uniform_real_distribution<float> at(0, 1), small(0, 0.08f), large(0, 0.6f);
+  std::vector<FloatBox> boxes(n);
+  for (FloatBox& b : boxes) {
+    const bool sliver = at(random) < 0.05f;
+    for (int k = 0; k < 3; ++k) {
+      b.lo[k] = at(random);
+      b.hi[k] = b.lo[k] + (sliver ? large(random) : small(random));
+    }
+  }
+  return boxes;
+}
+
+std::vector<std::uint32_t> ids_of(std::size_t n) {
+  std::vector<std::uint32_t> ids(n);
+  for (std::uint32_t i = 0; i < n; ++i) ids[i] = 1000 + i;  // reported ids, not positions
+  return ids;
+}
+
+}  // namespace
+
+TEST(Spatial, TraversalsFindExactlyTheOverlappingBoxesAtEverySize) {
+  std::mt19937 random(41);
+  std::size_t self_pairs = 0, cross_pairs = 0, query_hits = 0;
+
+  for (const std::size_t n : {1, 2, 3, 4, 5, 7, 8, 9, 15, 16, 17, 31, 33, 63, 64, 65, 127, 129, 255,
+                              257, 511, 513, 1023, 1025, 2047, 4097}) {
+    const std::vector<FloatBox> a = random_boxes(n, random), b = random_boxes(n / 3 + 1, random);
+    const std::vector<std::uint32_t> ia = ids_of(a.size()), ib = ids_of(b.size());
+    const TriangleTree ta(a, ia), tb(b, ib);
+
+    for (int q = 0; q < 16; ++q) {
+      FloatBox query;  // up to 0.3 wide: from a few boxes to many
+      for (int k = 0; k < 3; ++k) {
+        query.lo[k] = std::uniform_real_distribution<float>(0, 1)(random);
+        query.hi[k] = query.lo[k] + std::uniform_real_distribution<float>(0, 0.3f)(random);
+      }
+      std::vector<std::uint32_t> found, expected;
+      ta.for_each_overlap(query, [&](std::uint32_t t) { found.push_back(t); });
+      for (std::size_t i = 0; i < a.size(); ++i)
+        if (a[i].overlaps(query)) expected.push_back(ia[i]);
+      // each once
+      EXPECT_TRUE(std::adjacent_find(found.begin(), found.end()) == found.end());
+      std::sort(found.begin(), found.end());
+      ASSERT_EQ(found, expected) << n << " boxes, query " << q;
+      query_hits += expected.size();
+    }
+
+    Pairs self, self_expected;
+    std::mutex lock;
+    ta.for_each_self_pair([&](std::size_t, std::uint32_t i, std::uint32_t j) {
+      const std::lock_guard<std::mutex> guard(lock);
+      self.emplace_back(std::min(i, j), std::max(i, j));
+    });
+    for (std::size_t i = 0; i < a.size(); ++i)
+      for (std::size_t j = i + 1; j < a.size(); ++j)
+        if (a[i].overlaps(a[j])) self_expected.emplace_back(ia[i], ia[j]);
+    std::sort(self.begin(), self.end());
+    ASSERT_EQ(self, self_expected) << n << " boxes";
+    self_pairs += self_expected.size();
+
+    for (const bool swapped : {false, true}) {
+      Pairs cross = swapped ? TriangleTree::overlapping_pairs(tb, ta)
+                            : TriangleTree::overlapping_pairs(ta, tb),
+            cross_expected;
+      for (std::size_t i = 0; i < a.size(); ++i)
+        for (std::size_t j = 0; j < b.size(); ++j)
+          if (a[i].overlaps(b[j]))
+            cross_expected.push_back(swapped ? std::make_pair(ib[j], ia[i])
+                                             : std::make_pair(ia[i], ib[j]));
+      std::sort(cross.begin(), cross.end());
+      std::sort(cross_expected.begin(), cross_expected.end());
+      ASSERT_EQ(cross, cross_expected) << n << " boxes" << (swapped ? ", swapped" : "");
+      cross_pairs += cross_expected.size();
+    }
+  }
+  // The cases are not empty ones.
+  EXPECT_GT(self_pairs, 10000u);
+  EXPECT_GT(cross_pairs, 5000u);
+  EXPECT_GT(query_hits, 500u);
+}
