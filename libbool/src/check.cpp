@@ -417,15 +417,15 @@ void slab_pairs(const Mesh& mesh, const PointTable& table, const std::vector<Poi
     }
   }
   const TriangleTree tree(std::move(boxes), ids);
-  std::vector<std::uint32_t> near;
-  for (std::size_t c = 0; c < candidates.size(); ++c) {
-    near.clear();
-    tree.for_each_overlap(parts[c], [&](std::uint32_t k) { near.push_back(k); });
-    std::sort(near.begin(), near.end());
-    near.erase(std::unique(near.begin(), near.end()), near.end());
-    for (const std::uint32_t k : near)
+  // A triangle whose pieces meet a candidate's part more than once is tested once: `seen` holds,
+  // by slab triangle, the last candidate it was met with.
+  std::vector<std::uint32_t> seen(slab.triangles.size(), UINT32_MAX);
+  for (std::uint32_t c = 0; c < candidates.size(); ++c)
+    tree.for_each_overlap(parts[c], [&](std::uint32_t k) {
+      if (seen[k] == c) return;
+      seen[k] = c;
       if (!detail::apart_along_axis(lines[k], parts[c])) test(slab.triangles[k], candidates[c]);
-  }
+    });
 }
 
 // Self-intersections: flat patches proved embedded, the other triangles by their tree against
