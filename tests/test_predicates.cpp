@@ -159,6 +159,40 @@ TEST(PointIndex, CoordinatesAtTruncationCutsAreIdentifiedExactly) {
   EXPECT_GT(by_value.size(), 1000u);
 }
 
+// The check indexes a mesh of doubles from its table's copy of the coordinates (find_or_insert of
+// three doubles) instead of its Points: both ways give one id per exact position, and either finds
+// what the other stored, rationals included; -0 is +0.
+TEST(PointIndex, DoublesFindTheIdsOfTheirPoints) {
+  detail::PositionIndex index;
+  std::map<std::array<FT, 3>, std::uint32_t> by_value;
+  std::mt19937 random(43);
+  std::uniform_int_distribution<int> offset(-2, 2), pick(0, 5);
+  const double scales[] = {1.0, 0x1p-1005, 0x1p999, 0x1p1003, 3.0, -0.0};
+  std::uint32_t next = 0;
+  std::vector<std::array<double, 3>> earlier;
+  for (int i = 0; i < 4000; ++i) {
+    std::array<double, 3> xyz;
+    for (double& x : xyz)  // on a truncation cut or a few units in the last place from it
+      x = scales[pick(random)] * (1 + std::ldexp(double(pick(random)), -39) +
+                                  std::ldexp(double(offset(random)), -52));
+    if (i % 3 == 2) xyz = earlier[std::size_t(random()) % earlier.size()];  // a position met again
+    earlier.push_back(xyz);
+    const bool rational = i % 5 == 4;  // a third of a double: never a double itself
+    const Point p = rational ? Point(FT(xyz[0]) / 3, FT(xyz[1]), FT(xyz[2]))
+                             : Point(xyz[0], xyz[1], xyz[2]);
+    const std::uint32_t id = i % 2 || rational ? index.find_or_insert(p, next)
+                                               : index.find_or_insert(xyz, next);
+    if (id == next) ++next;
+    if (!rational)
+      ASSERT_EQ(i % 2 ? index.find_or_insert(xyz, next) : index.find_or_insert(p, next), id) << i;
+    const auto [it, inserted] = by_value.emplace(std::array<FT, 3>{p.x(), p.y(), p.z()}, id);
+    ASSERT_EQ(it->second, id) << i << (inserted ? ": a new value found an old id" : "");
+  }
+  EXPECT_EQ(next, by_value.size());
+  EXPECT_GT(by_value.size(), 1000u);
+  EXPECT_LT(by_value.size(), 3000u);  // positions met again
+}
+
 // The exact sign of a short sum of doubles (the diagonal proofs of vertex stars) against the
 // rational sum: terms of every magnitude that cancel exactly or up to one unit in the last place.
 TEST(StaticFilter, SignOfSumIsExact) {

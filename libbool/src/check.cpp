@@ -437,13 +437,16 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
                              const ManifoldEdges& manifold, const std::vector<std::uint8_t>& proved,
                              const CheckOptions& options, MeshReport& r,
                              std::optional<TriangleTree>* kept) {
-  // Vertices by position: coincident ones (separated features) are one position.
+  // Vertices by position: coincident ones (separated features) are one position. From the
+  // table's contiguous copy of the coordinates when they are all doubles.
   std::vector<PointId> position(mesh.num_vertices());
   {
     detail::PositionIndex index;
     index.reserve(mesh.num_vertices());
+    const auto& doubles = table.input_doubles();
     for (VertexIndex v = 0; v < mesh.num_vertices(); ++v)
-      position[v] = index.find_or_insert(mesh.points[v], v);
+      position[v] = doubles.empty() ? index.find_or_insert(mesh.points[v], v)
+                                    : index.find_or_insert(doubles[v], v);
   }
   const detail::FacePlanes planes(mesh, table.input_near_doubles(), table.input_error());
   detail::PlanarPatches planar = detail::verified_planar_patches(

@@ -62,6 +62,24 @@ bool PositionIndex::same(const Entry& e, const Point& p, bool doubles, const Key
   return rationals_[e.rational] == p;
 }
 
+template <class Is, class Make>
+std::uint32_t PositionIndex::find_or_insert(const Key& key, Is&& is, Make&& make) {
+  if (2 * (entries_.size() + 1) > slots_.size())
+    rebuild(std::max<std::size_t>(64, 2 * slots_.size()));
+  const std::uint64_t h = hash_key(key);
+  const std::size_t mask = slots_.size() - 1;
+  for (std::size_t i = h & mask;; i = (i + 1) & mask) {
+    const std::uint32_t e = slots_[i];
+    if (e == kEmpty) {
+      slots_[i] = std::uint32_t(entries_.size());
+      hashes_[i] = h;
+      entries_.push_back(make());
+      return entries_.back().id;
+    }
+    if (hashes_[i] == h && entries_[e].key == key && is(entries_[e])) return entries_[e].id;
+  }
+}
+
 std::uint32_t PositionIndex::find_or_insert(const Point& p, std::uint32_t id) {
   const auto& a = CGAL::approx(p);
   const bool doubles = has_double_coordinates(p);
@@ -73,26 +91,32 @@ std::uint32_t PositionIndex::find_or_insert(const Point& p, std::uint32_t id) {
     key[k] =
         lo == hi ? lo + 0.0 : truncated(mpq_get_d(CGAL::exact(p.cartesian(k)).get_mpq_t())) + 0.0;
   }
-  if (2 * (entries_.size() + 1) > slots_.size())
-    rebuild(std::max<std::size_t>(64, 2 * slots_.size()));
-  const std::uint64_t h = hash_key(key);
-  const std::size_t mask = slots_.size() - 1;
-  for (std::size_t i = h & mask;; i = (i + 1) & mask) {
-    const std::uint32_t e = slots_[i];
-    if (e == kEmpty) {
-      slots_[i] = std::uint32_t(entries_.size());
-      hashes_[i] = h;
-      std::uint32_t rational = kDoubles;
-      if (!doubles) {
-        rational = std::uint32_t(rationals_.size());
-        rationals_.push_back(p);
-      }
-      entries_.push_back({key, xyz, id, rational});
-      return id;
-    }
-    if (hashes_[i] == h && entries_[e].key == key && same(entries_[e], p, doubles, xyz))
-      return entries_[e].id;
+  return find_or_insert(
+      key, [&](const Entry& e) { return same(e, p, doubles, xyz); },
+      [&] {
+        std::uint32_t rational = kDoubles;
+        if (!doubles) {
+          rational = std::uint32_t(rationals_.size());
+          rationals_.push_back(p);
+        }
+        return Entry{key, xyz, id, rational};
+      });
+}
+
+std::uint32_t PositionIndex::find_or_insert(const std::array<double, 3>& point, std::uint32_t id) {
+  // A double's interval is the double itself: the key and coordinates of find_or_insert(Point).
+  Key key, xyz;
+  for (int k = 0; k < 3; ++k) {
+    xyz[k] = point[k] + 0.0;
+    key[k] = truncated(point[k]) + 0.0;
   }
+  return find_or_insert(
+      key,
+      [&](const Entry& e) {
+        return e.rational == kDoubles ? e.xyz == xyz
+                                      : rationals_[e.rational] == Point(xyz[0], xyz[1], xyz[2]);
+      },
+      [&] { return Entry{key, xyz, id, kDoubles}; });
 }
 
 PointIndex::PointIndex(std::vector<Point>& points) : points_(points) {

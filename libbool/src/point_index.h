@@ -24,6 +24,9 @@ class PositionIndex {
  public:
   // The id stored for p's position; `id` is stored when the position is new.
   std::uint32_t find_or_insert(const Point& p, std::uint32_t id);
+  // The same for the point whose coordinates are exactly these doubles, without reading a Point
+  // (a mesh whose coordinates are all doubles, from a contiguous copy of them).
+  std::uint32_t find_or_insert(const std::array<double, 3>& xyz, std::uint32_t id);
   void reserve(std::size_t points);
 
  private:
@@ -36,6 +39,10 @@ class PositionIndex {
   };
   static constexpr std::uint32_t kEmpty = 0xffffffffu, kDoubles = 0xffffffffu;
   bool same(const Entry& e, const Point& p, bool doubles, const Key& xyz) const;
+  // Finds the entry of key `key` that `is(entry)` says is the point, or stores a new one made by
+  // `make()` (which gets `id`).
+  template <class Is, class Make>
+  std::uint32_t find_or_insert(const Key& key, Is&& is, Make&& make);
   void rebuild(std::size_t capacity);  // slots for `capacity` entries, rehashed
 
   std::vector<Entry> entries_;
