@@ -62,11 +62,18 @@ BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
   BooleanStats& stats = result.stats;
   stats.seconds.validate = clock.lap();
 
+  // The exact point table of both operands (step 3's), first: the trees step 2 builds box the
+  // vertices from its contiguous copy of their intervals.
+  detail::PointTable points(a, b);
+  trees.use_points(&points);
   const auto pairs = detail::candidate_pairs(a, b, trees);
   stats.candidate_pairs = pairs.size();
   stats.seconds.pairs = clock.lap();
 
-  detail::Intersection x = detail::intersect(a, b, pairs);
+  detail::IntersectOptions intersect_options;
+  intersect_options.points = &points;
+  detail::Intersection x = detail::intersect(a, b, pairs, intersect_options);
+  trees.use_points(&x.points);  // the table moved; step 6 may build the tree step 2 did not
   stats.intersecting_pairs = x.intersecting_pairs;
   stats.intersection_points = x.constructed_points;
   stats.cut_facets_a = x.cuts[0].size();

@@ -43,9 +43,21 @@ using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
 // slot.
 class OperandTrees {
  public:
+  // The point table of the two operands, when the Boolean has built it (its contiguous copy of the
+  // vertices' intervals boxes them without reading each Point again).
+  void use_points(const PointTable* points) { points_ = points; }
   const TriangleTree& of(int side, const Mesh& mesh) {
-    if (!tree_[side]) tree_[side].emplace(mesh);
+    if (!tree_[side]) {
+      if (points_)
+        tree_[side].emplace(mesh, vertex_boxes(side, mesh));
+      else
+        tree_[side].emplace(mesh);
+    }
     return *tree_[side];
+  }
+  // The boxes of that side's triangles, from the table when there is one.
+  std::vector<FloatBox> triangle_boxes_of(int side, const Mesh& mesh) const {
+    return points_ ? triangle_boxes(mesh, vertex_boxes(side, mesh)) : triangle_boxes(mesh);
   }
   // A tree over every triangle of that side's mesh, built elsewhere (by the input check).
   void adopt(int side, std::optional<TriangleTree>&& tree) {
@@ -53,7 +65,11 @@ class OperandTrees {
   }
 
  private:
+  // The boxes of that side's vertices, by vertex index, from the table.
+  std::vector<FloatBox> vertex_boxes(int side, const Mesh& mesh) const;
+
   std::optional<TriangleTree> tree_[2];
+  const PointTable* points_ = nullptr;
 };
 
 // Step 2: pairs (ta, tb) whose boxes overlap; the trees it builds are kept in `trees`.
@@ -125,6 +141,9 @@ struct IntersectOptions {
   bool soup = false;
   // Optional plane labels of a soup's triangles (winding.h): pairs with one label are coplanar.
   const std::vector<std::uint32_t>* planes = nullptr;
+  // The table of a and b (PointTable(a, b, soup)) when the caller built it already: it becomes
+  // the result's (moved from).
+  PointTable* points = nullptr;
 };
 Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
                        const IntersectOptions& options = {});

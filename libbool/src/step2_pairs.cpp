@@ -48,6 +48,14 @@ bool plane_may_cross(const IntervalPlane& p, const FloatBox& box) {
 
 }  // namespace
 
+std::vector<FloatBox> OperandTrees::vertex_boxes(int side, const Mesh& mesh) const {
+  std::vector<FloatBox> boxes(mesh.num_vertices());
+  tbb::parallel_for(std::size_t(0), boxes.size(), [&](std::size_t v) {
+    boxes[v] = FloatBox::of(points_->approx(points_->vertex(side, VertexIndex(v))));
+  });
+  return boxes;
+}
+
 Pairs candidate_pairs(const Mesh& a, const Mesh& b, OperandTrees& trees) {
   if (a.empty() || b.empty()) return {};
   const std::size_t na = a.num_triangles(), nb = b.num_triangles();
@@ -83,7 +91,7 @@ Pairs candidate_pairs(const Mesh& a, const Mesh& b, OperandTrees& trees) {
   // Queries in blocks, each block's pairs in its own vector, concatenated in block order.
   constexpr std::uint32_t kBlock = 1024;
   const auto nq = std::uint32_t(queries.num_triangles());
-  const std::vector<FloatBox> query_boxes = triangle_boxes(queries);
+  const std::vector<FloatBox> query_boxes = trees.triangle_boxes_of(tree_on_a ? 1 : 0, queries);
   std::vector<Pairs> found((nq + kBlock - 1) / kBlock);
   tbb::parallel_for(std::uint32_t(0), std::uint32_t(found.size()), [&](std::uint32_t block) {
     const CGAL::Protect_FPU_rounding<true> upward;

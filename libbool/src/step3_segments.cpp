@@ -441,7 +441,7 @@ std::vector<std::uint32_t> unseparated(const std::vector<PairSigns>& signs) {
 Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
                        const IntersectOptions& options) {
   Intersection x;
-  x.points = PointTable(a, b, options.soup);
+  x.points = options.points ? std::move(*options.points) : PointTable(a, b, options.soup);
   const UsedFacets used = used_facets(a, b, pairs);
   const std::vector<PointId> merged = identify_vertices(x, a, b, used);
   // Corners are named by the ids of their positions from here on: predicates on coincident
