@@ -100,3 +100,38 @@ TEST(Spatial, TraversalsFindExactlyTheOverlappingBoxesAtEverySize) {
   EXPECT_GT(cross_pairs, 5000u);
   EXPECT_GT(query_hits, 500u);
 }
+
+// Rays (for_each_on_ray, the winding numbers' casts) report every box they certainly cross: the
+// slab test on each box shrunk by a margin, against the boxes the traversal reports.
+TEST(Spatial, RaysReportEveryBoxTheyCross) {
+  std::mt19937 random(47);
+  std::uniform_real_distribution<double> at(0, 1), turn(-1, 1);
+  std::size_t crossed = 0;
+  for (const std::size_t n : {1, 3, 4, 5, 9, 17, 65, 257, 1025, 4097}) {
+    const std::vector<FloatBox> boxes = random_boxes(n, random);
+    const TriangleTree tree(boxes, ids_of(n));
+    for (int r = 0; r < 40; ++r) {
+      const std::array<double, 3> o{at(random), at(random), at(random)},
+          d{turn(random), turn(random), turn(random)};
+      std::vector<std::uint32_t> found;
+      tree.for_each_on_ray(CGAL::Bbox_3(o[0], o[1], o[2], o[0], o[1], o[2]), d,
+                           [&](std::uint32_t t) { found.push_back(t); });
+      std::sort(found.begin(), found.end());
+      for (std::size_t i = 0; i < n; ++i) {
+        double enter = 0, exit = 1e300;
+        for (int k = 0; k < 3; ++k) {
+          const double lo = boxes[i].lo[k] + 1e-6, hi = boxes[i].hi[k] - 1e-6;
+          if (lo >= hi) enter = 1e300;  // too thin to cross certainly
+          const double t0 = (lo - o[k]) / d[k], t1 = (hi - o[k]) / d[k];
+          enter = std::max(enter, std::min(t0, t1));
+          exit = std::min(exit, std::max(t0, t1));
+        }
+        if (enter >= exit) continue;
+        ++crossed;
+        ASSERT_TRUE(std::binary_search(found.begin(), found.end(), 1000 + std::uint32_t(i)))
+            << n << " boxes, ray " << r << ", box " << i;
+      }
+    }
+  }
+  EXPECT_GT(crossed, 500u);
+}

@@ -140,24 +140,36 @@ class TriangleTree {
         std::min<std::uint32_t>(std::uint32_t(order_.size()), (leaf.index + 1) * kLeafSize);
     for (std::uint32_t i = leaf.index * kLeafSize; i < end; ++i) f(order_[i], sorted_boxes_[i]);
   }
-  // Visits the leaves' triangles whose boxes pass `keep`, pruning subtrees whose box fails it.
-  template <class Keep, class F>
-  void traverse(Keep&& keep, F&& f) const {
+  // Visits the leaves' triangles whose boxes pass a test, pruning subtrees whose box fails it:
+  // `keep` tests one box (the root's), `keep4` four at once (bit i: the i-th passes; empty boxes
+  // fail). A node is descended two levels at once, to its grandchildren, or from just above the
+  // leaves to its two leaves; nodes on the stack have passed, and are pushed last first
+  // (triangles are reported in the tree's order).
+  template <class Keep, class Keep4, class F>
+  void traverse(Keep&& keep, Keep4&& keep4, F&& f) const {
     if (levels_.empty()) return;
-    Node stack[64];
+    Node stack[64];  // at most 3 pending nodes per 2 levels descended
     int top = 0;
-    stack[top++] = {std::uint32_t(levels_.size() - 1), 0};
+    const Node root{std::uint32_t(levels_.size() - 1), 0};
+    if (keep(node_box(root))) stack[top++] = root;
+    auto push = [&](std::uint32_t level, std::uint32_t first, std::uint32_t hits) {
+      while (hits != 0) {
+        const std::uint32_t last = std::uint32_t(31 - __builtin_clz(hits));
+        stack[top++] = {level, first + last};
+        hits &= ~(1u << last);
+      }
+    };
     while (top > 0) {
       const Node node = stack[--top];
-      if (!keep(node_box(node))) continue;
       if (node.level == 0) {
-        for_each_triangle(node, [&](std::uint32_t t, const FloatBox& b) {
-          if (keep(b)) f(t);
-        });
+        const std::uint32_t first = node.index * kLeafSize;
+        for (std::uint32_t hits = keep4(leaf_boxes_[node.index]); hits != 0; hits &= hits - 1)
+          f(order_[first + std::uint32_t(__builtin_ctz(hits))]);
+      } else if (node.level == 1) {  // its leaves 2i and 2i + 1: two of level 0's fours
+        const std::uint32_t slots = 3u << (2 * (node.index & 1));
+        push(0, 4 * (node.index / 2), keep4(quads_[0][node.index / 2]) & slots);
       } else {
-        Node kids[2];
-        const std::uint32_t count = children(node, kids);
-        for (std::uint32_t k = count; k-- > 0;) stack[top++] = kids[k];
+        push(node.level - 2, 4 * node.index, keep4(quads_[node.level - 2][node.index]));
       }
     }
   }
@@ -310,39 +322,25 @@ void TriangleTree::for_each_self_pair(Visit&& visit, const TriangleKeys* keys) c
 
 template <class F>
 void TriangleTree::for_each_overlap(const FloatBox& box, F&& f) const {
-  if (levels_.empty()) return;
-  // As traverse, with the nodes tested four at a time two levels down: nodes on the stack
-  // overlap `box`, and are pushed last first (triangles are reported in the tree's order).
-  Node stack[64];  // at most 3 pending nodes per 2 levels descended
-  int top = 0;
-  const Node root{std::uint32_t(levels_.size() - 1), 0};
-  if (node_box(root).overlaps(box)) stack[top++] = root;
-  while (top > 0) {
-    const Node node = stack[--top];
-    if (node.level == 0) {
-      const std::uint32_t first = node.index * kLeafSize;
-      for (std::uint32_t hits = leaf_overlaps(node.index, box); hits != 0; hits &= hits - 1)
-        f(order_[first + std::uint32_t(__builtin_ctz(hits))]);
-    } else if (node.level >= 2) {
-      const std::uint32_t below = node.level - 2;
-      for (std::uint32_t hits = overlaps(quads_[below][node.index], box); hits != 0;) {
-        const std::uint32_t last = std::uint32_t(31 - __builtin_clz(hits));
-        stack[top++] = {below, 4 * node.index + last};
-        hits &= ~(1u << last);
-      }
-    } else {
-      Node kids[2];
-      const std::uint32_t count = children(node, kids);
-      for (std::uint32_t k = count; k-- > 0;)
-        if (node_box(kids[k]).overlaps(box)) stack[top++] = kids[k];
-    }
-  }
+  traverse([&](const FloatBox& b) { return b.overlaps(box); },
+           [&](const FourBoxes& four) { return overlaps(four, box); }, f);
 }
 
 template <class F>
 void TriangleTree::for_each_on_ray(const CGAL::Bbox_3& origin,
                                    const std::array<double, 3>& direction, F&& f) const {
-  traverse([&](const FloatBox& b) { return ray_may_hit(b, origin, direction); }, f);
+  auto keep = [&](const FloatBox& b) { return ray_may_hit(b, origin, direction); };
+  traverse(keep,
+           [&](const FourBoxes& four) {
+             std::uint32_t hits = 0;
+             for (std::uint32_t i = 0; i < 4; ++i) {
+               FloatBox b;
+               for (int k = 0; k < 3; ++k) b.lo[k] = four.lo[k][i], b.hi[k] = four.hi[k][i];
+               if (b.lo[0] <= b.hi[0] && keep(b)) hits |= 1u << i;  // not an empty slot
+             }
+             return hits;
+           },
+           f);
 }
 
 // Interleaves the top 21 bits of three coordinates in [0, 1] (clamped): a position along the
