@@ -13,6 +13,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "box_frame.h"
 #include "check_internal.h"
 #include "check_planar.h"
 #include "check_planes.h"
@@ -366,6 +367,7 @@ std::vector<std::uint32_t> patch_candidates(const Mesh& mesh, const PointTable& 
                                             const std::vector<PointId>& position,
                                             const detail::PlanarPatches& planar,
                                             const TriangleTree& rest, const TriangleTree& patched,
+                                            const std::vector<FloatBox>& vertex_boxes,
                                             std::size_t p, std::vector<CGAL::Bbox_3>& parts) {
   const detail::PlanarPatch& patch = planar.patches[p];
   std::vector<std::uint32_t> out;
@@ -382,8 +384,12 @@ std::vector<std::uint32_t> patch_candidates(const Mesh& mesh, const PointTable& 
       out.push_back(t);
   };
   const detail::UpwardRounding rounding;
-  rest.for_each_overlap(patch.box, consider);
-  patched.for_each_overlap(patch.box, [&](std::uint32_t t) {
+  // The patch's box as the trees box triangles (in their frame), from its corners.
+  FloatBox box;
+  for (const std::uint32_t t : patch.triangles)
+    for (const VertexIndex v : mesh.triangles[t]) box += vertex_boxes[v];
+  rest.for_each_overlap(box, consider);
+  patched.for_each_overlap(box, [&](std::uint32_t t) {
     if (std::size_t(planar.patch_of[t]) > p) consider(t);
   });
   return out;
@@ -431,7 +437,8 @@ void slab_pairs(const Mesh& mesh, const PointTable& table, const std::vector<Poi
 // Self-intersections: flat patches proved embedded, the other triangles by their tree against
 // itself, and each patch against the triangles that reach its plane; each pair is tested
 // exactly, once (i < j).
-// `kept` gets the tree over every triangle, when there is one (no patches).
+// `kept` gets the tree over every triangle, when there is one (no patches) and it is along the
+// coordinate axes.
 void find_self_intersections(const Mesh& mesh, const PointTable& table,
                              const std::vector<std::uint8_t>& degenerate,
                              const ManifoldEdges& manifold, const std::vector<std::uint8_t>& proved,
@@ -460,10 +467,16 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
     if (planar.patch_of[t] < 0 && !degenerate[t]) others.push_back(t);
   }
   // The triangles of the patches, for each patch's candidates among the later patches.
-  // The vertices' boxes from the table's copy of their intervals (contiguous), for every tree.
+  // The vertices' boxes from the table's copy of their intervals (contiguous), for every tree,
+  // along the axes of the mesh itself when it lies turned off the coordinate axes.
+  const detail::BoxFrame frame = detail::choose_box_frame(mesh, table.input_near_doubles());
   std::vector<FloatBox> vertex_boxes(mesh.num_vertices());
-  tbb::parallel_for(std::size_t(0), vertex_boxes.size(),
-                    [&](std::size_t v) { vertex_boxes[v] = FloatBox::of(table.approx(v)); });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, vertex_boxes.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      const detail::UpwardRounding rounding;
+                      for (std::size_t v = range.begin(); v != range.end(); ++v)
+                        vertex_boxes[v] = detail::box_in_frame(frame, table.approx(v));
+                    });
   const TriangleTree patched(mesh, vertex_boxes, in_patches);
   TriangleTree tree = planar.patches.empty() ? TriangleTree(mesh, vertex_boxes)
                                              : TriangleTree(mesh, vertex_boxes, others);
@@ -494,7 +507,7 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
   tbb::parallel_for(std::size_t(0), planar.patches.size(), [&](std::size_t p) {
     std::vector<CGAL::Bbox_3> parts;
     const std::vector<std::uint32_t> candidates =
-        patch_candidates(mesh, table, position, planar, tree, patched, p, parts);
+        patch_candidates(mesh, table, position, planar, tree, patched, vertex_boxes, p, parts);
     if (candidates.empty()) return;
     const detail::UpwardRounding rounding;
     Found& f = found[tree.self_pair_tasks() + p];
@@ -518,7 +531,8 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
     }
   });
   report(found, r);
-  if (kept && planar.patches.empty()) kept->emplace(std::move(tree));
+  // The Boolean's trees are along the coordinate axes (it boxes the other operand so).
+  if (kept && planar.patches.empty() && frame.world) kept->emplace(std::move(tree));
 }
 
 // The mesh's shells as separate meshes, by component.

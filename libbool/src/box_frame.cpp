@@ -1,0 +1,167 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Axes for the boxes of a mesh's triangles (box_frame.h).
+#include "box_frame.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace morphex::detail {
+namespace {
+
+using I = CGAL::Interval_nt<false>;
+
+// About this many faces are looked at: the frame is a heuristic, and must cost little next to
+// the traversal it speeds up.
+constexpr std::size_t kSampleFaces = 1024;
+// The frame is taken when it shrinks the sampled boxes' spread by at least this factor (boxing
+// in a frame costs a small matrix product per vertex).
+constexpr double kGain = 0.6;
+// Normals within about this angle of the first axis count as perpendicular to it.
+constexpr double kPerpendicular = 0.1;
+
+Xyz minus(const Xyz& a, const Xyz& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+Xyz cross(const Xyz& a, const Xyz& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double dot(const Xyz& a, const Xyz& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+Xyz scaled(const Xyz& a, double s) {
+  return {a[0] * s, a[1] * s, a[2] * s};
+}
+Xyz unit(const Xyz& a) {
+  return scaled(a, 1 / std::sqrt(dot(a, a)));
+}
+
+// A sampled face's unit normal up to sign (its largest coordinate made positive), its area, and
+// the cell of directions it falls in (about 1/32 radian wide).
+struct Facing {
+  std::uint64_t cell;
+  double area;
+  Xyz normal;
+  bool operator<(const Facing& o) const { return cell < o.cell; }
+};
+
+Facing facing(const Xyz& n, double area) {
+  int largest = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::fabs(n[k]) > std::fabs(n[largest])) largest = k;
+  const Xyz u = scaled(n, (n[largest] < 0 ? -1 : 1) / area);
+  std::uint64_t cell = 0;
+  for (int k = 0; k < 3; ++k) cell = cell * 1024 + std::uint64_t(std::lround(u[k] * 32) + 512);
+  return {cell, area, u};
+}
+
+// Directions of equal cell, merged: their total area and area-weighted mean normal.
+struct Cluster {
+  double area = 0;
+  Xyz sum{0, 0, 0};
+};
+
+std::vector<Cluster> clusters_of(std::vector<Facing> facings) {
+  std::stable_sort(facings.begin(), facings.end());
+  std::vector<Cluster> out;
+  for (std::size_t i = 0; i < facings.size(); ++i) {
+    if (i == 0 || facings[i].cell != facings[i - 1].cell) out.emplace_back();
+    out.back().area += facings[i].area;
+    for (int k = 0; k < 3; ++k) out.back().sum[k] += facings[i].area * facings[i].normal[k];
+  }
+  return out;
+}
+
+// The largest cluster's direction, then the largest one about perpendicular to it (or the
+// coordinate axis least aligned with it), made orthogonal, and their cross product.
+std::array<Xyz, 3> dominant_axes(const std::vector<Cluster>& clusters) {
+  auto largest = [&](auto&& eligible) {
+    const Cluster* best = nullptr;
+    for (const Cluster& c : clusters)
+      if (eligible(c) && (!best || c.area > best->area)) best = &c;
+    return best;
+  };
+  const Xyz first = unit(largest([](const Cluster&) { return true; })->sum);
+  const Cluster* across = largest(
+      [&](const Cluster& c) { return std::fabs(dot(unit(c.sum), first)) < kPerpendicular; });
+  Xyz second{0, 0, 0};
+  if (across) {
+    second = unit(across->sum);
+  } else {
+    int least = 0;
+    for (int k = 1; k < 3; ++k)
+      if (std::fabs(first[k]) < std::fabs(first[least])) least = k;
+    second[least] = 1;
+  }
+  second = unit(minus(second, scaled(first, dot(second, first))));
+  return {first, second, cross(first, second)};
+}
+
+// How much the boxes of the sampled faces spread, along given axes: the sum of their boxes'
+// pairwise products of extents (about the area they present to one another).
+double spread(const Mesh& mesh, const std::vector<Xyz>& xyz,
+              const std::vector<std::uint32_t>& faces, const std::array<Xyz, 3>& axes) {
+  double total = 0;
+  for (const std::uint32_t t : faces) {
+    double e[3];
+    for (int k = 0; k < 3; ++k) {
+      double lo = INFINITY, hi = -INFINITY;
+      for (const VertexIndex v : mesh.triangles[t]) {
+        const double c = dot(axes[k], xyz[v]);
+        lo = std::min(lo, c), hi = std::max(hi, c);
+      }
+      e[k] = hi - lo;
+    }
+    total += e[0] * e[1] + e[1] * e[2] + e[2] * e[0];
+  }
+  return total;
+}
+
+FloatBox box_of(const BoxFrame& frame, const I (&p)[3]) {
+  double lo[3], hi[3];
+  for (int k = 0; k < 3; ++k) {
+    const Xyz& a = frame.axis[k];
+    const I c = a[0] * p[0] + a[1] * p[1] + a[2] * p[2];
+    lo[k] = c.inf(), hi[k] = c.sup();
+  }
+  return FloatBox::of(CGAL::Bbox_3(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]));
+}
+
+}  // namespace
+
+BoxFrame choose_box_frame(const Mesh& mesh, const std::vector<Xyz>& xyz) {
+  const std::size_t nf = mesh.num_triangles();
+  if (xyz.empty() || nf == 0) return {};
+  const std::size_t stride = std::max<std::size_t>(1, nf / kSampleFaces);
+  std::vector<std::uint32_t> sample;
+  std::vector<Facing> facings;
+  for (std::size_t t = 0; t < nf; t += stride) {
+    const Triangle& f = mesh.triangles[t];
+    const Xyz n = cross(minus(xyz[f[1]], xyz[f[0]]), minus(xyz[f[2]], xyz[f[0]]));
+    const double area = std::sqrt(dot(n, n));
+    if (!(area > 0 && std::isfinite(area))) continue;
+    sample.push_back(std::uint32_t(t));
+    facings.push_back(facing(n, area));
+  }
+  if (facings.empty()) return {};
+  BoxFrame frame;
+  frame.axis = dominant_axes(clusters_of(std::move(facings)));
+  const std::array<Xyz, 3> world = {Xyz{1, 0, 0}, Xyz{0, 1, 0}, Xyz{0, 0, 1}};
+  const double along_frame = spread(mesh, xyz, sample, frame.axis),
+               along_world = spread(mesh, xyz, sample, world);
+  frame.world = !(along_frame < kGain * along_world);  // also when either is not finite
+  return frame;
+}
+
+FloatBox box_in_frame(const BoxFrame& frame, const ApproxPoint& p) {
+  if (frame.world) return FloatBox::of(p);
+  return box_of(frame, {p.x(), p.y(), p.z()});
+}
+
+FloatBox box_in_frame(const BoxFrame& frame, const CGAL::Bbox_3& box) {
+  if (frame.world) return FloatBox::of(box);
+  return box_of(frame,
+                {I(box.xmin(), box.xmax()), I(box.ymin(), box.ymax()), I(box.zmin(), box.zmax())});
+}
+
+}  // namespace morphex::detail
