@@ -111,27 +111,39 @@ TEST(BoxFrame, TheCheckFindsThePairsOfTheUnturnedPart) {
   EXPECT_EQ(after.self_intersecting_pairs, before.self_intersecting_pairs);
 }
 
-// Three parallel thin tubes and one crossing them at an angle, turned: each operand's check boxes
-// it along its own axes (and keeps no tree: caps of 12 triangles are no patches), while the
-// Boolean pairs the operands' triangles along the coordinate axes. The results are exact (the
-// volume identity) and valid solids.
-TEST(BoxFrame, BooleansOfTurnedPartsAreExact) {
+// Parallel thin tubes 0.2 apart along x, in a row centred on the z axis.
+Mesh tubes(int count) {
   const Mesh tube = make_cylinder(12, 0.05, 1.0);
-  const Mesh a = transformed(
-                 concatenate(concatenate(tube, translated(tube, Vector(FT(1) / 5, 0, 0))),
-                             translated(tube, Vector(-FT(1) / 5, 0, 0))),
-                 kTurn),
-             b = transformed(transformed(tube, half_tangent_rotation(1, FT(1) / 2)), kTurn);
-  ASSERT_GT(a.num_triangles() * b.num_triangles(), 4096u);  // step 2 by trees
-  ASSERT_FALSE(frame_of(a).world);
+  Mesh row = translated(tube, Vector(-FT(count - 1) / 10, 0, 0));
+  for (int i = 1; i < count; ++i)
+    row = concatenate(row, translated(tube, Vector(FT(2 * i - (count - 1)) / 10, 0, 0)));
+  return row;
+}
+
+// A row of parallel thin tubes and one crossing them all at an angle, turned: each operand's
+// check boxes it along its own axes (and keeps no tree: caps of 12 triangles are no patches),
+// and the Boolean pairs them along the axes of one of them, by two trees (3 tubes against one)
+// or by queries of the larger operand's boxes in the smaller's tree (9 against one). The results
+// are exact (the volume identity) and valid solids.
+TEST(BoxFrame, BooleansOfTurnedPartsAreExact) {
+  const Mesh b = transformed(
+      transformed(make_cylinder(12, 0.05, 1.0), half_tangent_rotation(1, FT(1) / 2)), kTurn);
   ASSERT_FALSE(frame_of(b).world);
-  FT volume[2];
-  for (const BooleanOp op : {BooleanOp::Union, BooleanOp::Intersection}) {
-    const BooleanResult r = compute_boolean(a, b, op);
-    ASSERT_TRUE(r.ok()) << r.message;
-    EXPECT_TRUE(check_mesh(r.mesh, kValidityOnly).valid_solid());
-    volume[op == BooleanOp::Union ? 0 : 1] = signed_volume(r.mesh);
+  for (const int count : {3, 9}) {
+    const Mesh a = transformed(tubes(count), kTurn);
+    ASSERT_GT(a.num_triangles() * b.num_triangles(), 4096u);  // step 2 by trees
+    ASSERT_FALSE(frame_of(a).world);
+    const detail::PointTable both(a, b);
+    const auto& xyz = both.input_near_doubles();
+    ASSERT_FALSE(detail::choose_box_frame(a, xyz.data(), b, xyz.data() + both.vertex(1, 0)).world);
+    FT volume[2];
+    for (const BooleanOp op : {BooleanOp::Union, BooleanOp::Intersection}) {
+      const BooleanResult r = compute_boolean(a, b, op);
+      ASSERT_TRUE(r.ok()) << r.message;
+      EXPECT_TRUE(check_mesh(r.mesh, kValidityOnly).valid_solid()) << count;
+      volume[op == BooleanOp::Union ? 0 : 1] = signed_volume(r.mesh);
+    }
+    EXPECT_GT(volume[1], 0);
+    EXPECT_EQ(volume[0] + volume[1], signed_volume(a) + signed_volume(b)) << count;
   }
-  EXPECT_GT(volume[1], 0);
-  EXPECT_EQ(volume[0] + volume[1], signed_volume(a) + signed_volume(b));
 }

@@ -66,6 +66,10 @@ BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
   // vertices from its contiguous copy of their intervals.
   detail::PointTable points(a, b);
   trees.use_points(&points);
+  // Turned CAD parts are paired along their own axes, where their long thin facets' boxes are
+  // tight (box_frame.h).
+  if (const auto& xyz = points.input_near_doubles(); !xyz.empty())
+    trees.use_frame(detail::choose_box_frame(a, xyz.data(), b, xyz.data() + points.vertex(1, 0)));
   const auto pairs = detail::candidate_pairs(a, b, trees);
   stats.candidate_pairs = pairs.size();
   stats.seconds.pairs = clock.lap();

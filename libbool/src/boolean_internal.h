@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "box_frame.h"
 #include "morphex/boolean.h"
 #include "morphex/union_find.h"
 #include "point_table.h"
@@ -39,37 +40,39 @@ using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
 
 // The box trees of the two operands, each built at most once per Boolean: by the input check,
 // else by step 2 when it indexes that operand, else by step 6 when a patch of the other operand
-// needs a ray cast. The two sides' classifications run at once, each reading only the other side's
+// needs a ray cast. When step 2 boxes along the axes of a turned part, it builds trees of its own
+// along them. The two sides' classifications run at once, each reading only the other side's
 // slot.
 class OperandTrees {
  public:
   // The point table of the two operands, when the Boolean has built it (its contiguous copy of the
   // vertices' intervals boxes them without reading each Point again).
   void use_points(const PointTable* points) { points_ = points; }
-  const TriangleTree& of(int side, const Mesh& mesh) {
-    if (!tree_[side]) {
-      if (points_)
-        tree_[side].emplace(mesh, vertex_boxes(side, mesh));
-      else
-        tree_[side].emplace(mesh);
-    }
-    return *tree_[side];
-  }
-  // The boxes of that side's triangles, from the table when there is one.
-  std::vector<FloatBox> triangle_boxes_of(int side, const Mesh& mesh) const {
-    return points_ ? triangle_boxes(mesh, vertex_boxes(side, mesh)) : triangle_boxes(mesh);
-  }
-  // A tree over every triangle of that side's mesh, built elsewhere (by the input check).
+  // The axes step 2 boxes both operands along (box_frame.h: a turned CAD part's own); the
+  // coordinate axes unless set. Needs the point table.
+  void use_frame(const BoxFrame& frame) { frame_ = frame; }
+  // A tree over every triangle of that side's mesh, along the coordinate axes: step 6 casts rays
+  // through it, and step 2 pairs with it when its frame is the coordinate axes.
+  const TriangleTree& of(int side, const Mesh& mesh);
+  // The tree step 2 pairs with: along its frame.
+  const TriangleTree& for_pairs(int side, const Mesh& mesh);
+  // The boxes of that side's triangles along step 2's frame.
+  std::vector<FloatBox> triangle_boxes_of(int side, const Mesh& mesh) const;
+  // Vertex v of that side as step 2's frame sees it (the caller rounds upward).
+  ApproxPoint corner(int side, const Mesh& mesh, VertexIndex v) const;
+  // A tree over every triangle of that side's mesh along the coordinate axes, built elsewhere
+  // (by the input check).
   void adopt(int side, std::optional<TriangleTree>&& tree) {
     if (tree) tree_[side] = std::move(tree);
   }
 
  private:
-  // The boxes of that side's vertices, by vertex index, from the table.
-  std::vector<FloatBox> vertex_boxes(int side, const Mesh& mesh) const;
+  // The boxes of that side's vertices, by vertex index, along `frame`.
+  std::vector<FloatBox> vertex_boxes(int side, const Mesh& mesh, const BoxFrame& frame) const;
 
-  std::optional<TriangleTree> tree_[2];
+  std::optional<TriangleTree> tree_[2], framed_[2];
   const PointTable* points_ = nullptr;
+  BoxFrame frame_;
 };
 
 // Step 2: pairs (ta, tb) whose boxes overlap; the trees it builds are kept in `trees`.

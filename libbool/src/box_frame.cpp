@@ -97,17 +97,40 @@ std::array<Xyz, 3> dominant_axes(const std::vector<Cluster>& clusters) {
   return {first, second, cross(first, second)};
 }
 
+// A mesh's sampled faces (every stride-th with a finite nonzero normal) and their facings.
+struct Sample {
+  const Mesh* mesh = nullptr;
+  const Xyz* xyz = nullptr;
+  std::vector<std::uint32_t> faces;
+  std::vector<Facing> facings;
+};
+
+Sample sample_of(const Mesh& mesh, const Xyz* xyz, std::size_t faces) {
+  Sample s{&mesh, xyz, {}, {}};
+  const std::size_t nf = mesh.num_triangles();
+  if (!xyz || nf == 0) return s;
+  const std::size_t stride = std::max<std::size_t>(1, nf / faces);
+  for (std::size_t t = 0; t < nf; t += stride) {
+    const Triangle& f = mesh.triangles[t];
+    const Xyz n = cross(minus(xyz[f[1]], xyz[f[0]]), minus(xyz[f[2]], xyz[f[0]]));
+    const double area = std::sqrt(dot(n, n));
+    if (!(area > 0 && std::isfinite(area))) continue;
+    s.faces.push_back(std::uint32_t(t));
+    s.facings.push_back(facing(n, area));
+  }
+  return s;
+}
+
 // How much the boxes of the sampled faces spread, along given axes: the sum of their boxes'
 // pairwise products of extents (about the area they present to one another).
-double spread(const Mesh& mesh, const std::vector<Xyz>& xyz,
-              const std::vector<std::uint32_t>& faces, const std::array<Xyz, 3>& axes) {
+double spread(const Sample& s, const std::array<Xyz, 3>& axes) {
   double total = 0;
-  for (const std::uint32_t t : faces) {
+  for (const std::uint32_t t : s.faces) {
     double e[3];
     for (int k = 0; k < 3; ++k) {
       double lo = INFINITY, hi = -INFINITY;
-      for (const VertexIndex v : mesh.triangles[t]) {
-        const double c = dot(axes[k], xyz[v]);
+      for (const VertexIndex v : s.mesh->triangles[t]) {
+        const double c = dot(axes[k], s.xyz[v]);
         lo = std::min(lo, c), hi = std::max(hi, c);
       }
       e[k] = hi - lo;
@@ -117,51 +140,53 @@ double spread(const Mesh& mesh, const std::vector<Xyz>& xyz,
   return total;
 }
 
-FloatBox box_of(const BoxFrame& frame, const I (&p)[3]) {
-  double lo[3], hi[3];
-  for (int k = 0; k < 3; ++k) {
-    const Xyz& a = frame.axis[k];
-    const I c = a[0] * p[0] + a[1] * p[1] + a[2] * p[2];
-    lo[k] = c.inf(), hi[k] = c.sup();
+// The axes of a sample's dominant normals that shrink the boxes of all samples the most, when
+// by at least kGain; else the coordinate axes.
+BoxFrame best_frame(const std::vector<Sample>& samples) {
+  auto spread_along = [&](const std::array<Xyz, 3>& axes) {
+    double total = 0;
+    for (const Sample& s : samples) total += spread(s, axes);
+    return total;
+  };
+  BoxFrame best;
+  double least = kGain * spread_along({Xyz{1, 0, 0}, Xyz{0, 1, 0}, Xyz{0, 0, 1}});
+  for (const Sample& s : samples) {
+    if (s.facings.empty()) continue;
+    const std::array<Xyz, 3> axes = dominant_axes(clusters_of(s.facings));
+    const double along = spread_along(axes);
+    if (along < least) least = along, best.world = false, best.axis = axes;  // false for NaN
   }
-  return FloatBox::of(CGAL::Bbox_3(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]));
+  return best;
 }
 
 }  // namespace
 
 BoxFrame choose_box_frame(const Mesh& mesh, const std::vector<Xyz>& xyz) {
-  const std::size_t nf = mesh.num_triangles();
-  if (xyz.empty() || nf == 0) return {};
-  const std::size_t stride = std::max<std::size_t>(1, nf / kSampleFaces);
-  std::vector<std::uint32_t> sample;
-  std::vector<Facing> facings;
-  for (std::size_t t = 0; t < nf; t += stride) {
-    const Triangle& f = mesh.triangles[t];
-    const Xyz n = cross(minus(xyz[f[1]], xyz[f[0]]), minus(xyz[f[2]], xyz[f[0]]));
-    const double area = std::sqrt(dot(n, n));
-    if (!(area > 0 && std::isfinite(area))) continue;
-    sample.push_back(std::uint32_t(t));
-    facings.push_back(facing(n, area));
+  return best_frame({sample_of(mesh, xyz.empty() ? nullptr : xyz.data(), kSampleFaces)});
+}
+
+BoxFrame choose_box_frame(const Mesh& a, const Xyz* xyz_a, const Mesh& b, const Xyz* xyz_b) {
+  return best_frame({sample_of(a, xyz_a, kSampleFaces / 2), sample_of(b, xyz_b, kSampleFaces / 2)});
+}
+
+ApproxPoint point_in_frame(const BoxFrame& frame, const ApproxPoint& p) {
+  if (frame.world) return p;
+  I c[3];
+  for (int k = 0; k < 3; ++k) {
+    const Xyz& a = frame.axis[k];
+    c[k] = a[0] * p.x() + a[1] * p.y() + a[2] * p.z();
   }
-  if (facings.empty()) return {};
-  BoxFrame frame;
-  frame.axis = dominant_axes(clusters_of(std::move(facings)));
-  const std::array<Xyz, 3> world = {Xyz{1, 0, 0}, Xyz{0, 1, 0}, Xyz{0, 0, 1}};
-  const double along_frame = spread(mesh, xyz, sample, frame.axis),
-               along_world = spread(mesh, xyz, sample, world);
-  frame.world = !(along_frame < kGain * along_world);  // also when either is not finite
-  return frame;
+  return {c[0], c[1], c[2]};
 }
 
 FloatBox box_in_frame(const BoxFrame& frame, const ApproxPoint& p) {
-  if (frame.world) return FloatBox::of(p);
-  return box_of(frame, {p.x(), p.y(), p.z()});
+  return FloatBox::of(point_in_frame(frame, p));
 }
 
 FloatBox box_in_frame(const BoxFrame& frame, const CGAL::Bbox_3& box) {
   if (frame.world) return FloatBox::of(box);
-  return box_of(frame,
-                {I(box.xmin(), box.xmax()), I(box.ymin(), box.ymax()), I(box.zmin(), box.zmax())});
+  return FloatBox::of(point_in_frame(
+      frame, {I(box.xmin(), box.xmax()), I(box.ymin(), box.ymax()), I(box.zmin(), box.zmax())}));
 }
 
 }  // namespace morphex::detail

@@ -32,9 +32,14 @@ struct BoxFrame {
 // a heuristic, which decides the speed of a traversal and never its result). World axes when
 // `xyz` is empty.
 BoxFrame choose_box_frame(const Mesh& mesh, const std::vector<Xyz>& xyz);
+// The same for boxing two meshes together (the Boolean's pairs): the axes of either, whichever
+// shrinks the boxes of both the most. xyz_a and xyz_b point at the doubles of each mesh's first
+// vertex (null: world axes).
+BoxFrame choose_box_frame(const Mesh& a, const Xyz* xyz_a, const Mesh& b, const Xyz* xyz_b);
 
-// The box of an interval point, or of a box, in the frame's coordinates: it holds the image of
-// every point the argument holds. The caller rounds upward (UpwardRounding).
+// An interval point, or the box of an interval point or of a box, in the frame's coordinates: it
+// holds the image of every point the argument holds. The caller rounds upward (UpwardRounding).
+ApproxPoint point_in_frame(const BoxFrame& frame, const ApproxPoint& p);
 FloatBox box_in_frame(const BoxFrame& frame, const ApproxPoint& p);
 FloatBox box_in_frame(const BoxFrame& frame, const CGAL::Bbox_3& box);
 

@@ -4,7 +4,8 @@
 // once; when one mesh is much smaller (a coarse box against a fine sphere), the seed's tree on
 // the smaller mesh alone, queried with the boxes of the other, where a box is kept only when the
 // large facet's plane may cross it (a coarse facet's box holds many fine triangles its plane
-// does not reach: they are not worth the exact tests of step 3).
+// does not reach: they are not worth the exact tests of step 3). Boxes and planes are taken along
+// the axes OperandTrees::use_frame sets (a turned CAD part's own: box_frame.h).
 #include <CGAL/FPU.h>
 #include <CGAL/Interval_nt.h>
 #include <tbb/parallel_for.h>
@@ -26,10 +27,7 @@ struct IntervalPlane {
   Interval n[3], d;
 };
 
-IntervalPlane plane_of(const Mesh& m, std::uint32_t t) {
-  const auto& a = CGAL::approx(m.points[m.triangles[t][0]]);
-  const auto& b = CGAL::approx(m.points[m.triangles[t][1]]);
-  const auto& c = CGAL::approx(m.points[m.triangles[t][2]]);
+IntervalPlane plane_of(const ApproxPoint& a, const ApproxPoint& b, const ApproxPoint& c) {
   const auto n = CGAL::cross_product(b - a, c - a);
   return {{n.x(), n.y(), n.z()}, n.x() * a.x() + n.y() * a.y() + n.z() * a.z()};
 }
@@ -48,12 +46,42 @@ bool plane_may_cross(const IntervalPlane& p, const FloatBox& box) {
 
 }  // namespace
 
-std::vector<FloatBox> OperandTrees::vertex_boxes(int side, const Mesh& mesh) const {
+std::vector<FloatBox> OperandTrees::vertex_boxes(int side, const Mesh& mesh,
+                                                 const BoxFrame& frame) const {
   std::vector<FloatBox> boxes(mesh.num_vertices());
-  tbb::parallel_for(std::size_t(0), boxes.size(), [&](std::size_t v) {
-    boxes[v] = FloatBox::of(points_->approx(points_->vertex(side, VertexIndex(v))));
-  });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, boxes.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      const UpwardRounding rounding;
+                      for (std::size_t v = range.begin(); v != range.end(); ++v)
+                        boxes[v] = box_in_frame(
+                            frame, points_->approx(points_->vertex(side, VertexIndex(v))));
+                    });
   return boxes;
+}
+
+const TriangleTree& OperandTrees::of(int side, const Mesh& mesh) {
+  if (!tree_[side]) {
+    if (points_)
+      tree_[side].emplace(mesh, vertex_boxes(side, mesh, BoxFrame{}));
+    else
+      tree_[side].emplace(mesh);
+  }
+  return *tree_[side];
+}
+
+const TriangleTree& OperandTrees::for_pairs(int side, const Mesh& mesh) {
+  if (frame_.world) return of(side, mesh);
+  if (!framed_[side]) framed_[side].emplace(mesh, vertex_boxes(side, mesh, frame_));
+  return *framed_[side];
+}
+
+std::vector<FloatBox> OperandTrees::triangle_boxes_of(int side, const Mesh& mesh) const {
+  return points_ ? triangle_boxes(mesh, vertex_boxes(side, mesh, frame_)) : triangle_boxes(mesh);
+}
+
+ApproxPoint OperandTrees::corner(int side, const Mesh& mesh, VertexIndex v) const {
+  if (!points_) return CGAL::approx(mesh.points[v]);
+  return point_in_frame(frame_, points_->approx(points_->vertex(side, v)));
 }
 
 Pairs candidate_pairs(const Mesh& a, const Mesh& b, OperandTrees& trees) {
@@ -76,17 +104,24 @@ Pairs candidate_pairs(const Mesh& a, const Mesh& b, OperandTrees& trees) {
   }
   if (std::max(na, nb) < 8 * std::min(na, nb)) {
     // Both trees at once: the upper levels of a tree are built sequentially.
-    tbb::parallel_invoke([&] { trees.of(0, a); }, [&] { trees.of(1, b); });
-    return TriangleTree::overlapping_pairs(trees.of(0, a), trees.of(1, b));
+    tbb::parallel_invoke([&] { trees.for_pairs(0, a); }, [&] { trees.for_pairs(1, b); });
+    return TriangleTree::overlapping_pairs(trees.for_pairs(0, a), trees.for_pairs(1, b));
   }
   const bool tree_on_a = na < nb;
   const Mesh& indexed = tree_on_a ? a : b;
   const Mesh& queries = tree_on_a ? b : a;
-  const TriangleTree& tree = trees.of(tree_on_a ? 0 : 1, indexed);
+  const int indexed_side = tree_on_a ? 0 : 1;
+  const TriangleTree& tree = trees.for_pairs(indexed_side, indexed);
+  // The planes as the tree's frame sees them (a linear map takes a plane to a plane).
   std::vector<IntervalPlane> planes(indexed.num_triangles());
   {
     const CGAL::Protect_FPU_rounding<true> upward;
-    for (std::uint32_t t = 0; t < planes.size(); ++t) planes[t] = plane_of(indexed, t);
+    for (std::uint32_t t = 0; t < planes.size(); ++t) {
+      const Triangle& f = indexed.triangles[t];
+      planes[t] = plane_of(trees.corner(indexed_side, indexed, f[0]),
+                           trees.corner(indexed_side, indexed, f[1]),
+                           trees.corner(indexed_side, indexed, f[2]));
+    }
   }
   // Queries in blocks, each block's pairs in its own vector, concatenated in block order.
   constexpr std::uint32_t kBlock = 1024;
