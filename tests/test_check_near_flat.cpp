@@ -69,12 +69,20 @@ TEST(NearFlat, ImproperPairsAgreeWithBruteForce) {
 // The boxes the slab test relies on hold what they claim, checked on exact points: every point
 // of a triangle lies in one of its pieces' boxes, and every point of it within a slab lies in
 // the box of its part in the slab (none when the triangle is said to be outside). Thin
-// triangles in all directions, some with rational corners (intervals wider than a point).
+// triangles in all directions, some with rational corners (intervals wider than a point), with
+// the boxes along the coordinate axes and along a turned frame (box_frame.h: the boxes hold the
+// images of the points).
 TEST(NearFlat, PiecesAndSlabPartsHoldTheirTriangles) {
   std::mt19937 random(37);
   std::uniform_real_distribution<double> coordinate(-1, 1);
   constexpr int kSteps = 12;  // points i/kSteps, j/kSteps of the triangle, corners and edges too
   int outside = 0, pieces_used = 0;
+  // The coordinate axes, and a turned frame (any linear map: the boxes hold the images).
+  detail::BoxFrame frames[2];
+  frames[1].world = false;
+  frames[1].axis = {detail::Xyz{0.2, -0.4, 0.8944271909999159},
+                    detail::Xyz{0.9128709291752769, 0.4082482904638631, 0.0},
+                    detail::Xyz{-0.3651483716701107, 0.816496580927726, 0.4472135954999579}};
   for (int trial = 0; trial < 300; ++trial) {
     Mesh m;
     const Point a(coordinate(random), coordinate(random), coordinate(random));
@@ -92,18 +100,25 @@ TEST(NearFlat, PiecesAndSlabPartsHoldTheirTriangles) {
     slab.normal = {coordinate(random), coordinate(random), coordinate(random)};
     slab.low = coordinate(random);
     slab.high = slab.low + std::abs(coordinate(random)) / 4;
+    const detail::BoxFrame& frame = frames[trial % 2];
     std::vector<CGAL::Bbox_3> pieces;
     std::optional<CGAL::Bbox_3> part;
     {
       const detail::UpwardRounding rounding;
-      detail::add_pieces(table, t, detail::pieces_for(table, t), pieces);
-      part = detail::part_in_slab(table, slab, t);
+      const detail::Corners corners = detail::corners_in(table, frame, t);
+      detail::add_pieces(corners, detail::pieces_for(corners), pieces);
+      part = detail::part_in_slab(table, slab, t, frame);
     }
     pieces_used += pieces.size() > 1;
     outside += !part;
-    auto in = [](const Point& p, const CGAL::Bbox_3& b) {
-      for (int k = 0; k < 3; ++k)
-        if (p[k] < b.min(k) || p[k] > b.max(k)) return false;
+    // The exact image of p along the frame's axes lies in the box.
+    auto in = [&](const Point& p, const CGAL::Bbox_3& b) {
+      for (int k = 0; k < 3; ++k) {
+        const FT x = frame.world ? p[k]
+                                 : p.x() * frame.axis[k][0] + p.y() * frame.axis[k][1] +
+                                       p.z() * frame.axis[k][2];
+        if (x < b.min(k) || x > b.max(k)) return false;
+      }
       return true;
     };
     for (int i = 0; i <= kSteps; ++i)

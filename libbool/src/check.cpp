@@ -367,6 +367,7 @@ std::vector<std::uint32_t> patch_candidates(const Mesh& mesh, const PointTable& 
                                             const std::vector<PointId>& position,
                                             const detail::PlanarPatches& planar,
                                             const TriangleTree& rest, const TriangleTree& patched,
+                                            const detail::BoxFrame& frame,
                                             const std::vector<FloatBox>& vertex_boxes,
                                             std::size_t p, std::vector<CGAL::Bbox_3>& parts) {
   const detail::PlanarPatch& patch = planar.patches[p];
@@ -375,7 +376,7 @@ std::vector<std::uint32_t> patch_candidates(const Mesh& mesh, const PointTable& 
     const Triangle& f = mesh.triangles[t];
     const std::array<PointId, 3> corners = {position[f[0]], position[f[1]], position[f[2]]};
     if (patch.kind == detail::PlanarPatch::Kind::NearlyFlat) {
-      if (const auto part = detail::part_in_slab(table, patch, corners)) {
+      if (const auto part = detail::part_in_slab(table, patch, corners, frame)) {
         out.push_back(t);
         parts.push_back(*part);
       }
@@ -400,7 +401,8 @@ std::vector<std::uint32_t> patch_candidates(const Mesh& mesh, const PointTable& 
 // candidate's part in its slab, and of those only the ones that its projection does not clear.
 template <class Test>
 void slab_pairs(const Mesh& mesh, const PointTable& table, const std::vector<PointId>& position,
-                const detail::PlanarPatch& slab, const std::vector<std::uint32_t>& candidates,
+                const detail::BoxFrame& frame, const detail::PlanarPatch& slab,
+                const std::vector<std::uint32_t>& candidates,
                 const std::vector<CGAL::Bbox_3>& parts, Test&& test) {
   auto corners = [&](std::uint32_t t) {
     const Triangle& f = mesh.triangles[t];
@@ -412,11 +414,12 @@ void slab_pairs(const Mesh& mesh, const PointTable& table, const std::vector<Poi
   std::vector<FloatBox> boxes;
   std::vector<std::uint32_t> ids;
   std::vector<detail::EdgeLines> lines(slab.triangles.size());
+  const int dropped = detail::dropped_in(frame, slab);
   for (std::uint32_t k = 0; k < slab.triangles.size(); ++k) {
     pieces.clear();
-    const std::array<PointId, 3> c = corners(slab.triangles[k]);
-    lines[k] = detail::edge_lines(table, slab, c);
-    detail::add_pieces(table, c, detail::pieces_for(table, c), pieces);
+    const detail::Corners c = detail::corners_in(table, frame, corners(slab.triangles[k]));
+    lines[k] = detail::edge_lines(c, dropped);
+    detail::add_pieces(c, detail::pieces_for(c), pieces);
     for (const CGAL::Bbox_3& b : pieces) {
       boxes.push_back(FloatBox::of(b));
       ids.push_back(k);
@@ -506,8 +509,8 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
       proved.empty() ? nullptr : &proved_corners);
   tbb::parallel_for(std::size_t(0), planar.patches.size(), [&](std::size_t p) {
     std::vector<CGAL::Bbox_3> parts;
-    const std::vector<std::uint32_t> candidates =
-        patch_candidates(mesh, table, position, planar, tree, patched, vertex_boxes, p, parts);
+    const std::vector<std::uint32_t> candidates = patch_candidates(
+        mesh, table, position, planar, tree, patched, frame, vertex_boxes, p, parts);
     if (candidates.empty()) return;
     const detail::UpwardRounding rounding;
     Found& f = found[tree.self_pair_tasks() + p];
@@ -522,7 +525,7 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
       if (test.improper(mesh.triangles[i], mesh.triangles[j])) f.add(i, j, list);
     };
     if (planar.patches[p].kind == detail::PlanarPatch::Kind::NearlyFlat) {
-      slab_pairs(mesh, table, position, planar.patches[p], candidates, parts, test_pair);
+      slab_pairs(mesh, table, position, frame, planar.patches[p], candidates, parts, test_pair);
     } else {
       const TriangleTree patch(mesh, vertex_boxes, planar.patches[p].triangles);
       for (const auto& [i, j] :

@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "box_frame.h"
 #include "check_planes.h"
 #include "morphex/mesh.h"
 #include "point_table.h"
@@ -75,14 +76,25 @@ void add_near_flat_patches(const Mesh& mesh, const PointTable& table, const Face
                            const ManifoldEdges& manifold, std::size_t min_triangles,
                            PlanarPatches& groups);
 
-// The part of triangle t (by positions) inside the slab of `patch` (NearlyFlat) lies in the
-// returned box; nullopt when t lies strictly outside the slab. The caller rounds upward.
-std::optional<CGAL::Bbox_3> part_in_slab(const PointTable& table, const PlanarPatch& patch,
-                                         const std::array<PointId, 3>& t);
+// A triangle's corners as intervals in the coordinates its boxes are taken in: along the
+// coordinate axes, or along the axes of a turned part (box_frame.h). The slab tests below hold
+// in any of them: a linear map keeps a triangle's part, its slices and its projections apart
+// from a box apart. The caller rounds upward.
+using Corners = std::array<ApproxPoint, 3>;
+Corners corners_in(const PointTable& table, const BoxFrame& frame, const std::array<PointId, 3>& t);
+// The axis of `frame` to see the slab patch along: the one closest to its normal.
+int dropped_in(const BoxFrame& frame, const PlanarPatch& patch);
 
-// Triangle t (by positions) seen along the slab patch's axis: the lines of its edges that tell
-// its inside (those whose third corner is certainly on one side), in interval arithmetic, with
-// the corner of a box each line reaches first. The caller rounds upward.
+// The part of triangle t (by positions) inside the slab of `patch` (NearlyFlat) lies in the
+// returned box, taken along `frame`; nullopt when t lies strictly outside the slab. The caller
+// rounds upward.
+std::optional<CGAL::Bbox_3> part_in_slab(const PointTable& table, const PlanarPatch& patch,
+                                         const std::array<PointId, 3>& t,
+                                         const BoxFrame& frame = {});
+
+// A triangle seen along the axis `dropped` (its corners in any coordinates): the lines of its
+// edges that tell its inside (those whose third corner is certainly on one side), in interval
+// arithmetic, with the corner of a box each line reaches first. The caller rounds upward.
 struct EdgeLines {
   struct Line {
     CGAL::Interval_nt<false> ex, ey, x, y;  // the edge's direction and first corner
@@ -93,12 +105,11 @@ struct EdgeLines {
   int count = 0;
   Line line[3];
 };
-EdgeLines edge_lines(const PointTable& table, const PlanarPatch& patch,
-                     const std::array<PointId, 3>& t);
+EdgeLines edge_lines(const Corners& t, int dropped);
 
-// Seen along the slab patch's axis, the triangle of `lines` and the box `part` are certainly
-// apart (a line through an edge has the box strictly on its outer side): then they do not meet.
-// The caller rounds upward.
+// Seen along the lines' axis, the triangle of `lines` and the box `part` (in the same
+// coordinates) are certainly apart (a line through an edge has the box strictly on its outer side):
+// then they do not meet. The caller rounds upward.
 bool apart_along_axis(const EdgeLines& lines, const CGAL::Bbox_3& part);
 
 // (q - p) x (r - p) for triangle t = (p, q, r), in doubles from the lower ends of the corners'
@@ -108,11 +119,10 @@ std::array<double, 3> rough_cross(const PointTable& table, const std::array<Poin
 // How many pieces to box triangle t in: 1, or for a long thin triangle lying diagonally up to
 // 16 (its box is then far larger than itself, and a box traversal pairs it with everything
 // near it). A degenerate triangle gets 1.
-int pieces_for(const PointTable& table, const std::array<PointId, 3>& t);
+int pieces_for(const Corners& t);
 // Boxes that together hold triangle t: its box (pieces = 1), or the boxes of `pieces` slices
 // across its longest extent. The caller rounds upward.
-void add_pieces(const PointTable& table, const std::array<PointId, 3>& t, int pieces,
-                std::vector<CGAL::Bbox_3>& out);
+void add_pieces(const Corners& t, int pieces, std::vector<CGAL::Bbox_3>& out);
 
 // Vertex stars of at least `min_triangles` triangles outside `groups` whose projection along
 // a coordinate axis is one fan turning one way and wrapping at most once: then no two of them
