@@ -34,6 +34,9 @@ bool coplanar_across(const Mesh& mesh, const PointTable& table, const FacePlanes
                      const std::pair<std::uint64_t, std::array<std::uint32_t, 2>>& link) {
   const auto [fi, gi] = link.second;
   if (degenerate[fi] || degenerate[gi]) return false;
+  // Faces bent apart are not worth the tests below (a missed pair of coplanar faces only leaves
+  // them to the pair tests: patches are a speed-up).
+  if (planes.bent(fi, gi)) return false;
   // Most edges of a curved surface are not flat: f's plane in doubles says so without the
   // positions. Only a certain nonzero side is taken; a vertex coincident with one of f's gives
   // zero and goes on below.

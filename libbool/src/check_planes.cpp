@@ -10,6 +10,7 @@ FacePlanes::FacePlanes(const Mesh& mesh, const std::vector<Xyz>& xyz, double err
     : xyz_(xyz), error_(error) {
   if (xyz.empty()) return;
   planes_.resize(mesh.num_triangles());
+  units_.resize(mesh.num_triangles());
   tbb::parallel_for(std::size_t(0), mesh.num_triangles(), [&](std::size_t t) {
     const Triangle& f = mesh.triangles[t];
     const Xyz &p = xyz[f[0]], &q = xyz[f[1]], &r = xyz[f[2]];
@@ -24,6 +25,11 @@ FacePlanes::FacePlanes(const Mesh& mesh, const std::vector<Xyz>& xyz, double err
       plane.magnitude[k] = std::fabs(a[i] * b[j]) + std::fabs(a[j] * b[i]);
       plane.reach = std::max({plane.reach, std::fabs(a[k]), std::fabs(b[k])});
     }
+    const double* n = plane.normal;
+    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    units_[t] = length > 0 && std::isfinite(length)
+                    ? Xyz{n[0] / length, n[1] / length, n[2] / length}
+                    : Xyz{0, 0, 0};
   });
 }
 

@@ -53,11 +53,16 @@ class FacePlanes {
 
   // Triangle f's normal of unit length (zero when too small to normalize): a rough quantity, to
   // group faces, never a decision. Not on an empty set of planes.
-  std::array<double, 3> unit_normal(std::uint32_t f) const {
-    const double* n = planes_[f].normal;
-    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    if (!(length > 0) || !std::isfinite(length)) return {0, 0, 0};
-    return {n[0] / length, n[1] / length, n[2] / length};
+  const Xyz& unit_normal(std::uint32_t f) const { return units_[f]; }
+
+  // The normals of f and g differ by more than about 5e-5 radians (by their rough unit normals,
+  // whose errors stay far below that unless a face is thinner than an angle of about 1e-8). A
+  // screen for searches that only look for faces to group (the coplanar search: a pair it skips
+  // goes through the pair tests instead), never a decision; false without planes.
+  bool bent(std::uint32_t f, std::uint32_t g) const {
+    if (units_.empty()) return false;
+    const Xyz &a = units_[f], &b = units_[g];
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] < 1 - 1e-9;
   }
 
  private:
@@ -87,6 +92,7 @@ class FacePlanes {
   const std::vector<Xyz>& xyz_;
   const double error_;
   std::vector<Plane> planes_;
+  std::vector<Xyz> units_;  // unit normals, apart from the records: searches read only these
 };
 
 }  // namespace morphex::detail
