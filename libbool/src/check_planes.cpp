@@ -2,35 +2,60 @@
 // Each triangle's plane in doubles (check_planes.h).
 #include "check_planes.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+
+#include <thread>
 
 namespace morphex::detail {
 
 FacePlanes::FacePlanes(const Mesh& mesh, const std::vector<Xyz>& xyz, double error)
-    : xyz_(xyz), error_(error) {
+    : mesh_(mesh), xyz_(xyz), error_(error) {
   if (xyz.empty()) return;
-  planes_.resize(mesh.num_triangles());
-  units_.resize(mesh.num_triangles());
-  tbb::parallel_for(std::size_t(0), mesh.num_triangles(), [&](std::size_t t) {
-    const Triangle& f = mesh.triangles[t];
-    const Xyz &p = xyz[f[0]], &q = xyz[f[1]], &r = xyz[f[2]];
-    const double a[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-    const double b[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
-    Plane& plane = planes_[t];
-    plane.reach = 0;
-    plane.corner[0] = p, plane.corner[1] = q, plane.corner[2] = r;
-    for (int k = 0; k < 3; ++k) {
-      const int i = (k + 1) % 3, j = (k + 2) % 3;
-      plane.normal[k] = a[i] * b[j] - a[j] * b[i];
-      plane.magnitude[k] = std::fabs(a[i] * b[j]) + std::fabs(a[j] * b[i]);
-      plane.reach = std::max({plane.reach, std::fabs(a[k]), std::fabs(b[k])});
-    }
-    const double* n = plane.normal;
-    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    units_[t] = length > 0 && std::isfinite(length)
-                    ? Xyz{n[0] / length, n[1] / length, n[2] / length}
-                    : Xyz{0, 0, 0};
-  });
+  const std::size_t nf = mesh.num_triangles();
+  planes_.reset(new Plane[nf]);
+  state_.reset(new std::atomic<std::uint8_t>[nf]);
+  units_.resize(nf);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nf, 4096),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t t = range.begin(); t != range.end(); ++t) {
+                        state_[t].store(kNone, std::memory_order_relaxed);
+                        const Triangle& f = mesh.triangles[t];
+                        const Xyz &p = xyz[f[0]], &q = xyz[f[1]], &r = xyz[f[2]];
+                        const Xyz a = {q[0] - p[0], q[1] - p[1], q[2] - p[2]},
+                                  b = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+                        const Xyz n = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                                       a[0] * b[1] - a[1] * b[0]};
+                        const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+                        units_[t] = length > 0 && std::isfinite(length)
+                                        ? Xyz{n[0] / length, n[1] / length, n[2] / length}
+                                        : Xyz{0, 0, 0};
+                      }
+                    });
+}
+
+const FacePlanes::Plane& FacePlanes::publish(std::uint32_t t) const {
+  std::uint8_t expected = kNone;
+  if (!state_[t].compare_exchange_strong(expected, kBusy, std::memory_order_acquire)) {
+    while (state_[t].load(std::memory_order_acquire) != kReady)
+      std::this_thread::yield();  // another thread is writing it
+    return planes_[t];
+  }
+  const Triangle& f = mesh_.triangles[t];
+  const Xyz &p = xyz_[f[0]], &q = xyz_[f[1]], &r = xyz_[f[2]];
+  const double a[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+  const double b[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+  Plane& plane = planes_[t];
+  plane.reach = 0;
+  plane.corner[0] = p, plane.corner[1] = q, plane.corner[2] = r;
+  for (int k = 0; k < 3; ++k) {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    plane.normal[k] = a[i] * b[j] - a[j] * b[i];
+    plane.magnitude[k] = std::fabs(a[i] * b[j]) + std::fabs(a[j] * b[i]);
+    plane.reach = std::max({plane.reach, std::fabs(a[k]), std::fabs(b[k])});
+  }
+  state_[t].store(kReady, std::memory_order_release);
+  return plane;
 }
 
 }  // namespace morphex::detail

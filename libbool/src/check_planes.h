@@ -1,14 +1,16 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Each triangle's plane in doubles, computed once per check and read by three of its passes: the
-// coplanar search (which edges certainly do not join two faces of one plane), the near-flat
-// search (the faces' rough normals) and the self-intersection traversal (pairs settled by one
-// side of a plane).
+// Each triangle's plane in doubles, computed at most once per check and read by three of its
+// passes: the coplanar search (which edges certainly do not join two faces of one plane), the
+// near-flat search (the faces' rough normals) and the self-intersection traversal (pairs settled
+// by one side of a plane).
 #pragma once
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -29,19 +31,19 @@ class FacePlanes {
   // Without doubles (`xyz` empty: coordinates out of the filters' range) every test declines.
   FacePlanes(const Mesh& mesh, const std::vector<Xyz>& xyz, double error);
 
-  bool empty() const { return planes_.empty(); }
+  bool empty() const { return units_.empty(); }
 
   // The sign of vertex x's side of triangle g's plane, when the doubles decide it.
   std::optional<int> side(std::uint32_t g, VertexIndex x) const {
-    if (planes_.empty()) return std::nullopt;
-    return side(planes_[g], xyz_[x]);
+    if (units_.empty()) return std::nullopt;
+    return side(plane(g), xyz_[x]);
   }
 
   // All corners of triangle f lie strictly on one side of triangle g's plane (by doubles alone:
   // false when undecided). Then f and g do not meet.
   bool beside(std::uint32_t f, std::uint32_t g) const {
-    if (planes_.empty()) return false;
-    const Plane &plane = planes_[g], &of_f = planes_[f];
+    if (units_.empty()) return false;
+    const Plane &plane = this->plane(g), &of_f = this->plane(f);
     int side_of_f = 0;
     for (const Xyz& x : of_f.corner) {
       const std::optional<int> s = side(plane, x);
@@ -73,6 +75,16 @@ class FacePlanes {
     double reach;  // the largest coordinate of q - p and r - p
     Xyz corner[3];
   };
+  // Face f's record, computed on its first use by whichever thread gets there first (others wait
+  // the few nanoseconds it takes). Most faces of a smooth surface never need one: the traversal
+  // meets few pairs that share no proved vertex, and the coplanar search screens by the unit
+  // normals; writing every face's record was 5% of checking such a mesh.
+  const Plane& plane(std::uint32_t f) const {
+    if (state_[f].load(std::memory_order_acquire) == kReady) return planes_[f];
+    return publish(f);
+  }
+  const Plane& publish(std::uint32_t f) const;
+  static constexpr std::uint8_t kNone = 0, kBusy = 1, kReady = 2;
   std::optional<int> side(const Plane& plane, const Xyz& v) const {
     const Xyz& p = plane.corner[0];
     const double c[3] = {v[0] - p[0], v[1] - p[1], v[2] - p[2]};
@@ -89,10 +101,12 @@ class FacePlanes {
     if (-det > bound) return -1;
     return std::nullopt;
   }
+  const Mesh& mesh_;
   const std::vector<Xyz>& xyz_;
   const double error_;
-  std::vector<Plane> planes_;
-  std::vector<Xyz> units_;  // unit normals, apart from the records: searches read only these
+  std::unique_ptr<Plane[]> planes_;  // not initialized: only the pages of records used are touched
+  std::unique_ptr<std::atomic<std::uint8_t>[]> state_;  // kNone, kBusy or kReady, by face
+  std::vector<Xyz> units_;  // unit normals, for every face (empty without doubles)
 };
 
 }  // namespace morphex::detail
