@@ -167,8 +167,9 @@ class TrianglePairs {
 };
 
 // Degenerate faces: repeated corners, or collinear ones (every projection of the triangle flat).
+// The face planes' filter settles nearly every proper face as they are computed.
 std::vector<std::uint8_t> find_degenerate_faces(const Mesh& mesh, const PointTable& table,
-                                                MeshReport& r) {
+                                                const detail::FacePlanes& planes, MeshReport& r) {
   const std::size_t nf = mesh.num_triangles();
   std::vector<std::uint8_t> degenerate(nf, 0);
   detail::for_each_upward(nf, [&](std::size_t f) {
@@ -177,6 +178,7 @@ std::vector<std::uint8_t> find_degenerate_faces(const Mesh& mesh, const PointTab
       degenerate[f] = 1;
       return;
     }
+    if (planes.proper(std::uint32_t(f))) return;
     degenerate[f] = table.orientation_2(0, t[0], t[1], t[2]) == CGAL::ZERO &&
                     table.orientation_2(1, t[0], t[1], t[2]) == CGAL::ZERO &&
                     table.orientation_2(2, t[0], t[1], t[2]) == CGAL::ZERO;
@@ -443,6 +445,7 @@ void slab_pairs(const Mesh& mesh, const PointTable& table, const std::vector<Poi
 // `kept` gets the tree over every triangle, when there is one (no patches) and it is along the
 // coordinate axes.
 void find_self_intersections(const Mesh& mesh, const PointTable& table,
+                             const detail::FacePlanes& planes,
                              const std::vector<std::uint8_t>& degenerate,
                              const ManifoldEdges& manifold, const std::vector<std::uint8_t>& proved,
                              const CheckOptions& options, MeshReport& r,
@@ -458,7 +461,6 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
       position[v] = doubles.empty() ? index.find_or_insert(mesh.points[v], v)
                                     : index.find_or_insert(doubles[v], v);
   }
-  const detail::FacePlanes planes(mesh, table.input_near_doubles(), table.input_error());
   detail::PlanarPatches planar = detail::verified_planar_patches(
       mesh, table, planes, position, degenerate, manifold, kMinPlanarPatch);
   detail::add_near_flat_patches(mesh, table, planes, position, degenerate, manifold,
@@ -617,7 +619,9 @@ MeshReport detail::check_mesh_keeping_tree(const Mesh& mesh, const CheckOptions&
   const PointTable table(mesh, mesh, true);
   // From the table's copy of the points' intervals: contiguous, where each point is a pointer.
   for (VertexIndex v = 0; v < mesh.num_vertices(); ++v) r.bbox += table.approx(v).bbox();
-  const std::vector<std::uint8_t> degenerate = find_degenerate_faces(mesh, table, r);
+  // Each face's normal in doubles (its plane record when a pass asks for it).
+  const detail::FacePlanes planes(mesh, table.input_near_doubles(), table.input_error());
+  const std::vector<std::uint8_t> degenerate = find_degenerate_faces(mesh, table, planes, r);
   UnionFind components(mesh.num_triangles());
   std::vector<std::uint8_t> proved;
   const ManifoldEdges manifold =
@@ -627,7 +631,7 @@ MeshReport detail::check_mesh_keeping_tree(const Mesh& mesh, const CheckOptions&
   if (options.volume) r.volume = signed_volume(mesh);
   r.genus = total_genus(mesh, component_of, r);
   if (options.self_intersections && mesh.num_triangles() > 1)
-    find_self_intersections(mesh, table, degenerate, manifold, proved, options, r, &tree);
+    find_self_intersections(mesh, table, planes, degenerate, manifold, proved, options, r, &tree);
   r.outward = is_outward(mesh, table, component_of, options, r);
   return r;
 }

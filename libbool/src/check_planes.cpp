@@ -16,6 +16,7 @@ FacePlanes::FacePlanes(const Mesh& mesh, const std::vector<Xyz>& xyz, double err
   planes_.reset(new Plane[nf]);
   state_.reset(new std::atomic<std::uint8_t>[nf]);
   units_.resize(nf);
+  proper_.resize(nf);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nf, 4096),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t t = range.begin(); t != range.end(); ++t) {
@@ -30,6 +31,16 @@ FacePlanes::FacePlanes(const Mesh& mesh, const std::vector<Xyz>& xyz, double err
                         units_[t] = length > 0 && std::isfinite(length)
                                         ? Xyz{n[0] / length, n[1] / length, n[2] / length}
                                         : Xyz{0, 0, 0};
+                        // Seen along some axis the corners turn: the face is not degenerate.
+                        bool turns = false;
+                        for (int k = 0; k < 3 && !turns; ++k) {
+                          const int u = k == 0 ? 1 : 0, v = k == 2 ? 1 : 2;
+                          const std::optional<int> o =
+                              error == 0 ? static_orientation_2(u, v, p, q, r)
+                                         : static_orientation_2_near(u, v, p, q, r, error);
+                          turns = o && *o != 0;
+                        }
+                        proper_[t] = turns;
                       }
                     });
 }

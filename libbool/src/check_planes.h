@@ -53,6 +53,10 @@ class FacePlanes {
     return true;
   }
 
+  // The doubles show that triangle f is not degenerate: one of its coordinate projections turns
+  // (false when they do not tell).
+  bool proper(std::uint32_t f) const { return !proper_.empty() && proper_[f] != 0; }
+
   // Triangle f's normal of unit length (zero when too small to normalize): a rough quantity, to
   // group faces, never a decision. Not on an empty set of planes.
   const Xyz& unit_normal(std::uint32_t f) const { return units_[f]; }
@@ -106,7 +110,8 @@ class FacePlanes {
   const double error_;
   std::unique_ptr<Plane[]> planes_;  // not initialized: only the pages of records used are touched
   std::unique_ptr<std::atomic<std::uint8_t>[]> state_;  // kNone, kBusy or kReady, by face
-  std::vector<Xyz> units_;  // unit normals, for every face (empty without doubles)
+  std::vector<Xyz> units_;            // unit normals, for every face (empty without doubles)
+  std::vector<std::uint8_t> proper_;  // by face: proper()
 };
 
 }  // namespace morphex::detail
