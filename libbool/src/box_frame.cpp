@@ -2,6 +2,9 @@
 // Axes for the boxes of a mesh's triangles (box_frame.h).
 #include "box_frame.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -187,6 +190,18 @@ FloatBox box_in_frame(const BoxFrame& frame, const CGAL::Bbox_3& box) {
   if (frame.world) return FloatBox::of(box);
   return FloatBox::of(point_in_frame(
       frame, {I(box.xmin(), box.xmax()), I(box.ymin(), box.ymax()), I(box.zmin(), box.zmax())}));
+}
+
+std::vector<FloatBox> boxes_in_frame(const BoxFrame& frame, const PointTable& table, PointId first,
+                                     std::size_t count) {
+  std::vector<FloatBox> boxes(count);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 4096),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      const UpwardRounding rounding;
+                      for (std::size_t i = range.begin(); i != range.end(); ++i)
+                        boxes[i] = box_in_frame(frame, table.approx(first + PointId(i)));
+                    });
+  return boxes;
 }
 
 }  // namespace morphex::detail

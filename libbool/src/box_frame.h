@@ -42,5 +42,8 @@ BoxFrame choose_box_frame(const Mesh& a, const Xyz* xyz_a, const Mesh& b, const 
 ApproxPoint point_in_frame(const BoxFrame& frame, const ApproxPoint& p);
 FloatBox box_in_frame(const BoxFrame& frame, const ApproxPoint& p);
 FloatBox box_in_frame(const BoxFrame& frame, const CGAL::Bbox_3& box);
+// The boxes of the points first .. first + count - 1 of `table` along `frame`, in parallel.
+std::vector<FloatBox> boxes_in_frame(const BoxFrame& frame, const PointTable& table, PointId first,
+                                     std::size_t count);
 
 }  // namespace morphex::detail

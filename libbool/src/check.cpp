@@ -475,13 +475,8 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
   // The vertices' boxes from the table's copy of their intervals (contiguous), for every tree,
   // along the axes of the mesh itself when it lies turned off the coordinate axes.
   const detail::BoxFrame frame = detail::choose_box_frame(mesh, table.input_near_doubles());
-  std::vector<FloatBox> vertex_boxes(mesh.num_vertices());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, vertex_boxes.size(), 4096),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      const detail::UpwardRounding rounding;
-                      for (std::size_t v = range.begin(); v != range.end(); ++v)
-                        vertex_boxes[v] = detail::box_in_frame(frame, table.approx(v));
-                    });
+  const std::vector<FloatBox> vertex_boxes =
+      detail::boxes_in_frame(frame, table, 0, mesh.num_vertices());
   const TriangleTree patched(mesh, vertex_boxes, in_patches);
   TriangleTree tree = planar.patches.empty() ? TriangleTree(mesh, vertex_boxes)
                                              : TriangleTree(mesh, vertex_boxes, others);

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Each triangle's plane in doubles, computed at most once per check and read by three of its
-// passes: the coplanar search (which edges certainly do not join two faces of one plane), the
-// near-flat search (the faces' rough normals) and the self-intersection traversal (pairs settled
-// by one side of a plane).
+// Each triangle's plane in doubles, computed at most once per check and read by four of its
+// passes: the degenerate faces (which faces certainly turn), the coplanar search (which edges
+// certainly do not join two faces of one plane), the near-flat search (the faces' rough normals)
+// and the self-intersection traversal (pairs settled by one side of a plane).
 #pragma once
 
 #include <algorithm>

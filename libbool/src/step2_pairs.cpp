@@ -48,15 +48,7 @@ bool plane_may_cross(const IntervalPlane& p, const FloatBox& box) {
 
 std::vector<FloatBox> OperandTrees::vertex_boxes(int side, const Mesh& mesh,
                                                  const BoxFrame& frame) const {
-  std::vector<FloatBox> boxes(mesh.num_vertices());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, boxes.size(), 4096),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      const UpwardRounding rounding;
-                      for (std::size_t v = range.begin(); v != range.end(); ++v)
-                        boxes[v] = box_in_frame(
-                            frame, points_->approx(points_->vertex(side, VertexIndex(v))));
-                    });
-  return boxes;
+  return boxes_in_frame(frame, *points_, points_->vertex(side, 0), mesh.num_vertices());
 }
 
 const TriangleTree& OperandTrees::of(int side, const Mesh& mesh) {
