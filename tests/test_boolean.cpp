@@ -480,6 +480,30 @@ TEST(Boolean, CheckedInputsGiveTheResultOfTrustedOnes) {
   }
 }
 
+// A coarse operand against a fine one: step 2 queries the coarse tree with the fine facets' boxes
+// on inputs taken as valid, and the fine tree (the input check's) with the coarse facets' boxes
+// when the inputs are checked. Both keep the pairs whose coarse facet's plane may cross the fine
+// facet's box: the same pairs, and the same result.
+TEST(Boolean, CoarseAgainstFinePairsAreFoundFromEitherSide) {
+  // Facets in general directions: the plane test drops many pairs whose boxes overlap.
+  const Mesh fine = make_icosphere(4, FT(1));
+  const Mesh coarse =
+      translated(make_icosphere(1, FT(4) / 5), Vector(FT(1) / 2, FT(1) / 3, FT(1) / 7));
+  BooleanOptions trusted;
+  trusted.validate_inputs = false;
+  for (const bool coarse_first : {true, false}) {
+    const Mesh &a = coarse_first ? coarse : fine, &b = coarse_first ? fine : coarse;
+    const BooleanResult checked = compute_boolean(a, b, BooleanOp::Union),
+                        plain = compute_boolean(a, b, BooleanOp::Union, trusted);
+    ASSERT_TRUE(checked.ok()) << checked.message;
+    ASSERT_TRUE(plain.ok()) << plain.message;
+    EXPECT_GT(checked.stats.intersecting_pairs, 0u);
+    EXPECT_EQ(checked.stats.candidate_pairs, plain.stats.candidate_pairs);
+    EXPECT_EQ(checked.mesh.triangles, plain.mesh.triangles);
+    EXPECT_EQ(checked.mesh.points, plain.mesh.points);
+  }
+}
+
 // Large enough that the parallel passes split into several blocks: the candidate pairs compacted
 // by blocks of 16,384, the output vertices numbered by blocks of 16,384 keys, the points made by
 // blocks of 4,096.

@@ -54,8 +54,9 @@ class OperandTrees {
   // A tree over every triangle of that side's mesh, along the coordinate axes: step 6 casts rays
   // through it, and step 2 pairs with it when its frame is the coordinate axes.
   const TriangleTree& of(int side, const Mesh& mesh);
-  // The tree step 2 pairs with: along its frame.
+  // The tree step 2 pairs with: along its frame; whether it exists already.
   const TriangleTree& for_pairs(int side, const Mesh& mesh);
+  bool has_pairs_tree(int side) const;
   // The boxes of that side's triangles along step 2's frame.
   std::vector<FloatBox> triangle_boxes_of(int side, const Mesh& mesh) const;
   // Vertex v of that side as step 2's frame sees it (the caller rounds upward).
