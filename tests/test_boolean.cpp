@@ -460,24 +460,33 @@ TEST(Parallel, ResultsAreIdenticalForAnyNumberOfThreads) {
   }
 }
 
+namespace {
+
+// The Boolean of a and b with the input check (which hands the operation its trees) and on inputs
+// taken as valid: the same candidate pairs and the same result, triangle for triangle.
+void expect_checked_as_trusted(const Mesh& a, const Mesh& b, BooleanOp op) {
+  BooleanOptions trusted;
+  trusted.validate_inputs = false;
+  const BooleanResult checked = compute_boolean(a, b, op),
+                      plain = compute_boolean(a, b, op, trusted);
+  ASSERT_TRUE(checked.ok()) << checked.message;
+  ASSERT_TRUE(plain.ok()) << plain.message;
+  EXPECT_GT(checked.stats.intersecting_pairs, 0u);
+  EXPECT_EQ(checked.stats.candidate_pairs, plain.stats.candidate_pairs);
+  EXPECT_EQ(checked.mesh.triangles, plain.mesh.triangles);
+  EXPECT_EQ(checked.mesh.points, plain.mesh.points);
+}
+
+}  // namespace
+
 // With the input check, step 2 and step 6 use the trees the check built (check_internal.h): the
 // result is the one the operation gives on inputs taken as valid, triangle for triangle.
 TEST(Boolean, CheckedInputsGiveTheResultOfTrustedOnes) {
   const Mesh a = make_icosphere(3, FT(1));
   const Mesh b = translated(transformed(a, quaternion_rotation(7, 1, 2, 3)),
                             Vector(FT(1) / 2, FT(1) / 3, FT(0)));
-  BooleanOptions trusted;
-  trusted.validate_inputs = false;
-  for (const BooleanOp op : {BooleanOp::Union, BooleanOp::Intersection, BooleanOp::Difference}) {
-    const BooleanResult checked = compute_boolean(a, b, op),
-                        plain = compute_boolean(a, b, op, trusted);
-    ASSERT_TRUE(checked.ok()) << checked.message;
-    ASSERT_TRUE(plain.ok()) << plain.message;
-    EXPECT_GT(checked.stats.intersecting_pairs, 0u);
-    EXPECT_EQ(checked.stats.candidate_pairs, plain.stats.candidate_pairs);
-    EXPECT_EQ(checked.mesh.triangles, plain.mesh.triangles);
-    EXPECT_EQ(checked.mesh.points, plain.mesh.points);
-  }
+  for (const BooleanOp op : {BooleanOp::Union, BooleanOp::Intersection, BooleanOp::Difference})
+    expect_checked_as_trusted(a, b, op);
 }
 
 // A coarse operand against a fine one: step 2 queries the coarse tree with the fine facets' boxes
@@ -489,19 +498,8 @@ TEST(Boolean, CoarseAgainstFinePairsAreFoundFromEitherSide) {
   const Mesh fine = make_icosphere(4, FT(1));
   const Mesh coarse =
       translated(make_icosphere(1, FT(4) / 5), Vector(FT(1) / 2, FT(1) / 3, FT(1) / 7));
-  BooleanOptions trusted;
-  trusted.validate_inputs = false;
-  for (const bool coarse_first : {true, false}) {
-    const Mesh &a = coarse_first ? coarse : fine, &b = coarse_first ? fine : coarse;
-    const BooleanResult checked = compute_boolean(a, b, BooleanOp::Union),
-                        plain = compute_boolean(a, b, BooleanOp::Union, trusted);
-    ASSERT_TRUE(checked.ok()) << checked.message;
-    ASSERT_TRUE(plain.ok()) << plain.message;
-    EXPECT_GT(checked.stats.intersecting_pairs, 0u);
-    EXPECT_EQ(checked.stats.candidate_pairs, plain.stats.candidate_pairs);
-    EXPECT_EQ(checked.mesh.triangles, plain.mesh.triangles);
-    EXPECT_EQ(checked.mesh.points, plain.mesh.points);
-  }
+  expect_checked_as_trusted(coarse, fine, BooleanOp::Union);
+  expect_checked_as_trusted(fine, coarse, BooleanOp::Union);
 }
 
 // Large enough that the parallel passes split into several blocks: the candidate pairs compacted
