@@ -20,7 +20,8 @@ constexpr std::size_t kSampleFaces = 1024;
 // The frame is taken when it shrinks the sampled boxes' spread by at least this factor (boxing
 // in a frame costs a small matrix product per vertex).
 constexpr double kGain = 0.6;
-// Normals within about this angle of the first axis count as perpendicular to it.
+// Normals whose cosine with the first axis is below this (within about 6 degrees of a right
+// angle) count as perpendicular to it.
 constexpr double kPerpendicular = 0.1;
 
 Xyz minus(const Xyz& a, const Xyz& b) {
