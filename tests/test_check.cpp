@@ -172,6 +172,17 @@ TEST(Check, DegenerateFace) {
   EXPECT_GT(f.degenerate_faces, 0u);
   EXPECT_NE(describe_problems(f).find("degenerate faces, first is face"), std::string::npos)
       << describe_problems(f);
+  // Collinear along a diagonal, in doubles and turned (rational): no projection certainly turns,
+  // so the exact tests decide; a proper face just off the line is not degenerate.
+  Mesh diagonal = make_cube(FT(1));
+  for (const int k : {2, 3, 5}) diagonal.points.push_back(Point(k, k, k));
+  diagonal.triangles.push_back({8, 9, 10});
+  Mesh off = diagonal;
+  off.points[10] = Point(5, 5, FT(5) + FT(1) / (1 << 30));
+  for (const Mesh& m : {diagonal, transformed(diagonal, quaternion_rotation(1, 2, 3, 5))})
+    EXPECT_EQ(check_mesh(m).degenerate_faces, 1u);
+  for (const Mesh& m : {off, transformed(off, quaternion_rotation(1, 2, 3, 5))})
+    EXPECT_EQ(check_mesh(m).degenerate_faces, 0u);
 }
 
 TEST(Check, EmptyMeshIsAValidEmptySolid) {
