@@ -45,8 +45,8 @@ using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
 // slot.
 class OperandTrees {
  public:
-  // The point table of the two operands, when the Boolean has built it (its contiguous copy of the
-  // vertices' intervals boxes them without reading each Point again).
+  // The point table of the two operands, set before any other call (its contiguous copy of the
+  // vertices' intervals boxes them without reading each Point again); set again when it moves.
   void use_points(const PointTable* points) { points_ = points; }
   // The axes step 2 boxes both operands along (box_frame.h: a turned CAD part's own); the
   // coordinate axes unless set. Needs the point table.
@@ -60,7 +60,7 @@ class OperandTrees {
   // The boxes of that side's triangles along step 2's frame.
   std::vector<FloatBox> triangle_boxes_of(int side, const Mesh& mesh) const;
   // Vertex v of that side as step 2's frame sees it (the caller rounds upward).
-  ApproxPoint corner(int side, const Mesh& mesh, VertexIndex v) const;
+  ApproxPoint corner(int side, VertexIndex v) const;
   // A tree over every triangle of that side's mesh along the coordinate axes, built elsewhere
   // (by the input check).
   void adopt(int side, std::optional<TriangleTree>&& tree) {

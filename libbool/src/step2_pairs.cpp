@@ -54,12 +54,7 @@ std::vector<FloatBox> OperandTrees::vertex_boxes(int side, const Mesh& mesh,
 }
 
 const TriangleTree& OperandTrees::of(int side, const Mesh& mesh) {
-  if (!tree_[side]) {
-    if (points_)
-      tree_[side].emplace(mesh, vertex_boxes(side, mesh, BoxFrame{}));
-    else
-      tree_[side].emplace(mesh);
-  }
+  if (!tree_[side]) tree_[side].emplace(mesh, vertex_boxes(side, mesh, BoxFrame{}));
   return *tree_[side];
 }
 
@@ -74,11 +69,10 @@ const TriangleTree& OperandTrees::for_pairs(int side, const Mesh& mesh) {
 }
 
 std::vector<FloatBox> OperandTrees::triangle_boxes_of(int side, const Mesh& mesh) const {
-  return points_ ? triangle_boxes(mesh, vertex_boxes(side, mesh, frame_)) : triangle_boxes(mesh);
+  return triangle_boxes(mesh, vertex_boxes(side, mesh, frame_));
 }
 
-ApproxPoint OperandTrees::corner(int side, const Mesh& mesh, VertexIndex v) const {
-  if (!points_) return CGAL::approx(mesh.points[v]);
+ApproxPoint OperandTrees::corner(int side, VertexIndex v) const {
   return point_in_frame(frame_, points_->approx(points_->vertex(side, v)));
 }
 
@@ -120,9 +114,8 @@ Pairs candidate_pairs(const Mesh& a, const Mesh& b, OperandTrees& trees) {
     const CGAL::Protect_FPU_rounding<true> upward;
     for (std::uint32_t t = 0; t < planes.size(); ++t) {
       const Triangle& f = coarse.triangles[t];
-      planes[t] =
-          plane_of(trees.corner(coarse_side, coarse, f[0]), trees.corner(coarse_side, coarse, f[1]),
-                   trees.corner(coarse_side, coarse, f[2]));
+      planes[t] = plane_of(trees.corner(coarse_side, f[0]), trees.corner(coarse_side, f[1]),
+                           trees.corner(coarse_side, f[2]));
     }
   }
   // One side's boxes query the other side's tree, in blocks (coarse boxes hold many fine facets),
