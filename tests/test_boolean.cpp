@@ -502,6 +502,22 @@ TEST(Boolean, CoarseAgainstFinePairsAreFoundFromEitherSide) {
   expect_checked_as_trusted(fine, coarse, BooleanOp::Union);
 }
 
+// An operand whose flat faces the check proves as patches: step 2 and step 6 use its two trees
+// joined (the patches, the rest), which give the pairs a fresh tree gives, and the same result.
+TEST(Boolean, CheckedInputsWithFlatPatchesGiveTheResultOfTrustedOnes) {
+  const Mesh fans = make_fan_prism(96, 1.0, 1.0);  // caps of 96 triangles around a centre
+  const Mesh sphere =
+      translated(make_icosphere(3, FT(1) / 2), Vector(FT(1) / 3, FT(1) / 5, FT(9) / 10));
+  expect_checked_as_trusted(fans, sphere, BooleanOp::Union);
+  expect_checked_as_trusted(sphere, fans, BooleanOp::Difference);
+  // Coarse against fine: the coarse sphere's facets query the fine prism's joined tree (taken as
+  // valid, the prism's facets query the sphere's tree).
+  const Mesh fine_fans = make_fan_prism(3000, 1.0, 1.0);
+  const Mesh coarse =
+      translated(make_icosphere(1, FT(1) / 2), Vector(FT(1) / 3, FT(0), FT(9) / 10));
+  expect_checked_as_trusted(coarse, fine_fans, BooleanOp::Intersection);
+}
+
 // Large enough that the parallel passes split into several blocks: the candidate pairs compacted
 // by blocks of 16,384, the output vertices numbered by blocks of 16,384 keys, the points made by
 // blocks of 4,096.

@@ -279,30 +279,70 @@ TEST(Spatial, OverlappingPairsOfTwoTreesAreThoseOfAllPairs) {
   EXPECT_EQ(self, self_expected);
 }
 
+namespace {
+
+// Every pair (i, j) of a triangle of `a` and one of `b` whose boxes overlap, in order.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> sorted_pairs(const TriangleTree& a,
+                                                                  const TriangleTree& b) {
+  auto pairs = TriangleTree::overlapping_pairs(a, b);
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+// `kept` holds every triangle of `mesh` once, each with the box a fresh tree gives it, and meets
+// `other`'s tree in the pairs a fresh tree meets, and a box in the triangles a fresh tree finds.
+void expect_tree_as_fresh(const TriangleTree& kept, const Mesh& mesh, const Mesh& other) {
+  ASSERT_EQ(kept.size(), mesh.num_triangles());
+  const TriangleTree fresh(mesh), tb(other);
+  for (std::uint32_t t = 0; t < mesh.num_triangles(); ++t) {
+    const FloatBox &x = kept.float_box(t), &y = fresh.float_box(t);
+    EXPECT_TRUE(std::equal(x.lo, x.lo + 3, y.lo) && std::equal(x.hi, x.hi + 3, y.hi))
+        << "triangle " << t;
+  }
+  const auto pairs = sorted_pairs(kept, tb);
+  EXPECT_FALSE(pairs.empty());
+  EXPECT_EQ(pairs, sorted_pairs(fresh, tb));
+  std::vector<std::uint32_t> found, expected;
+  for (std::uint32_t t = 0; t < other.num_triangles(); t += 7) {
+    kept.for_each_overlap(tb.float_box(t), [&](std::uint32_t f) { found.push_back(f); });
+    fresh.for_each_overlap(tb.float_box(t), [&](std::uint32_t f) { expected.push_back(f); });
+    std::sort(found.begin(), found.end());
+    std::sort(expected.begin(), expected.end());
+    ASSERT_EQ(found, expected) << "query " << t;
+  }
+}
+
+}  // namespace
+
 // The tree the check hands to the Boolean (check_internal.h) is the one the Boolean would build:
-// the same boxes of every triangle, so the same candidate pairs in the same order. A mesh whose
-// flat faces are proved as patches has no such tree (theirs are left out of it).
-TEST(Check, HandsTheBooleanATreeOverEveryTriangleOnly) {
+// the same boxes of every triangle, so the same candidate pairs. A smooth mesh's is the check's
+// own tree, in the order of a fresh one; a mesh whose flat faces are proved as patches gets the
+// check's two trees (the patches, the rest) joined. A mesh with a degenerate face gets none.
+TEST(Check, HandsTheBooleanATreeOverEveryTriangle) {
   const Mesh smooth = make_icosphere(3, FT(1));
   const Mesh other = translated(make_icosphere(2, FT(1)), Vector(FT(1) / 3, FT(1) / 5, FT(1) / 7));
   std::optional<TriangleTree> kept;
   const MeshReport r = detail::check_mesh_keeping_tree(smooth, kValidityOnly, kept);
   EXPECT_TRUE(r.valid_solid());
   ASSERT_TRUE(kept.has_value());
-  ASSERT_EQ(kept->size(), smooth.num_triangles());
-  const TriangleTree fresh(smooth), tb(other);
-  for (std::uint32_t t = 0; t < smooth.num_triangles(); ++t) {
-    const FloatBox &x = kept->float_box(t), &y = fresh.float_box(t);
-    EXPECT_TRUE(std::equal(x.lo, x.lo + 3, y.lo) && std::equal(x.hi, x.hi + 3, y.hi))
-        << "triangle " << t;
-  }
-  const auto pairs = TriangleTree::overlapping_pairs(*kept, tb);
-  EXPECT_FALSE(pairs.empty());
-  EXPECT_EQ(pairs, TriangleTree::overlapping_pairs(fresh, tb));
+  expect_tree_as_fresh(*kept, smooth, other);
+  EXPECT_EQ(TriangleTree::overlapping_pairs(*kept, TriangleTree(other)),
+            TriangleTree::overlapping_pairs(TriangleTree(smooth), TriangleTree(other)));
 
-  const Mesh fans = make_fan_prism(64, 1.0, 1.0);  // two flat caps of 64 triangles each
+  // Two flat caps of 64 triangles each, proved as patches, and the side strips.
+  const Mesh fans = make_fan_prism(64, 1.0, 1.0);
+  const Mesh crossing =
+      translated(make_icosphere(2, FT(1) / 2), Vector(FT(1) / 3, FT(1) / 5, FT(1)));
   const MeshReport f = detail::check_mesh_keeping_tree(fans, kValidityOnly, kept);
   EXPECT_TRUE(f.valid_solid());
+  ASSERT_TRUE(kept.has_value());
+  expect_tree_as_fresh(*kept, fans, crossing);
+
+  Mesh degenerate = fans;
+  degenerate.triangles.push_back({0, 0, 1});
+  degenerate.triangles.push_back({1, 0, 0});
+  const MeshReport d = detail::check_mesh_keeping_tree(degenerate, kValidityOnly, kept);
+  EXPECT_FALSE(d.valid_solid());
   EXPECT_FALSE(kept.has_value());
 }
 

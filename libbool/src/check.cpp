@@ -442,8 +442,7 @@ void slab_pairs(const Mesh& mesh, const PointTable& table, const std::vector<Poi
 // Self-intersections: flat patches proved embedded, the other triangles by their tree against
 // itself, and each patch against the triangles that reach its plane; each pair is tested
 // exactly, once (i < j).
-// `kept` gets the tree over every triangle, when there is one (no patches) and it is along the
-// coordinate axes.
+// `kept` gets a tree over every triangle when the trees are along the coordinate axes.
 void find_self_intersections(const Mesh& mesh, const PointTable& table,
                              const detail::FacePlanes& planes,
                              const std::vector<std::uint8_t>& degenerate,
@@ -531,8 +530,14 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
     }
   });
   report(found, r);
-  // The Boolean's trees are along the coordinate axes (it boxes the other operand so).
-  if (kept && planar.patches.empty() && frame.world) kept->emplace(std::move(tree));
+  // The Boolean's trees are along the coordinate axes (it boxes the other operand so). With
+  // patches, the two trees joined hold every triangle unless some are degenerate (then the
+  // mesh is refused anyway).
+  if (!kept || !frame.world) return;
+  if (planar.patches.empty())
+    kept->emplace(std::move(tree));
+  else if (others.size() + in_patches.size() == mesh.num_triangles())
+    kept->emplace(tree, patched, mesh.num_triangles());
 }
 
 // The mesh's shells as separate meshes, by component.

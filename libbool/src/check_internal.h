@@ -10,9 +10,10 @@
 
 namespace morphex::detail {
 
-// check_mesh(mesh, options); `tree` gets the check's tree when it covers every triangle of the
-// mesh (it does not when flat patches were proved as a whole: their triangles are left out of
-// it), and stays empty otherwise.
+// check_mesh(mesh, options); `tree` gets a tree over every triangle of the mesh, along the
+// coordinate axes, built from the check's own (its tree, or its two joined when flat patches were
+// proved as a whole), and stays empty when the check boxed along a turned part's axes or left
+// degenerate faces out of its trees.
 MeshReport check_mesh_keeping_tree(const Mesh& mesh, const CheckOptions& options,
                                    std::optional<TriangleTree>& tree);
 

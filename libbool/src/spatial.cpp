@@ -231,7 +231,26 @@ void TriangleTree::build(std::vector<FloatBox> boxes, const std::vector<std::uin
                         sorted_boxes_[i] = boxes[position];
                       }
                     });
+  build_levels();
+}
 
+TriangleTree::TriangleTree(const TriangleTree& first, const TriangleTree& second,
+                           std::size_t num_triangles) {
+  if (num_triangles == 0) return;
+  order_ = first.order_;
+  order_.insert(order_.end(), second.order_.begin(), second.order_.end());
+  sorted_boxes_ = first.sorted_boxes_;
+  sorted_boxes_.insert(sorted_boxes_.end(), second.sorted_boxes_.begin(),
+                       second.sorted_boxes_.end());
+  if (order_.size() != num_triangles)
+    throw std::logic_error("TriangleTree: the joined trees do not hold each triangle once");
+  boxes_.resize(num_triangles);
+  for (std::size_t i = 0; i < order_.size(); ++i) boxes_[order_[i]] = sorted_boxes_[i];
+  build_levels();
+}
+
+void TriangleTree::build_levels() {
+  const std::uint32_t n = std::uint32_t(order_.size());
   leaf_boxes_.resize((n + kLeafSize - 1) / kLeafSize);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaf_boxes_.size(), kGrain / kLeafSize),
                     [&](const tbb::blocked_range<std::size_t>& r) {

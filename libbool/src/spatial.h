@@ -75,6 +75,12 @@ class TriangleTree {
   // Over the given boxes, box i reporting ids[i]; several boxes may report one id (pieces of a
   // long thin triangle, each boxed on its own), and then a traversal reports it once per box.
   TriangleTree(std::vector<FloatBox> boxes, const std::vector<std::uint32_t>& ids);
+  // Over the triangles of two trees that together hold each triangle of a mesh of `num_triangles`
+  // once, boxed along the same axes (the input check's two: the flat patches and the rest),
+  // without boxing or sorting again: `first`'s order, then `second`'s. Each part stays in Morton
+  // order; only the nodes over the seam, one per level, cover both. box() and float_box() are
+  // available.
+  TriangleTree(const TriangleTree& first, const TriangleTree& second, std::size_t num_triangles);
 
   // Calls f(triangle index) for every triangle whose box overlaps `box`.
   template <class F>
@@ -175,6 +181,8 @@ class TriangleTree {
   }
   // Sorts the boxes of `ids` (the triangles' boxes, in that order) and builds the levels.
   void build(std::vector<FloatBox> boxes, const std::vector<std::uint32_t>* ids);
+  // The leaves and the levels above them, from order_ and sorted_boxes_.
+  void build_levels();
   bool ray_may_hit(const FloatBox& box, const CGAL::Bbox_3& origin,
                    const std::array<double, 3>& direction) const;
   // The level whose nodes are the parallel tasks of a traversal of the whole tree.
