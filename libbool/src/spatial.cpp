@@ -45,27 +45,41 @@ float round_up(double d) {
   return std::isinf(f) ? std::numeric_limits<float>::lowest() : next_float(f, +1);
 }
 
-// Morton code of a box centre on a 1024^3 grid over `frame`: 30 bits, enough to order the
-// triangles of any mesh this library handles into compact leaves.
-std::uint32_t morton_code_30(const FloatBox& box, const FloatBox& frame) {
-  auto spread = [](std::uint32_t v) {
-    v &= 0x3ff;
-    v = (v | v << 16) & 0x030000ff;
-    v = (v | v << 8) & 0x0300f00f;
-    v = (v | v << 4) & 0x030c30c3;
-    v = (v | v << 2) & 0x09249249;
-    return v;
-  };
-  std::uint32_t code = 0;
-  for (int k = 0; k < 3; ++k) {
-    const float extent = frame.hi[k] - frame.lo[k];
-    const float centre = 0.5f * (box.lo[k] + box.hi[k]);
-    float unit = extent > 0 ? std::clamp((centre - frame.lo[k]) / extent, 0.0f, 1.0f) : 0;
-    if (!(unit >= 0.0f)) unit = 0;  // coordinates beyond float range: infinite boxes, NaN here
-    code |= spread(static_cast<std::uint32_t>(unit * 1023.0f)) << k;
+// The bits of a 10-bit cell index spread two apart (bit i to bit 3 i), by table.
+struct SpreadTable {
+  std::uint32_t bits[1024];
+  constexpr SpreadTable() : bits() {
+    for (std::uint32_t v = 0; v < 1024; ++v)
+      for (int i = 0; i < 10; ++i) bits[v] |= ((v >> i) & 1u) << (3 * i);
   }
-  return code;
-}
+  std::uint32_t operator[](std::uint32_t v) const { return bits[v]; }
+};
+constexpr SpreadTable kSpread{};
+
+// Morton codes of box centres on a 1024^3 grid over a frame: 30 bits, enough to order the
+// triangles of any mesh this library handles into compact leaves. The frame's scale is taken
+// once (a product per coordinate instead of a quotient: this runs for every triangle of every
+// tree).
+struct MortonGrid {
+  float lo[3], scale[3];
+  explicit MortonGrid(const FloatBox& frame) {
+    for (int k = 0; k < 3; ++k) {
+      const float extent = frame.hi[k] - frame.lo[k];
+      lo[k] = frame.lo[k];
+      scale[k] = extent > 0 ? 1023.0f / extent : 0.0f;
+    }
+  }
+  std::uint32_t code(const FloatBox& box) const {
+    std::uint32_t code = 0;
+    for (int k = 0; k < 3; ++k) {
+      const float cell = (0.5f * (box.lo[k] + box.hi[k]) - lo[k]) * scale[k];
+      // Beyond float range (infinite boxes) the cell is NaN or infinite: clamped, NaN to 0.
+      const float clamped = cell >= 0.0f ? std::min(cell, 1023.0f) : 0.0f;
+      code |= kSpread[static_cast<std::uint32_t>(clamped)] << k;
+    }
+    return code;
+  }
+};
 
 // Stable least-significant-digit radix sort of (key << 32 | index) by the 30-bit key.
 void radix_sort_by_key(std::vector<std::uint64_t>& items) {
@@ -214,11 +228,12 @@ void TriangleTree::build(std::vector<FloatBox> boxes, const std::vector<std::uin
   const std::uint32_t n = std::uint32_t(boxes.size());
   FloatBox frame;
   for (const FloatBox& b : boxes) frame += b;
+  const MortonGrid grid(frame);
   std::vector<std::uint64_t> keyed(n);
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, n, kGrain),
                     [&](const tbb::blocked_range<std::uint32_t>& r) {
                       for (std::uint32_t t = r.begin(); t < r.end(); ++t)
-                        keyed[t] = (std::uint64_t(morton_code_30(boxes[t], frame)) << 32) | t;
+                        keyed[t] = (std::uint64_t(grid.code(boxes[t])) << 32) | t;
                     });
   radix_sort_by_key(keyed);
   order_.resize(n);
