@@ -537,7 +537,7 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
   if (planar.patches.empty())
     kept->emplace(std::move(tree));
   else if (others.size() + in_patches.size() == mesh.num_triangles())
-    kept->emplace(tree, patched, mesh.num_triangles());
+    kept->emplace(std::move(tree), patched, mesh.num_triangles());
 }
 
 // The mesh's shells as separate meshes, by component.
@@ -605,14 +605,12 @@ bool is_outward(const Mesh& mesh, const PointTable& table,
 
 }  // namespace
 
-MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
-  std::optional<TriangleTree> unused;
-  return detail::check_mesh_keeping_tree(mesh, options, unused);
-}
+namespace {
 
-MeshReport detail::check_mesh_keeping_tree(const Mesh& mesh, const CheckOptions& options,
-                                           std::optional<TriangleTree>& tree) {
-  tree.reset();
+// The check; `tree` (when given) gets the tree check_mesh_keeping_tree describes.
+MeshReport run_check(const Mesh& mesh, const CheckOptions& options,
+                     std::optional<TriangleTree>* tree) {
+  if (tree) tree->reset();
   MeshReport r;
   r.vertices = mesh.num_vertices();
   r.triangles = mesh.num_triangles();
@@ -631,9 +629,20 @@ MeshReport detail::check_mesh_keeping_tree(const Mesh& mesh, const CheckOptions&
   if (options.volume) r.volume = signed_volume(mesh);
   r.genus = total_genus(mesh, component_of, r);
   if (options.self_intersections && mesh.num_triangles() > 1)
-    find_self_intersections(mesh, table, planes, degenerate, manifold, proved, options, r, &tree);
+    find_self_intersections(mesh, table, planes, degenerate, manifold, proved, options, r, tree);
   r.outward = is_outward(mesh, table, component_of, options, r);
   return r;
+}
+
+}  // namespace
+
+MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
+  return run_check(mesh, options, nullptr);
+}
+
+MeshReport detail::check_mesh_keeping_tree(const Mesh& mesh, const CheckOptions& options,
+                                           std::optional<TriangleTree>& tree) {
+  return run_check(mesh, options, &tree);
 }
 
 std::string describe_problems(const MeshReport& r) {

@@ -249,12 +249,12 @@ void TriangleTree::build(std::vector<FloatBox> boxes, const std::vector<std::uin
   build_levels();
 }
 
-TriangleTree::TriangleTree(const TriangleTree& first, const TriangleTree& second,
+TriangleTree::TriangleTree(TriangleTree&& first, const TriangleTree& second,
                            std::size_t num_triangles) {
   if (num_triangles == 0) return;
-  order_ = first.order_;
+  order_ = std::move(first.order_);
   order_.insert(order_.end(), second.order_.begin(), second.order_.end());
-  sorted_boxes_ = first.sorted_boxes_;
+  sorted_boxes_ = std::move(first.sorted_boxes_);
   sorted_boxes_.insert(sorted_boxes_.end(), second.sorted_boxes_.begin(),
                        second.sorted_boxes_.end());
   if (order_.size() != num_triangles)

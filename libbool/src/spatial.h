@@ -76,11 +76,11 @@ class TriangleTree {
   // long thin triangle, each boxed on its own), and then a traversal reports it once per box.
   TriangleTree(std::vector<FloatBox> boxes, const std::vector<std::uint32_t>& ids);
   // Over the triangles of two trees that together hold each triangle of a mesh of `num_triangles`
-  // once, boxed along the same axes (the input check's two: the flat patches and the rest),
-  // without boxing or sorting again: `first`'s order, then `second`'s. Each part stays in Morton
-  // order; only the nodes over the seam, one per level, cover both. box() and float_box() are
-  // available.
-  TriangleTree(const TriangleTree& first, const TriangleTree& second, std::size_t num_triangles);
+  // once, boxed along the same axes (the input check's two: the rest and the flat patches),
+  // without boxing or sorting again: `first`'s order (taken over), then `second`'s. Each part
+  // stays in Morton order; only the nodes over the seam, one per level, cover both. box() and
+  // float_box() are available.
+  TriangleTree(TriangleTree&& first, const TriangleTree& second, std::size_t num_triangles);
 
   // Calls f(triangle index) for every triangle whose box overlaps `box`.
   template <class F>
