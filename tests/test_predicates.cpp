@@ -4,14 +4,17 @@
 // to the exact stage.
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <numeric>
 #include <random>
+#include <string>
 
 #include "filtered.h"
 #include "fixed_integer.h"
 #include "point_index.h"
 #include "point_table.h"
 #include "projection_traits.h"
+#include "stable_vector.h"
 #include "static_filter.h"
 #include "triangle_overlap.h"
 
@@ -433,6 +436,40 @@ TEST(PointTable, PredicatesAndConstructionsAgreeWithCgal) {
 
 // Guigue and Devillers' overlap test against CGAL's do_intersect on triangles with vertices on
 // tiny grids, where zero signs (touching, shared vertices, edges in the other's plane) abound.
+// The point table's constructed points: references taken before the array grows past several
+// blocks still read the same elements, each index finds its own element, a move takes the
+// elements along, and every element is destroyed once.
+TEST(StableVector, ElementsStayInPlaceAsItGrows) {
+  auto alive = std::make_shared<int>(0);
+  struct Counted {
+    std::shared_ptr<int> alive;
+    std::string name;
+    Counted(std::shared_ptr<int> a, std::string n) : alive(std::move(a)), name(std::move(n)) {
+      ++*alive;
+    }
+    ~Counted() { --*alive; }
+  };
+  {
+    detail::StableVector<Counted, 3> v;  // blocks of 8
+    const Counted& first = v.emplace_back(alive, "0");
+    std::vector<const Counted*> where;
+    for (int i = 1; i < 100; ++i) where.push_back(&v.emplace_back(alive, std::to_string(i)));
+    EXPECT_EQ(v.size(), 100u);
+    EXPECT_EQ(*alive, 100);
+    EXPECT_EQ(&v[0], &first);
+    EXPECT_EQ(first.name, "0");
+    for (int i = 1; i < 100; ++i) {
+      EXPECT_EQ(&v[std::size_t(i)], where[std::size_t(i - 1)]);
+      EXPECT_EQ(v[std::size_t(i)].name, std::to_string(i));
+    }
+    detail::StableVector<Counted, 3> moved(std::move(v));
+    EXPECT_EQ(moved.size(), 100u);
+    EXPECT_EQ(&moved[42], where[41]);
+    EXPECT_EQ(*alive, 100);
+  }
+  EXPECT_EQ(*alive, 0);
+}
+
 TEST(TriangleOverlap, AgreesWithCgalOnDegenerateTriangles) {
   std::mt19937 random(17);
   int tested = 0, meeting = 0;

@@ -223,7 +223,7 @@ PointTable::PointTable(const Mesh& a, const Mesh& b, bool same_mesh)
 PointTable::~PointTable() {
   if (input_exact_)
     for (PointId i = 0; i < num_inputs_; ++i) delete input_exact_[i].load();
-  for (auto& slot : constructed_exact_) delete slot.load();
+  for (std::size_t i = 0; i < constructed_exact_.size(); ++i) delete constructed_exact_[i].load();
 }
 
 const Homogeneous& PointTable::exact(PointId id) const {

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "morphex/mesh.h"
+#include "stable_vector.h"
 
 namespace morphex::detail {
 
@@ -224,8 +225,9 @@ class PointTable {
   const Mesh* mesh_[2] = {nullptr, nullptr};
   bool same_mesh_ = false;
   PointId num_a_ = 0, num_inputs_ = 0;
-  std::deque<Recipe> recipes_;
-  std::deque<ApproxPoint> approx_;
+  // Constructed points by id - num_inputs_ (their references stay valid as points are added).
+  StableVector<Recipe> recipes_;
+  StableVector<ApproxPoint> approx_;
   std::deque<Point> explicit_;
   std::unique_ptr<std::atomic<Homogeneous*>[]> input_exact_;
   // The inputs' coordinates side by side as doubles, each within input_error_ of the exact one
@@ -241,7 +243,7 @@ class PointTable {
   // The inputs' interval approximations side by side: predicates read them without following
   // each lazy point to its representation.
   std::vector<ApproxPoint> input_approx_;
-  mutable std::deque<std::atomic<Homogeneous*>> constructed_exact_;
+  mutable StableVector<std::atomic<Homogeneous*>> constructed_exact_;
 };
 
 // Exact identity among many points: for each of `ids`, the smallest id of `ids` at its exact
