@@ -12,11 +12,11 @@
 #include <CGAL/Interval_nt.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
-#include <tbb/parallel_sort.h>
 
 #include <optional>
 
 #include "boolean_internal.h"
+#include "id_pairs.h"
 #include "spatial.h"
 
 namespace morphex::detail {
@@ -138,7 +138,7 @@ Pairs candidate_pairs(const Mesh& a, const Mesh& b, OperandTrees& trees) {
   });
   Pairs pairs;
   for (const Pairs& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
-  tbb::parallel_sort(pairs.begin(), pairs.end());
+  sort_id_pairs(pairs.begin(), pairs.end());
   return pairs;
 }
 

@@ -8,8 +8,8 @@
 // Facets are independent and built in parallel; the order within a facet is the pair order, so
 // the result does not depend on the thread count.
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
+#include "id_pairs.h"
 #include "segments_internal.h"
 
 namespace morphex::detail {
@@ -57,7 +57,7 @@ void build_cuts(Intersection& x, const Pairs& pairs, const std::vector<PairOutco
     for (std::size_t k = 0; k < np; ++k)
       if (outcomes[k].kind != PairOutcome::Kind::None)
         facet_pair.emplace_back(side == 0 ? pairs[k].first : pairs[k].second, std::uint32_t(k));
-    tbb::parallel_sort(facet_pair.begin(), facet_pair.end());
+    sort_id_pairs(facet_pair.begin(), facet_pair.end());
     std::vector<std::size_t> group;
     for (std::size_t i = 0; i < facet_pair.size(); ++i)
       if (i == 0 || facet_pair[i].first != facet_pair[i - 1].first) group.push_back(i);

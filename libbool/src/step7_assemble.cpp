@@ -13,7 +13,6 @@
 // non-manifold: every other vertex keeps the fan it had in its input. So only the corners at
 // special points are examined, and the work is proportional to the intersection, not the meshes.
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <atomic>
 #include <memory>
@@ -26,6 +25,7 @@
 #include "boolean_internal.h"
 #include "filtered.h"
 #include "flat_map.h"
+#include "id_pairs.h"
 
 namespace morphex::detail {
 
@@ -298,7 +298,7 @@ SpecialCorners special_corners(const std::vector<Triangle>& faces,
       for (std::uint32_t i = 0; i < 3; ++i)
         if (special[faces[f][i]]) corners[slot++] = {faces[f][i], std::uint32_t(3 * f + i)};
   });
-  tbb::parallel_sort(corners.begin(), corners.end());
+  sort_id_pairs(corners.begin(), corners.end());
   return corners;
 }
 
