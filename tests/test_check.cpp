@@ -304,6 +304,8 @@ void expect_tree_as_fresh(const TriangleTree& kept, const Mesh& mesh, const Mesh
   EXPECT_EQ(pairs, sorted_pairs(fresh, tb));
   std::vector<std::uint32_t> found, expected;
   for (std::uint32_t t = 0; t < other.num_triangles(); t += 7) {
+    found.clear();
+    expected.clear();
     kept.for_each_overlap(tb.float_box(t), [&](std::uint32_t f) { found.push_back(f); });
     fresh.for_each_overlap(tb.float_box(t), [&](std::uint32_t f) { expected.push_back(f); });
     std::sort(found.begin(), found.end());

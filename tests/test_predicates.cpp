@@ -434,8 +434,6 @@ TEST(PointTable, PredicatesAndConstructionsAgreeWithCgal) {
   }
 }
 
-// Guigue and Devillers' overlap test against CGAL's do_intersect on triangles with vertices on
-// tiny grids, where zero signs (touching, shared vertices, edges in the other's plane) abound.
 // The point table's constructed points: references taken before the array grows past several
 // blocks still read the same elements, each index finds its own element, a move takes the
 // elements along, and every element is destroyed once.
@@ -470,6 +468,8 @@ TEST(StableVector, ElementsStayInPlaceAsItGrows) {
   EXPECT_EQ(*alive, 0);
 }
 
+// Guigue and Devillers' overlap test against CGAL's do_intersect on triangles with vertices on
+// tiny grids, where zero signs (touching, shared vertices, edges in the other's plane) abound.
 TEST(TriangleOverlap, AgreesWithCgalOnDegenerateTriangles) {
   std::mt19937 random(17);
   int tested = 0, meeting = 0;
