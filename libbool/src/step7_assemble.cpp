@@ -14,11 +14,12 @@
 // special points are examined, and the work is proportional to the intersection, not the meshes.
 #include <tbb/parallel_for.h>
 
-#include <atomic>
-#include <memory>
-
 #include <algorithm>
+#include <atomic>
+#include <limits>
+#include <memory>
 #include <numeric>
+#include <stdexcept>
 #include <vector>
 
 #include "block_offsets.h"
@@ -208,8 +209,13 @@ IdMesh number_vertices(const PointTable& points, const std::vector<Triangle>& fa
   };
   const auto used = std::make_unique<std::atomic<std::uint8_t>[]>(keys);
   const auto fan_point = std::make_unique<std::atomic<PointId>[]>(fans.size());
+  // Each corner's key, taken once: a special corner's is a lookup of its fan.
+  if (keys > std::numeric_limits<VertexIndex>::max())
+    throw std::length_error("Boolean: more points and fans than vertex indices");
+  std::unique_ptr<VertexIndex[]> key_at(new VertexIndex[3 * nf]);
   tbb::parallel_for(std::size_t(0), 3 * nf, [&](std::size_t c) {
     const std::size_t key = key_of(c);
+    key_at[c] = VertexIndex(key);
     used[key].store(1, std::memory_order_relaxed);
     // Every corner of a fan is at its point: they all store the same id.
     if (key >= np) fan_point[key - np].store(faces[c / 3][c % 3], std::memory_order_relaxed);
@@ -235,7 +241,7 @@ IdMesh number_vertices(const PointTable& points, const std::vector<Triangle>& fa
   });
   out.triangles.resize(nf);
   tbb::parallel_for(std::size_t(0), 3 * nf,
-                    [&](std::size_t c) { out.triangles[c / 3][c % 3] = vertex_of_key[key_of(c)]; });
+                    [&](std::size_t c) { out.triangles[c / 3][c % 3] = vertex_of_key[key_at[c]]; });
   return out;
 }
 
