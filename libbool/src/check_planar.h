@@ -89,8 +89,7 @@ int dropped_in(const BoxFrame& frame, const PlanarPatch& patch);
 // returned box, taken along `frame`; nullopt when t lies strictly outside the slab. The caller
 // rounds upward.
 std::optional<CGAL::Bbox_3> part_in_slab(const PointTable& table, const PlanarPatch& patch,
-                                         const std::array<PointId, 3>& t,
-                                         const BoxFrame& frame = {});
+                                         const std::array<PointId, 3>& t, const BoxFrame& frame);
 
 // A triangle seen along the axis `dropped` (its corners in any coordinates): the lines of its
 // edges that tell its inside (those whose third corner is certainly on one side), in interval

@@ -207,11 +207,12 @@ IdMesh number_vertices(const PointTable& points, const std::vector<Triangle>& fa
     const PointId p = faces[c / 3][c % 3];
     return special[p] ? np + fans.fan_of(std::uint32_t(c)) : std::size_t(p);
   };
+  // Keys are kept per corner, and ranked into vertex indices, in 32 bits.
+  if (keys > std::numeric_limits<VertexIndex>::max())
+    throw std::length_error("Boolean: more points and fans than vertex indices");
   const auto used = std::make_unique<std::atomic<std::uint8_t>[]>(keys);
   const auto fan_point = std::make_unique<std::atomic<PointId>[]>(fans.size());
   // Each corner's key, taken once: a special corner's is a lookup of its fan.
-  if (keys > std::numeric_limits<VertexIndex>::max())
-    throw std::length_error("Boolean: more points and fans than vertex indices");
   std::unique_ptr<VertexIndex[]> key_at(new VertexIndex[3 * nf]);
   tbb::parallel_for(std::size_t(0), 3 * nf, [&](std::size_t c) {
     const std::size_t key = key_of(c);
