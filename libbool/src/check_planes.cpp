@@ -13,14 +13,14 @@ FacePlanes::FacePlanes(const Mesh& mesh, const std::vector<Xyz>& xyz, double err
     : mesh_(mesh), xyz_(xyz), error_(error) {
   if (xyz.empty()) return;
   const std::size_t nf = mesh.num_triangles();
-  planes_.reset(new Plane[nf]);
-  state_.reset(new std::atomic<std::uint8_t>[nf]);
+  records_.reset(new Plane[nf]);
+  slot_.reset(new std::atomic<std::uint32_t>[nf]);
   units_.resize(nf);
   proper_.resize(nf);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nf, 4096),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t t = range.begin(); t != range.end(); ++t) {
-                        state_[t].store(kNone, std::memory_order_relaxed);
+                        slot_[t].store(kNone, std::memory_order_relaxed);
                         const Triangle& f = mesh.triangles[t];
                         const Xyz &p = xyz[f[0]], &q = xyz[f[1]], &r = xyz[f[2]];
                         const Xyz a = {q[0] - p[0], q[1] - p[1], q[2] - p[2]},
@@ -46,17 +46,18 @@ FacePlanes::FacePlanes(const Mesh& mesh, const std::vector<Xyz>& xyz, double err
 }
 
 const FacePlanes::Plane& FacePlanes::publish(std::uint32_t t) const {
-  std::uint8_t expected = kNone;
-  if (!state_[t].compare_exchange_strong(expected, kBusy, std::memory_order_acquire)) {
-    while (state_[t].load(std::memory_order_acquire) != kReady)
+  std::uint32_t slot = kNone;
+  if (!slot_[t].compare_exchange_strong(slot, kBusy, std::memory_order_acquire)) {
+    while ((slot = slot_[t].load(std::memory_order_acquire)) < kFirstRecord)
       std::this_thread::yield();  // another thread is writing it
-    return planes_[t];
+    return records_[slot - kFirstRecord];
   }
+  const std::uint32_t index = used_.fetch_add(1, std::memory_order_relaxed);
   const Triangle& f = mesh_.triangles[t];
   const Xyz &p = xyz_[f[0]], &q = xyz_[f[1]], &r = xyz_[f[2]];
   const double a[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
   const double b[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
-  Plane& plane = planes_[t];
+  Plane& plane = records_[index];
   plane.reach = 0;
   plane.corner[0] = p, plane.corner[1] = q, plane.corner[2] = r;
   for (int k = 0; k < 3; ++k) {
@@ -65,7 +66,7 @@ const FacePlanes::Plane& FacePlanes::publish(std::uint32_t t) const {
     plane.magnitude[k] = std::fabs(a[i] * b[j]) + std::fabs(a[j] * b[i]);
     plane.reach = std::max({plane.reach, std::fabs(a[k]), std::fabs(b[k])});
   }
-  state_[t].store(kReady, std::memory_order_release);
+  slot_[t].store(kFirstRecord + index, std::memory_order_release);
   return plane;
 }
 
