@@ -80,12 +80,21 @@ struct PairContext {
   std::uint32_t b_side() const { return options.soup ? 0 : 1; }
 };
 
+// The interval normals of the facets in some pair, side by side: a facet meets many pairs, so its
+// normal is computed once; but few facets of a large mesh are in any pair, and records indexed
+// by facet would put each one written on a page of its own (a fresh page fault per call).
+struct FacetNormals {
+  std::vector<std::uint32_t> slot[2];      // by facet: its normal's index (facets in some pair)
+  std::vector<ApproxVector> normal[2];     // by slot
+  const ApproxVector& of(int side, std::uint32_t facet) const {
+    return normal[side][slot[side][facet]];
+  }
+};
+
 // Step 3, signs (step3_signs.cpp): each pair's corner signs, decided on intervals, plane labels
 // and shared corners first, the remaining (plane, point) questions each evaluated exactly once;
-// pairs whose triangles do not meet are marked separated. normals[side][f] is facet f's interval
-// normal (only for facets in some pair).
-std::vector<PairSigns> pair_signs(const PairContext& c,
-                                  const std::vector<ApproxVector> (&normals)[2]);
+// pairs whose triangles do not meet are marked separated.
+std::vector<PairSigns> pair_signs(const PairContext& c, const FacetNormals& normals);
 
 // Step 3, coplanar pairs (step3_coplanar.cpp): the overlap of two closed coplanar triangles
 // (corners by id), nothing, a point, a segment's ends or a convex polygon, each vertex with the

@@ -127,16 +127,23 @@ std::vector<PointId> identify_vertices(Intersection& x, const Mesh& a, const Mes
 
 // A facet meets many pairs: its interval normal is computed once, and a point's side of its
 // plane is then one interval dot product rather than a 3x3 determinant.
-void facet_normals(const PairContext& c, const UsedFacets& used,
-                   std::vector<ApproxVector> (&normals)[2]) {
+FacetNormals facet_normals(const PairContext& c, const UsedFacets& used) {
+  FacetNormals normals;
   for (int side = 0; side < 2; ++side) {
-    normals[side].resize(used[side].size());
-    for_each_upward(used[side].size(), [&](std::size_t f) {
-      if (!used[side][f]) return;
-      const Corners t = c.corners(side, std::uint32_t(f));
-      normals[side][f] = c.table.approx_normal(t[0], t[1], t[2]);
+    std::vector<std::uint32_t>& slot = normals.slot[side];
+    std::vector<std::uint32_t> facets;  // by slot
+    slot.resize(used[side].size());
+    for (std::uint32_t f = 0; f < used[side].size(); ++f) {
+      slot[f] = std::uint32_t(facets.size());
+      if (used[side][f]) facets.push_back(f);
+    }
+    normals.normal[side].resize(facets.size());
+    for_each_upward(facets.size(), [&](std::size_t i) {
+      const Corners t = c.corners(side, facets[i]);
+      normals.normal[side][i] = c.table.approx_normal(t[0], t[1], t[2]);
     });
   }
+  return normals;
 }
 
 // A crossing of an input edge (u, v), u < v (ids of the edge's ends), with the plane of a facet of
@@ -451,8 +458,7 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
   // Corners are named by the ids of their positions from here on: predicates on coincident
   // corners of the two meshes (identical meshes, shared vertices) are decided by the ids alone.
   const PairContext c{{&a, &b}, pairs, options, x.points, x.vertex_rep};
-  std::vector<ApproxVector> normals[2];
-  facet_normals(c, used, normals);
+  const FacetNormals normals = facet_normals(c, used);
   const std::vector<PairSigns> signs = pair_signs(c, normals);
   const Crossings crossings(c, signs);
 
@@ -467,7 +473,7 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
     live_pairs[j] = pairs[k];
     if (signs[k].coplanar) return coplanar_outcome(c, k, outcomes[j]);
     const ApproxVector line =
-        CGAL::cross_product(normals[0][pairs[k].first], normals[1][pairs[k].second]);
+        CGAL::cross_product(normals.of(0, pairs[k].first), normals.of(1, pairs[k].second));
     chord_outcome(c, crossings, signs[k], line, k, outcomes[j]);
   });
   name_points(x, outcomes, options.soup);

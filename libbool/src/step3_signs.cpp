@@ -170,8 +170,7 @@ bool one_side(const std::int8_t (&x)[3]) {
 
 }  // namespace
 
-std::vector<PairSigns> pair_signs(const PairContext& c,
-                                  const std::vector<ApproxVector> (&normals)[2]) {
+std::vector<PairSigns> pair_signs(const PairContext& c, const FacetNormals& normals) {
   const PlaneLabels labels(c);
   const std::size_t np = c.pairs.size();
   std::vector<PairSigns> signs(np);
@@ -185,8 +184,8 @@ std::vector<PairSigns> pair_signs(const PairContext& c,
       return;
     }
     const Corners ta = c.corners_a(k), tb = c.corners_b(k);
-    s.separated = decide_cheaply(c, labels, ta, tb, ib, normals[1][ib], s.a) ||
-                  decide_cheaply(c, labels, tb, ta, ia, normals[0][ia], s.b);
+    s.separated = decide_cheaply(c, labels, ta, tb, ib, normals.of(1, ib), s.a) ||
+                  decide_cheaply(c, labels, tb, ta, ia, normals.of(0, ia), s.b);
   });
 
   // Settle the undecided signs, then test the triangles that straddle each other's planes.
