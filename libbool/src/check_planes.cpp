@@ -13,7 +13,9 @@ FacePlanes::FacePlanes(const Mesh& mesh, const std::vector<Xyz>& xyz, double err
     : mesh_(mesh), xyz_(xyz), error_(error) {
   if (xyz.empty()) return;
   const std::size_t nf = mesh.num_triangles();
-  records_.reset(new Plane[nf]);
+  const std::size_t num_blocks = (nf + kBlock - 1) / kBlock;
+  blocks_.reset(new std::atomic<Plane*>[num_blocks]);
+  for (std::size_t i = 0; i < num_blocks; ++i) blocks_[i].store(nullptr, std::memory_order_relaxed);
   slot_.reset(new std::atomic<std::uint32_t>[nf]);
   units_.resize(nf);
   proper_.resize(nf);
@@ -45,19 +47,30 @@ FacePlanes::FacePlanes(const Mesh& mesh, const std::vector<Xyz>& xyz, double err
                     });
 }
 
+FacePlanes::~FacePlanes() {
+  if (!blocks_) return;
+  const std::uint32_t used = used_.load();
+  for (std::uint32_t b = 0; b * kBlock < used; ++b) delete[] blocks_[b].load();
+}
+
 const FacePlanes::Plane& FacePlanes::publish(std::uint32_t t) const {
   std::uint32_t slot = kNone;
   if (!slot_[t].compare_exchange_strong(slot, kBusy, std::memory_order_acquire)) {
     while ((slot = slot_[t].load(std::memory_order_acquire)) < kFirstRecord)
       std::this_thread::yield();  // another thread is writing it
-    return records_[slot - kFirstRecord];
+    return record(slot - kFirstRecord);
   }
   const std::uint32_t index = used_.fetch_add(1, std::memory_order_relaxed);
+  std::atomic<Plane*>& block = blocks_[index >> kBlockShift];
+  if (!block.load(std::memory_order_acquire)) {
+    const std::lock_guard<std::mutex> lock(new_block_);
+    if (!block.load(std::memory_order_relaxed)) block.store(new Plane[kBlock], std::memory_order_release);
+  }
   const Triangle& f = mesh_.triangles[t];
   const Xyz &p = xyz_[f[0]], &q = xyz_[f[1]], &r = xyz_[f[2]];
   const double a[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
   const double b[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
-  Plane& plane = records_[index];
+  Plane& plane = block.load(std::memory_order_relaxed)[index & (kBlock - 1)];
   plane.reach = 0;
   plane.corner[0] = p, plane.corner[1] = q, plane.corner[2] = r;
   for (int k = 0; k < 3; ++k) {

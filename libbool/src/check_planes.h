@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <vector>
 
@@ -30,6 +31,9 @@ class FacePlanes {
  public:
   // Without doubles (`xyz` empty: coordinates out of the filters' range) every test declines.
   FacePlanes(const Mesh& mesh, const std::vector<Xyz>& xyz, double error);
+  ~FacePlanes();
+  FacePlanes(const FacePlanes&) = delete;
+  FacePlanes& operator=(const FacePlanes&) = delete;
 
   bool empty() const { return units_.empty(); }
 
@@ -85,8 +89,11 @@ class FacePlanes {
   // normals; writing every face's record was 5% of checking such a mesh.
   const Plane& plane(std::uint32_t f) const {
     const std::uint32_t slot = slot_[f].load(std::memory_order_acquire);
-    if (slot >= kFirstRecord) return records_[slot - kFirstRecord];
+    if (slot >= kFirstRecord) return record(slot - kFirstRecord);
     return publish(f);
+  }
+  const Plane& record(std::uint32_t i) const {
+    return blocks_[i >> kBlockShift].load(std::memory_order_relaxed)[i & (kBlock - 1)];
   }
   const Plane& publish(std::uint32_t f) const;
   // slot_[f]: kNone, kBusy, or kFirstRecord + the index of f's record in records_.
@@ -110,11 +117,13 @@ class FacePlanes {
   const Mesh& mesh_;
   const std::vector<Xyz>& xyz_;
   const double error_;
-  // Room for every face's record, not initialized, handed out in the order faces are first used:
-  // the records written fill the first pages only. Indexed by face, the few faces a smooth mesh
-  // needs touched a page each, nearly all pages: 3 of every 10 fresh pages of a checked Boolean
-  // (refined_elephant x bunny00), each a page fault on every call.
-  std::unique_ptr<Plane[]> records_;
+  // The records, handed out in the order faces are first used, in blocks allocated as they fill:
+  // the few faces a smooth mesh needs, indexed by face, touched a page each, nearly every page of
+  // an array over all faces (3 of every 10 fresh pages of a checked Boolean, refined_elephant x
+  // bunny00, each a page fault on every call).
+  static constexpr std::uint32_t kBlockShift = 8, kBlock = 1u << kBlockShift;
+  mutable std::unique_ptr<std::atomic<Plane*>[]> blocks_;  // kBlock records each, or null
+  mutable std::mutex new_block_;
   mutable std::atomic<std::uint32_t> used_{0};  // records handed out
   std::unique_ptr<std::atomic<std::uint32_t>[]> slot_;  // by face
   std::vector<Xyz> units_;            // unit normals, for every face (empty without doubles)
