@@ -275,12 +275,11 @@ class StarExaminer {
     return quarters == 4;
   }
 
-  // The sign of p - v along k: by the intervals when they are apart, else exactly.
+  // The sign of p - v along k: by the intervals when they are apart, else exactly (from the
+  // table's homogeneous points, computed once per point: comparing the mesh's lazy coordinates
+  // built and evaluated two lazy numbers per comparison).
   double exact_sign(VertexIndex p, VertexIndex v, int k) const {
-    const auto &a = table_.approx(p).cartesian(k), &o = table_.approx(v).cartesian(k);
-    if (a.inf() > o.sup()) return 1.0;
-    if (a.sup() < o.inf()) return -1.0;
-    return double(CGAL::compare(table_.input(p).cartesian(k), table_.input(v).cartesian(k)));
+    return double(table_.compare(k, p, v));
   }
 
   // The same without doubles: exact coordinate comparisons and orientations.
