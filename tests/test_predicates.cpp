@@ -547,6 +547,44 @@ TEST(FixedInteger, DeterminantSignsAgreeWithMpz) {
   EXPECT_GT(zeros, 600);
 }
 
+// The plane form's signs (cofactors of three rows computed once, then four products per point)
+// against mpz determinants: many points per plane, a third of them on it, entries of 20 to 600
+// bits (beyond the buffers the form, or its evaluation, must decline).
+TEST(FixedInteger, PlaneFormSignsAgreeWithMpz) {
+  gmp_randclass random(gmp_randinit_default);
+  random.seed(19);
+  int answered = 0, declined = 0, zeros = 0;
+  auto draw = [&](int bits) {
+    mpz_class x = random.get_z_bits(bits);
+    return random.get_z_bits(1) == 1 ? mpz_class(-x) : x;
+  };
+  for (int bits : {20, 64, 100, 250, 256, 300, 600})
+    for (int plane = 0; plane < 40; ++plane) {
+      std::array<mpz_class, 4> r[3];
+      for (auto& row : r)
+        for (auto& x : row) x = draw(bits);
+      const std::array<mpz_class, 4>* rows[3] = {&r[0], &r[1], &r[2]};
+      const auto form = detail::FixedPlaneForm::through(rows);
+      for (int i = 0; i < 20; ++i) {
+        std::array<mpz_class, 4> x;
+        for (int j = 0; j < 4; ++j)
+          x[j] = i % 3 == 0 ? mpz_class(2 * r[0][j] - 7 * r[1][j] + r[2][j]) : draw(bits);
+        const int expected = detail::sign_of_det4(r[0], r[1], r[2], x);
+        zeros += expected == 0;
+        const std::optional<int> sign = form ? form->sign_at(x) : std::nullopt;
+        if (!sign) {
+          ++declined;
+          continue;
+        }
+        ASSERT_EQ(*sign, expected) << bits << " bits, plane " << plane << ", point " << i;
+        ++answered;
+      }
+    }
+  EXPECT_GT(answered, 3000);  // up to 256-bit entries
+  EXPECT_GT(declined, 1500);  // 300- and 600-bit ones (and the on-plane points past the buffers)
+  EXPECT_GT(zeros, 1500);
+}
+
 // The static filters for points known within an error of their doubles (rational inputs: a
 // rotated mesh) against CGAL's exact orientation of the exact points: nearly coplanar and nearly
 // collinear points, each moved off its double by up to the error, at scales 2^-80 to 2^80. A

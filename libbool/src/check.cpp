@@ -374,6 +374,7 @@ std::vector<std::uint32_t> patch_candidates(const Mesh& mesh, const PointTable& 
                                             std::size_t p, std::vector<CGAL::Bbox_3>& parts) {
   const detail::PlanarPatch& patch = planar.patches[p];
   std::vector<std::uint32_t> out;
+  const PointTable::PlaneSides plane_side(table, patch.plane);
   auto consider = [&](std::uint32_t t) {
     const Triangle& f = mesh.triangles[t];
     const std::array<PointId, 3> corners = {position[f[0]], position[f[1]], position[f[2]]};
@@ -383,7 +384,7 @@ std::vector<std::uint32_t> patch_candidates(const Mesh& mesh, const PointTable& 
         parts.push_back(*part);
       }
     } else if (patch.kind == detail::PlanarPatch::Kind::Star ||
-               !detail::meets_patch_only_at_its_features(table, patch, corners))
+               !detail::meets_patch_only_at_its_features(plane_side, patch, corners))
       out.push_back(t);
   };
   const detail::UpwardRounding rounding;

@@ -553,14 +553,13 @@ void add_proved_stars(const Mesh& mesh, const PointTable& table,
   }
 }
 
-bool meets_patch_only_at_its_features(const PointTable& table, const PlanarPatch& patch,
-                                      const std::array<PointId, 3>& t) {
-  const auto& s = patch.plane;
+bool meets_patch_only_at_its_features(const PointTable::PlaneSides& plane_side,
+                                      const PlanarPatch& patch, const std::array<PointId, 3>& t) {
   bool above = false, below = false;
   PointId on[3];
   int count = 0;
   for (const PointId x : t) {
-    const CGAL::Sign o = table.orientation(s[0], s[1], s[2], x);
+    const CGAL::Sign o = plane_side(x);
     above |= o == CGAL::POSITIVE;
     below |= o == CGAL::NEGATIVE;
     if (o == CGAL::ZERO) on[count++] = x;

@@ -133,9 +133,10 @@ void add_proved_stars(const Mesh& mesh, const PointTable& table,
                       PlanarPatches& groups);
 
 // Triangle t (by positions) meets the patch's plane at most in one vertex or one edge of the
-// patch: then it meets no triangle of the patch improperly.
-bool meets_patch_only_at_its_features(const PointTable& table, const PlanarPatch& patch,
-                                      const std::array<PointId, 3>& t);
+// patch: then it meets no triangle of the patch improperly. `plane_side` is the patch's plane's
+// (PointTable::PlaneSides over patch.plane: one per patch, for its many candidates).
+bool meets_patch_only_at_its_features(const PointTable::PlaneSides& plane_side,
+                                      const PlanarPatch& patch, const std::array<PointId, 3>& t);
 
 // Closed segments pq and rs of one plane, seen along `dropped`, meet.
 bool segments_meet_2(const PointTable& table, int dropped, PointId p, PointId q, PointId r,

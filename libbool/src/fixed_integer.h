@@ -163,4 +163,58 @@ inline std::optional<int> fixed_sign_of_det4(const std::array<mpz_class, 4>* row
   return det.sign;
 }
 
+// The linear form of the plane through three points (homogeneous integer rows a, b, c):
+// det [a; b; c; x] = sum_j C_j x_j, the cofactors C_j of the last row computed once. For many
+// points against one plane each sign is then four products instead of a 4x4 determinant.
+class FixedPlaneForm {
+ public:
+  // nullopt when an entry or a cofactor is too large for the buffers.
+  static std::optional<FixedPlaneForm> through(const std::array<mpz_class, 4>* rows[3]) {
+    FixedInteger<E> m[3][4];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 4; ++j) {
+        const auto x = FixedInteger<E>::of((*rows[i])[j]);
+        if (!x) return std::nullopt;
+        m[i][j] = *x;
+      }
+    FixedPlaneForm form;
+    for (int j = 0; j < 4; ++j) {
+      // C_j = (-1)^(3 + j) det of the rows without column j, expanded along row a.
+      int c[3], n = 0;
+      for (int k = 0; k < 4; ++k)
+        if (k != j) c[n++] = k;
+      FixedInteger<kCofactor>& out = form.cofactor_[j];
+      for (int e = 0; e < 3; ++e) {
+        const int lo = c[e == 0 ? 1 : 0], hi = c[e == 2 ? 1 : 2];
+        FixedInteger<2 * E + 1> minor;
+        const auto p = multiply<2 * E>(m[1][lo], m[2][hi]);
+        const auto q = multiply<2 * E>(m[1][hi], m[2][lo]);
+        if (!p || !q || !accumulate(minor, *p, 1) || !accumulate(minor, *q, -1))
+          return std::nullopt;
+        const auto term = multiply<kCofactor - 1>(m[0][c[e]], minor);
+        const int sign = (e == 1 ? -1 : 1) * ((3 + j) % 2 == 0 ? 1 : -1);
+        if (!term || !accumulate(out, *term, sign)) return std::nullopt;
+      }
+    }
+    return form;
+  }
+
+  // The sign of det [a; b; c; x], or nullopt when x's entries are too large.
+  std::optional<int> sign_at(const std::array<mpz_class, 4>& x) const {
+    FixedInteger<kCofactor + E + 2> sum;
+    for (int j = 0; j < 4; ++j) {
+      const auto xj = FixedInteger<E>::of(x[j]);
+      if (!xj) return std::nullopt;
+      const auto term = multiply<kCofactor + E>(cofactor_[j], *xj);
+      if (!term || !accumulate(sum, *term, 1)) return std::nullopt;
+    }
+    return sum.sign;
+  }
+
+ private:
+  static constexpr int E = 4;                  // entries up to 256 bits, as fixed_sign_of_det4
+  static constexpr int kCofactor = 3 * E + 3;  // a 3x3 determinant of such entries, with carries
+  FixedInteger<kCofactor> cofactor_[4];
+};
+
 }  // namespace morphex::detail

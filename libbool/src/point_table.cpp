@@ -353,6 +353,25 @@ CGAL::Sign PointTable::orientation_exact(PointId p, PointId q, PointId r, PointI
   return CGAL::Sign(-sign_of_det4(*rows[0], *rows[1], *rows[2], *rows[3]));
 }
 
+CGAL::Sign PointTable::PlaneSides::operator()(PointId s) const {
+  const auto [a, b, c] = plane_;
+  const CGAL::Uncertain<CGAL::Sign> o = table_.orientation_filter(a, b, c, s);
+  if (o.is_certain()) return o.make_certain();
+  // Doubles: orientation_exact decides in doubles first, without the integers.
+  const PointTable& t = table_;
+  if (t.is_double(a) && t.is_double(b) && t.is_double(c) && t.is_double(s))
+    return t.orientation_exact(a, b, c, s);
+  if (!tried_) {
+    tried_ = true;
+    const Homogeneous* rows[3] = {&t.exact(a), &t.exact(b), &t.exact(c)};
+    form_ = FixedPlaneForm::through(rows);
+  }
+  // det [a; b; c; s] over homogeneous rows has the opposite sign (see orientation_exact).
+  if (form_)
+    if (const std::optional<int> sign = form_->sign_at(t.exact(s))) return CGAL::Sign(-*sign);
+  return t.orientation_exact(a, b, c, s);
+}
+
 PointTable::Plane PointTable::exact_plane(PointId a, PointId b, PointId c) const {
   return plane_through(exact(a), exact(b), exact(c));
 }
