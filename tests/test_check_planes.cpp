@@ -56,8 +56,8 @@ TEST(FacePlanes, SidesDecidedFromAnyThreadInAnyOrderAreTheExactOnes) {
         if (first[g][k] == 2) continue;
         ++decided;
         const CGAL::Sign exact =
-            table.orientation(table.vertex(0, t[0]), table.vertex(0, t[1]),
-                              table.vertex(0, t[2]), table.vertex(0, m.triangles[f][k]));
+            table.orientation(table.vertex(0, t[0]), table.vertex(0, t[1]), table.vertex(0, t[2]),
+                              table.vertex(0, m.triangles[f][k]));
         ASSERT_EQ(first[g][k], int(exact)) << "face " << g << ", corner " << k << " of " << f;
       }
     }

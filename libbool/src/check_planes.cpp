@@ -64,7 +64,8 @@ const FacePlanes::Plane& FacePlanes::publish(std::uint32_t t) const {
   std::atomic<Plane*>& block = blocks_[index >> kBlockShift];
   if (!block.load(std::memory_order_acquire)) {
     const std::lock_guard<std::mutex> lock(new_block_);
-    if (!block.load(std::memory_order_relaxed)) block.store(new Plane[kBlock], std::memory_order_release);
+    if (!block.load(std::memory_order_relaxed))
+      block.store(new Plane[kBlock], std::memory_order_release);
   }
   const Triangle& f = mesh_.triangles[t];
   const Xyz &p = xyz_[f[0]], &q = xyz_[f[1]], &r = xyz_[f[2]];

@@ -124,7 +124,7 @@ class FacePlanes {
   static constexpr std::uint32_t kBlockShift = 8, kBlock = 1u << kBlockShift;
   mutable std::unique_ptr<std::atomic<Plane*>[]> blocks_;  // kBlock records each, or null
   mutable std::mutex new_block_;
-  mutable std::atomic<std::uint32_t> used_{0};  // records handed out
+  mutable std::atomic<std::uint32_t> used_{0};          // records handed out
   std::unique_ptr<std::atomic<std::uint32_t>[]> slot_;  // by face
   std::vector<Xyz> units_;            // unit normals, for every face (empty without doubles)
   std::vector<std::uint8_t> proper_;  // by face: proper()

@@ -84,8 +84,8 @@ struct PairContext {
 // normal is computed once; but few facets of a large mesh are in any pair, and records indexed
 // by facet would put each one written on a page of its own (a fresh page fault per call).
 struct FacetNormals {
-  std::vector<std::uint32_t> slot[2];      // by facet: its normal's index (facets in some pair)
-  std::vector<ApproxVector> normal[2];     // by slot
+  std::vector<std::uint32_t> slot[2];   // by facet: its normal's index (facets in some pair)
+  std::vector<ApproxVector> normal[2];  // by slot
   const ApproxVector& of(int side, std::uint32_t facet) const {
     return normal[side][slot[side][facet]];
   }
