@@ -176,15 +176,15 @@ TEST(PointIndex, DoublesFindTheIdsOfTheirPoints) {
   for (int i = 0; i < 4000; ++i) {
     std::array<double, 3> xyz;
     for (double& x : xyz)  // on a truncation cut or a few units in the last place from it
-      x = scales[pick(random)] * (1 + std::ldexp(double(pick(random)), -39) +
-                                  std::ldexp(double(offset(random)), -52));
+      x = scales[pick(random)] *
+          (1 + std::ldexp(double(pick(random)), -39) + std::ldexp(double(offset(random)), -52));
     if (i % 3 == 2) xyz = earlier[std::size_t(random()) % earlier.size()];  // a position met again
     earlier.push_back(xyz);
     const bool rational = i % 5 == 4;  // a third of a double: never a double itself
-    const Point p = rational ? Point(FT(xyz[0]) / 3, FT(xyz[1]), FT(xyz[2]))
-                             : Point(xyz[0], xyz[1], xyz[2]);
-    const std::uint32_t id = i % 2 || rational ? index.find_or_insert(p, next)
-                                               : index.find_or_insert(xyz, next);
+    const Point p =
+        rational ? Point(FT(xyz[0]) / 3, FT(xyz[1]), FT(xyz[2])) : Point(xyz[0], xyz[1], xyz[2]);
+    const std::uint32_t id =
+        i % 2 || rational ? index.find_or_insert(p, next) : index.find_or_insert(xyz, next);
     if (id == next) ++next;
     if (!rational)
       ASSERT_EQ(i % 2 ? index.find_or_insert(xyz, next) : index.find_or_insert(p, next), id) << i;
@@ -641,4 +641,44 @@ TEST(StaticFilter, SignsOfPointsNearTheirDoublesAreExact) {
   EXPECT_EQ(wrong, 0);
   EXPECT_GT(decided_generic, generic * 9 / 10);
   EXPECT_LT(decided_near, 10000 / 2);  // nearly coplanar: mostly left to the exact stages
+}
+
+// The turn from a to b seen along an exact direction d, for a, b differences of points near
+// their doubles (the star proof along a mean normal): a sign given is that of the exact
+// determinant, in doubles (error 0) and within errors, on nearly degenerate configurations too.
+TEST(StaticFilter, TurnsAlongADirectionAreExact) {
+  std::mt19937_64 random(67);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::uniform_int_distribution<int> scale_exponent(-60, 60), shift(-3, 3);
+  int decided_generic = 0, generic = 0, wrong = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const double scale = std::ldexp(1.0, scale_exponent(random));
+    const double error = i % 3 == 0 ? 0 : std::ldexp(scale, -45 + shift(random));
+    const bool near = i % 2 == 0;
+    std::array<detail::Xyz, 3> q;  // v, p, q
+    for (auto& x : q) x = {unit(random) * scale, unit(random) * scale, unit(random) * scale};
+    const detail::Xyz d = {unit(random), unit(random), unit(random)};
+    if (near)  // q - v nearly along p - v and d: a turn of almost nothing
+      for (int c = 0; c < 3; ++c)
+        q[2][c] = q[0][c] + 0.7 * (q[1][c] - q[0][c]) + 1e-3 * scale * unit(random) * 1e-12 +
+                  0.3 * scale * d[c];
+    std::array<Point, 3> p;  // exact points off the doubles by up to the error
+    for (int k = 0; k < 3; ++k) {
+      FT c[3];
+      for (int j = 0; j < 3; ++j)
+        c[j] = FT(q[k][j]) + FT(error) * FT(int(random() % 2001) - 1000) / 1000;
+      p[k] = Point(c[0], c[1], c[2]);
+    }
+    const Kernel::Vector_3 a = p[1] - p[0], b = p[2] - p[0], dv(d[0], d[1], d[2]);
+    const int exact = int(CGAL::sign(CGAL::determinant(a, b, dv)));
+    const detail::Xyz ad = {q[1][0] - q[0][0], q[1][1] - q[0][1], q[1][2] - q[0][2]},
+                      bd = {q[2][0] - q[0][0], q[2][1] - q[0][1], q[2][2] - q[0][2]};
+    if (const auto o = detail::static_turn_along(ad, bd, d, error)) {
+      wrong += *o != exact;
+      decided_generic += !near;
+    }
+    generic += !near;
+  }
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GT(decided_generic, generic * 9 / 10);
 }

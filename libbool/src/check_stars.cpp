@@ -67,7 +67,8 @@ class StarExaminer {
     const std::array<double, 3> normal = mean_normal(v);
     // A coordinate axis suits smooth surfaces; where faces meet at sharp angles (CAD models:
     // a face perpendicular to every axis that suits the others) a diagonal may.
-    return covers_once(v, closest_axis(normal)) || covers_once_along_diagonal(v, normal);
+    return covers_once(v, closest_axis(normal)) || covers_once_along_diagonal(v, normal) ||
+           covers_once_along_normal(v, normal);
   }
 
  private:
@@ -237,6 +238,44 @@ class StarExaminer {
       quarters += quarters_turned(turn, from, to);
     }
     return quarters == 4;
+  }
+
+  // The same proof along the star's mean normal d itself, by the doubles within their errors: a
+  // ridge or a tip whose faces no axis or diagonal sees all from one side (a model turned off the
+  // axes has many). The winding is counted by the angles that a ray r from v across d meets,
+  // half-open at their first side: each turns less than half a turn, all the same way, so r
+  // meets one angle per winding.
+  bool covers_once_along_normal(VertexIndex v, const std::array<double, 3>& normal) const {
+    const auto& doubles = table_.input_near_doubles();
+    if (doubles.empty()) return false;
+    const double error = table_.input_error();
+    // Any direction near the normal serves: d scaled to entries of at most 1, r = e_k x d for
+    // the axis k least along d (exact: entries of d moved and negated).
+    const double scale =
+        std::max({std::fabs(normal[0]), std::fabs(normal[1]), std::fabs(normal[2])});
+    if (!(scale > 0) || !std::isfinite(scale)) return false;
+    const Xyz d = {normal[0] / scale, normal[1] / scale, normal[2] / scale};
+    const int k = std::fabs(d[0]) <= std::fabs(d[1]) && std::fabs(d[0]) <= std::fabs(d[2]) ? 0
+                  : std::fabs(d[1]) <= std::fabs(d[2])                                     ? 1
+                                                                                           : 2;
+    const Xyz r = k == 0 ? Xyz{0, -d[2], d[1]} : k == 1 ? Xyz{d[2], 0, -d[0]} : Xyz{-d[1], d[0], 0};
+    const Xyz& o = doubles[v];
+    auto from_v = [&](VertexIndex p) {
+      return Xyz{doubles[p][0] - o[0], doubles[p][1] - o[1], doubles[p][2] - o[2]};
+    };
+    int turn = 0, crossings = 0;
+    for (const Angle& a : star_) {
+      const Xyz p = from_v(a.from), q = from_v(a.to);
+      const std::optional<int> s = static_turn_along(p, q, d, error);
+      if (!s || *s == 0 || *s == -turn) return false;
+      turn = *s;
+      // r in [p, q): from p to r turns the angle's way or not at all, from r to q strictly.
+      const std::optional<int> pr = static_turn_along(p, r, d, error),
+                               rq = static_turn_along(r, q, d, error);
+      if (!pr || !rq) return false;  // no exact zeros here: the proof just fails
+      crossings += *pr == turn && *rq == turn;
+    }
+    return crossings == 1;
   }
 
   // Every angle turns one way seen along `axis` and, together, they wind once around v.

@@ -116,6 +116,29 @@ inline std::optional<int> static_orientation_near(const Xyz& p, const Xyz& q, co
   return std::nullopt;
 }
 
+// sign det [a, b, d] (the turn from a to b seen along d) for rows a, b rounded once from
+// differences of points known within `error` of their doubles (or exact vectors) and d exact.
+// Each entry of a and b is off by up to 2 error besides its rounding, which moves the
+// determinant by at most 6 (2 error) e |d| for each row and 6 (2 error)^2 |d| for both, e bounding
+// the entries with their errors and |d| d's largest entry: 48 error e |d| (49 with the bound's
+// rounding).
+inline std::optional<int> static_turn_along(const Xyz& a, const Xyz& b, const Xyz& d,
+                                            double error) {
+  const auto [det, permanent] =
+      det_and_permanent(a[0], a[1], a[2], b[0], b[1], b[2], d[0], d[1], d[2]);
+  if (!(permanent < kStaticHuge) || !(permanent > kStaticTiny)) return std::nullopt;
+  double bound = 1.6e-15 * permanent;
+  if (error > 0) {
+    const double m = std::max({std::fabs(a[0]), std::fabs(a[1]), std::fabs(a[2]), std::fabs(b[0]),
+                               std::fabs(b[1]), std::fabs(b[2])}),
+                 md = std::max({std::fabs(d[0]), std::fabs(d[1]), std::fabs(d[2])});
+    bound += std::max(49 * error * entry_bound(m, error) * md, kNearSlackFloor);
+  }
+  if (det > bound) return 1;
+  if (-det > bound) return -1;
+  return std::nullopt;
+}
+
 // The same in two coordinates: each of the two products moves by at most 4 error m, 8 error m
 // in all (9 with the bound's rounding).
 inline std::optional<int> static_orientation_2_near(int u, int v, const Xyz& p, const Xyz& q,
