@@ -54,18 +54,24 @@ FacePlanes::~FacePlanes() {
 }
 
 const FacePlanes::Plane& FacePlanes::publish(std::uint32_t t) const {
-  std::uint32_t slot = kNone;
-  if (!slot_[t].compare_exchange_strong(slot, kBusy, std::memory_order_acquire)) {
-    while ((slot = slot_[t].load(std::memory_order_acquire)) < kFirstRecord)
-      std::this_thread::yield();  // another thread is writing it
-    return record(slot - kFirstRecord);
+  // Claim the face, or wait while another thread writes its record (it gives the face back if
+  // its allocation fails).
+  for (std::uint32_t slot = kNone;
+       !slot_[t].compare_exchange_weak(slot, kBusy, std::memory_order_acquire); slot = kNone) {
+    if (slot >= kFirstRecord) return record(slot - kFirstRecord);
+    std::this_thread::yield();
   }
   const std::uint32_t index = used_.fetch_add(1, std::memory_order_relaxed);
   std::atomic<Plane*>& block = blocks_[index >> kBlockShift];
   if (!block.load(std::memory_order_acquire)) {
     const std::lock_guard<std::mutex> lock(new_block_);
-    if (!block.load(std::memory_order_relaxed))
-      block.store(new Plane[kBlock], std::memory_order_release);
+    try {
+      if (!block.load(std::memory_order_relaxed))
+        block.store(new Plane[kBlock], std::memory_order_release);
+    } catch (...) {
+      slot_[t].store(kNone, std::memory_order_release);  // no thread waits on it forever
+      throw;
+    }
   }
   const Triangle& f = mesh_.triangles[t];
   const Xyz &p = xyz_[f[0]], &q = xyz_[f[1]], &r = xyz_[f[2]];

@@ -96,7 +96,7 @@ class FacePlanes {
     return blocks_[i >> kBlockShift].load(std::memory_order_relaxed)[i & (kBlock - 1)];
   }
   const Plane& publish(std::uint32_t f) const;
-  // slot_[f]: kNone, kBusy, or kFirstRecord + the index of f's record in records_.
+  // slot_[f]: kNone, kBusy, or kFirstRecord + the index of f's record (in order of first use).
   static constexpr std::uint32_t kNone = 0, kBusy = 1, kFirstRecord = 2;
   std::optional<int> side(const Plane& plane, const Xyz& v) const {
     const Xyz& p = plane.corner[0];
