@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The check's face planes (check_planes.h): each face's record is written on its first use, by
-// whichever thread asks first, into blocks handed out as they fill. Every side they decide, from
-// any thread in any order, is the exact orientation's.
+// whichever thread asks first, into blocks handed out as they fill (one per thread of the arena,
+// one shared by threads outside it). Every side they decide, from any thread in any order, is
+// the exact orientation's.
 #include <gtest/gtest.h>
 #include <tbb/parallel_for.h>
 
@@ -10,6 +11,7 @@
 #include <cstdint>
 #include <numeric>
 #include <random>
+#include <thread>
 #include <vector>
 
 #include "check_planes.h"
@@ -67,5 +69,19 @@ TEST(FacePlanes, SidesDecidedFromAnyThreadInAnyOrderAreTheExactOnes) {
     std::reverse(order.begin(), order.end());
     const detail::FacePlanes again(m, table.input_near_doubles(), table.input_error());
     EXPECT_EQ(sides(m, again, order), first);
+    // From threads outside TBB's arena (they share one cursor, under a lock), two at once.
+    const detail::FacePlanes outside(m, table.input_near_doubles(), table.input_error());
+    std::vector<std::array<int, 3>> by_threads(nf);
+    auto ask = [&](std::size_t from, std::size_t step) {
+      for (std::size_t i = from; i < nf; i += step) {
+        const std::uint32_t g = order[i], f = std::uint32_t((g * 7 + 1) % nf);
+        for (int k = 0; k < 3; ++k)
+          by_threads[g][k] = outside.side(g, m.triangles[f][k]).value_or(2);
+      }
+    };
+    std::thread one(ask, 0, 2), two(ask, 1, 2);
+    one.join();
+    two.join();
+    EXPECT_EQ(by_threads, first);
   }
 }

@@ -4,7 +4,10 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
+#include <algorithm>
+#include <stdexcept>
 #include <thread>
 
 namespace morphex::detail {
@@ -13,9 +16,13 @@ FacePlanes::FacePlanes(const Mesh& mesh, const std::vector<Xyz>& xyz, double err
     : mesh_(mesh), xyz_(xyz), error_(error) {
   if (xyz.empty()) return;
   const std::size_t nf = mesh.num_triangles();
-  const std::size_t num_blocks = (nf + kBlock - 1) / kBlock;
-  blocks_.reset(new std::atomic<Plane*>[num_blocks]);
-  for (std::size_t i = 0; i < num_blocks; ++i) blocks_[i].store(nullptr, std::memory_order_relaxed);
+  // Every cursor holds at most one block partly filled: the blocks of all records, plus one each.
+  num_cursors_ = std::size_t(std::max(1, tbb::this_task_arena::max_concurrency())) + 1;
+  cursors_.reset(new Cursor[num_cursors_]);
+  num_blocks_ = (nf + kBlock - 1) / kBlock + num_cursors_;
+  blocks_.reset(new std::atomic<Plane*>[num_blocks_]);
+  for (std::size_t i = 0; i < num_blocks_; ++i)
+    blocks_[i].store(nullptr, std::memory_order_relaxed);
   slot_.reset(new std::atomic<std::uint32_t>[nf]);
   units_.resize(nf);
   proper_.resize(nf);
@@ -48,9 +55,37 @@ FacePlanes::FacePlanes(const Mesh& mesh, const std::vector<Xyz>& xyz, double err
 }
 
 FacePlanes::~FacePlanes() {
-  if (!blocks_) return;
-  const std::uint32_t used = used_.load();
-  for (std::uint32_t b = 0; b * kBlock < used; ++b) delete[] blocks_[b].load();
+  const std::size_t used = std::min<std::size_t>(blocks_used_.load(), num_blocks_);
+  for (std::size_t b = 0; b < used; ++b) delete[] blocks_[b].load();
+}
+
+std::uint32_t FacePlanes::new_block(std::uint32_t face) const {
+  const std::uint32_t b = blocks_used_.fetch_add(1, std::memory_order_relaxed);
+  try {
+    if (b >= num_blocks_) throw std::logic_error("FacePlanes: more blocks than cursors allow");
+    blocks_[b].store(new Plane[kBlock], std::memory_order_release);
+  } catch (...) {
+    slot_[face].store(kNone, std::memory_order_release);  // no thread waits on it forever
+    throw;
+  }
+  return b * kBlock;
+}
+
+// The threads that ask for this object's records are the check's own: its calling thread and
+// those running its tasks, each in its own slot of the arena while the tasks exist (a thread
+// runs one task at a time, and this runs no task). A thread outside any slot (-2) takes the
+// shared cursor under the lock.
+std::uint32_t FacePlanes::next_record(std::uint32_t face) const {
+  const int thread = tbb::this_task_arena::current_thread_index();
+  const bool own = thread >= 0 && std::size_t(thread) + 1 < num_cursors_;
+  std::unique_lock<std::mutex> lock(shared_cursor_, std::defer_lock);
+  if (!own) lock.lock();  // a thread outside the arena's slots: the last cursor, shared
+  Cursor& c = cursors_[own ? std::size_t(thread) : num_cursors_ - 1];
+  if (c.next == c.end) {
+    c.next = new_block(face);
+    c.end = c.next + kBlock;
+  }
+  return c.next++;
 }
 
 const FacePlanes::Plane& FacePlanes::publish(std::uint32_t t) const {
@@ -61,23 +96,13 @@ const FacePlanes::Plane& FacePlanes::publish(std::uint32_t t) const {
     if (slot >= kFirstRecord) return record(slot - kFirstRecord);
     std::this_thread::yield();
   }
-  const std::uint32_t index = used_.fetch_add(1, std::memory_order_relaxed);
-  std::atomic<Plane*>& block = blocks_[index >> kBlockShift];
-  if (!block.load(std::memory_order_acquire)) {
-    const std::lock_guard<std::mutex> lock(new_block_);
-    try {
-      if (!block.load(std::memory_order_relaxed))
-        block.store(new Plane[kBlock], std::memory_order_release);
-    } catch (...) {
-      slot_[t].store(kNone, std::memory_order_release);  // no thread waits on it forever
-      throw;
-    }
-  }
+  const std::uint32_t index = next_record(t);
   const Triangle& f = mesh_.triangles[t];
   const Xyz &p = xyz_[f[0]], &q = xyz_[f[1]], &r = xyz_[f[2]];
   const double a[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
   const double b[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
-  Plane& plane = block.load(std::memory_order_relaxed)[index & (kBlock - 1)];
+  Plane& plane =
+      blocks_[index >> kBlockShift].load(std::memory_order_relaxed)[index & (kBlock - 1)];
   plane.reach = 0;
   plane.corner[0] = p, plane.corner[1] = q, plane.corner[2] = r;
   for (int k = 0; k < 3; ++k) {
