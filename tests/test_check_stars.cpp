@@ -250,6 +250,26 @@ TEST(VertexStars, StarsWoundTwiceAreNotProved) {
   }
 }
 
+namespace {
+// No two triangles at a vertex the pass proved meet improperly (CGAL's triangle predicates over
+// every pair of the mesh's triangles that have that vertex).
+void expect_proved_stars_embedded(const Mesh& m, const detail::VertexStars& s,
+                                  const std::string& what) {
+  for (VertexIndex v = 0; v < m.num_vertices(); ++v) {
+    if (!s.embedded[v]) continue;
+    for (std::uint32_t a = 0; a < m.num_triangles(); ++a)
+      for (std::uint32_t b = a + 1; b < m.num_triangles(); ++b) {
+        const Triangle &ta = m.triangles[a], &tb = m.triangles[b];
+        const bool at_v =
+            (ta[0] == v || ta[1] == v || ta[2] == v) && (tb[0] == v || tb[1] == v || tb[2] == v);
+        if (at_v)
+          ASSERT_FALSE(triangles_intersect_improperly(m, a, b))
+              << what << ": vertex " << v << " proved, faces " << a << ", " << b;
+      }
+  }
+}
+}  // namespace
+
 // Where faces meet at right angles (a prism's rim: the cap perpendicular to every axis that
 // suits the sides), no coordinate axis proves the star but a diagonal does; on the same shapes
 // with vertices pushed to fold their stars, no folded star is taken as proved, and the check's
@@ -271,16 +291,7 @@ TEST(VertexStars, SharpStarsAreProvedAlongDiagonals) {
       for (double& x : d.points[vertex(random)]) x += (i % 5 == 0 ? 0.05 : 0.9) * unit(random);
     const Mesh m = from_double(d);
     const detail::VertexStars s = examine(m);
-    for (VertexIndex v = 0; v < m.num_vertices(); ++v) {
-      if (!s.embedded[v]) continue;
-      for (std::uint32_t a = 0; a < m.num_triangles(); ++a)
-        for (std::uint32_t b = a + 1; b < m.num_triangles(); ++b) {
-          const Triangle &ta = m.triangles[a], &tb = m.triangles[b];
-          const bool at_v =
-              (ta[0] == v || ta[1] == v || ta[2] == v) && (tb[0] == v || tb[1] == v || tb[2] == v);
-          if (at_v) ASSERT_FALSE(triangles_intersect_improperly(m, a, b)) << "case " << i;
-        }
-    }
+    expect_proved_stars_embedded(m, s, "case " + std::to_string(i));
     const Pairs expected = improper_pairs_by_brute_force(m);
     ASSERT_EQ(improper_pairs_by_check(m), expected) << "case " << i;
     folded_cases += !expected.empty();
@@ -315,16 +326,7 @@ TEST(VertexStars, SharpTipsTurnedOffTheAxesAreProvedAlongTheirNormals) {
       EXPECT_TRUE(s.embedded[tip]) << "case " << i;
       tips += s.embedded[tip];
     }
-    for (VertexIndex v = 0; v < turned.num_vertices(); ++v) {
-      if (!s.embedded[v]) continue;
-      for (std::uint32_t a = 0; a < turned.num_triangles(); ++a)
-        for (std::uint32_t b = a + 1; b < turned.num_triangles(); ++b) {
-          const Triangle &ta = turned.triangles[a], &tb = turned.triangles[b];
-          const bool at_v =
-              (ta[0] == v || ta[1] == v || ta[2] == v) && (tb[0] == v || tb[1] == v || tb[2] == v);
-          if (at_v) ASSERT_FALSE(triangles_intersect_improperly(turned, a, b)) << "case " << i;
-        }
-    }
+    expect_proved_stars_embedded(turned, s, "case " + std::to_string(i));
     const Pairs expected = improper_pairs_by_brute_force(turned);
     ASSERT_EQ(improper_pairs_by_check(turned), expected) << "case " << i;
     folded_cases += !expected.empty();

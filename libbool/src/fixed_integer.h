@@ -34,6 +34,19 @@ struct FixedInteger {
   }
 };
 
+// The entries of `n` rows of 4 integers as fixed integers of E limbs into m; false when one is
+// too large.
+template <int E>
+bool fixed_rows(const std::array<mpz_class, 4>* const* rows, int n, FixedInteger<E> (*m)[4]) {
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < 4; ++j) {
+      const auto x = FixedInteger<E>::of((*rows[i])[j]);
+      if (!x) return false;
+      m[i][j] = *x;
+    }
+  return true;
+}
+
 // a * b, or nullopt when it may not fit in Out limbs.
 template <int Out, int A, int B>
 std::optional<FixedInteger<Out>> multiply(const FixedInteger<A>& a, const FixedInteger<B>& b) {
@@ -135,12 +148,7 @@ std::optional<int> fixed_sign_of_det3(const std::array<mpz_class, Columns>* rows
 inline std::optional<int> fixed_sign_of_det4(const std::array<mpz_class, 4>* rows[4]) {
   constexpr int E = 4;  // entries up to 256 bits
   FixedInteger<E> m[4][4];
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) {
-      const auto x = FixedInteger<E>::of((*rows[i])[j]);
-      if (!x) return std::nullopt;
-      m[i][j] = *x;
-    }
+  if (!fixed_rows<E>(rows, 4, m)) return std::nullopt;
   auto minor = [&](int r, int i, int j) -> std::optional<FixedInteger<2 * E + 1>> {
     FixedInteger<2 * E + 1> out;
     const auto p = multiply<2 * E>(m[r][i], m[r + 1][j]);
@@ -171,12 +179,7 @@ class FixedPlaneForm {
   // nullopt when an entry or a cofactor is too large for the buffers.
   static std::optional<FixedPlaneForm> through(const std::array<mpz_class, 4>* rows[3]) {
     FixedInteger<E> m[3][4];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 4; ++j) {
-        const auto x = FixedInteger<E>::of((*rows[i])[j]);
-        if (!x) return std::nullopt;
-        m[i][j] = *x;
-      }
+    if (!fixed_rows<E>(rows, 3, m)) return std::nullopt;
     FixedPlaneForm form;
     for (int j = 0; j < 4; ++j) {
       // C_j = (-1)^(3 + j) det of the rows without column j, expanded along row a.
