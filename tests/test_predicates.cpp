@@ -585,6 +585,40 @@ TEST(FixedInteger, PlaneFormSignsAgreeWithMpz) {
   EXPECT_GT(zeros, 1500);
 }
 
+// A plane's sides by its linear form (PointTable::PlaneSides) against the 4x4 determinant of each
+// point (orientation_exact): doubles, small rationals (the fixed-size form) and rationals whose
+// homogeneous coordinates are too large for it (the GMP equation), points on the plane included.
+TEST(PlaneSides, AgreeWithTheDeterminantOfEachPoint) {
+  std::mt19937_64 random(71);
+  std::uniform_int_distribution<int> coordinate(-20, 20);
+  for (const int digits : {0, 3, 100}) {  // a common denominator of 10^digits + 7
+    const FT denominator =
+        FT(mpq_class(mpz_class("1" + std::string(digits, '0')) + (digits == 0 ? 0 : 7)));
+    Mesh m;
+    for (int i = 0; i < 40; ++i) {
+      const FT x = FT(coordinate(random)) / denominator, y = FT(coordinate(random)) / denominator;
+      // Every fourth point on the plane z = x + 2 y of the first three (which lie on it too).
+      const FT z = i < 3 || i % 4 == 0 ? x + 2 * y : FT(coordinate(random)) / denominator;
+      m.points.emplace_back(x, y, z);
+    }
+    m.triangles.push_back({0, 1, 2});
+    const detail::PointTable table(m, m, true);
+    for (int plane = 0; plane + 2 < 40; plane += 7) {
+      const std::array<detail::PointId, 3> corners = {table.vertex(0, VertexIndex(plane)),
+                                                      table.vertex(0, VertexIndex(plane + 1)),
+                                                      table.vertex(0, VertexIndex(plane + 2))};
+      const detail::PointTable::PlaneSides sides(table, corners);
+      for (VertexIndex v = 0; v < 40; ++v) {
+        const detail::PointId s = table.vertex(0, v);
+        const CGAL::Sign expected = table.orientation_exact(corners[0], corners[1], corners[2], s);
+        ASSERT_EQ(sides.exact(s), expected)
+            << digits << " digits, plane " << plane << ", point " << v;
+        ASSERT_EQ(sides(s), expected);
+      }
+    }
+  }
+}
+
 // The static filters for points known within an error of their doubles (rational inputs: a
 // rotated mesh) against CGAL's exact orientation of the exact points: nearly coplanar and nearly
 // collinear points, each moved off its double by up to the error, at scales 2^-80 to 2^80. A

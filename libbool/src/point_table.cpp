@@ -356,9 +356,13 @@ CGAL::Sign PointTable::orientation_exact(PointId p, PointId q, PointId r, PointI
 CGAL::Sign PointTable::PlaneSides::operator()(PointId s) const {
   const auto [a, b, c] = plane_;
   const CGAL::Uncertain<CGAL::Sign> o = table_.orientation_filter(a, b, c, s);
-  if (o.is_certain()) return o.make_certain();
-  // Doubles: orientation_exact decides in doubles first, without the integers.
+  return o.is_certain() ? o.make_certain() : exact(s);
+}
+
+CGAL::Sign PointTable::PlaneSides::exact(PointId s) const {
+  const auto [a, b, c] = plane_;
   const PointTable& t = table_;
+  // Doubles: orientation_exact decides in doubles first, without the integers.
   if (t.is_double(a) && t.is_double(b) && t.is_double(c) && t.is_double(s))
     return t.orientation_exact(a, b, c, s);
   if (!tried_) {
@@ -366,20 +370,12 @@ CGAL::Sign PointTable::PlaneSides::operator()(PointId s) const {
     const Homogeneous* rows[3] = {&t.exact(a), &t.exact(b), &t.exact(c)};
     form_ = FixedPlaneForm::through(rows);
   }
-  // det [a; b; c; s] over homogeneous rows has the opposite sign (see orientation_exact).
+  // det [a; b; c; s] over homogeneous rows has the opposite sign (see orientation_exact); the
+  // GMP equation is its negation already.
   if (form_)
     if (const std::optional<int> sign = form_->sign_at(t.exact(s))) return CGAL::Sign(-*sign);
-  return t.orientation_exact(a, b, c, s);
-}
-
-PointTable::Plane PointTable::exact_plane(PointId a, PointId b, PointId c) const {
-  return plane_through(exact(a), exact(b), exact(c));
-}
-
-CGAL::Sign PointTable::plane_side(const Plane& plane, PointId s) const {
-  // The plane's form at s is -det [a; b; c; s] over homogeneous rows, whose sign is orientation's
-  // (see orientation_exact).
-  return CGAL::Sign(sgn(evaluate(plane, exact(s))));
+  if (!equation_) equation_ = plane_through(t.exact(a), t.exact(b), t.exact(c));
+  return CGAL::Sign(sgn(evaluate(*equation_, t.exact(s))));
 }
 
 CGAL::Sign PointTable::orientation_2(int dropped, PointId p, PointId q, PointId r) const {

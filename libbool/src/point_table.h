@@ -184,20 +184,23 @@ class PointTable {
   CGAL::Uncertain<CGAL::Sign> orientation_filter(PointId p, PointId q, PointId r, PointId s) const;
   CGAL::Sign orientation_exact(PointId p, PointId q, PointId r, PointId s) const;
   // orientation(a, b, c, s) for many points s against one plane (a, b, c): the same filters,
-  // then the plane's linear form in fixed-size integers, computed for the first point they leave
-  // undecided, four products per point instead of a 4x4 determinant (the points on a flat face
-  // of a rational mesh: every one goes to the exact stage). One per thread.
+  // then the plane's linear form, computed for the first point they leave undecided: four
+  // products per point instead of a 4x4 determinant (the points on a flat face of a rational
+  // mesh, step 3's undecided corners grouped by facet). In fixed-size integers, or in GMP's
+  // when an entry is too large for them. One per thread.
   class PlaneSides {
    public:
     PlaneSides(const PointTable& table, const std::array<PointId, 3>& plane)
         : table_(table), plane_(plane) {}
     CGAL::Sign operator()(PointId s) const;
+    CGAL::Sign exact(PointId s) const;  // the stage after the filters
 
    private:
     const PointTable& table_;
     const std::array<PointId, 3> plane_;
     mutable bool tried_ = false;  // form_ computed (or too large for the buffers)
     mutable std::optional<FixedPlaneForm> form_;
+    mutable std::optional<std::array<mpz_class, 4>> equation_;  // when form_ declines
   };
   // The interval normal (q - p) x (r - p) (the caller rounds upward), and the interval sign of
   // normal . (s - p): orientation(p, q, r, s) when `normal` is the normal of p, q, r.
@@ -208,12 +211,6 @@ class PointTable {
   CGAL::Uncertain<CGAL::Sign> side_filter(const ApproxVector& normal, PointId p, PointId s) const {
     return CGAL::sign(normal * (approx(s) - approx(p)));
   }
-  // The exact plane through a, b, c as integer coefficients over homogeneous coordinates: the
-  // sign of plane_side(plane, s) is orientation(a, b, c, s). For many questions against one
-  // facet's plane (coplanar regions ask them all exactly), computed once.
-  using Plane = std::array<mpz_class, 4>;
-  Plane exact_plane(PointId a, PointId b, PointId c) const;
-  CGAL::Sign plane_side(const Plane& plane, PointId s) const;
   // orientation of (p, q, r) seen along the axis `dropped` (coordinates u < v of the other two).
   CGAL::Sign orientation_2(int dropped, PointId p, PointId q, PointId r) const;
   // CGAL's side_of_oriented_circle of the projected points.

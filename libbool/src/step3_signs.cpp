@@ -111,15 +111,9 @@ ExactAnswers answer_exactly(const PairContext& c, const std::vector<PairSigns>& 
     const std::uint32_t plane = std::uint32_t(questions[groups[g]] >> 32);
     const std::uint32_t side = plane >> 31, facet = plane & 0x7fffffffu;
     const Corners f = c.corners(c.options.soup ? 0 : int(side), facet);
-    if (groups[g + 1] - groups[g] < 8) {  // a plane equation pays off for many
-      for (std::size_t i = groups[g]; i < groups[g + 1]; ++i)
-        out.answers[i] =
-            std::int8_t(c.table.orientation_exact(f[0], f[1], f[2], PointId(questions[i])));
-      return;
-    }
-    const PointTable::Plane equation = c.table.exact_plane(f[0], f[1], f[2]);
+    const PointTable::PlaneSides sides(c.table, {f[0], f[1], f[2]});
     for (std::size_t i = groups[g]; i < groups[g + 1]; ++i)
-      out.answers[i] = std::int8_t(c.table.plane_side(equation, PointId(questions[i])));
+      out.answers[i] = std::int8_t(sides.exact(PointId(questions[i])));
   });
   return out;
 }
