@@ -22,6 +22,10 @@
 #include <queue>
 #include <unordered_map>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "boolean_internal.h"
 #include "flat_map.h"
 #include "morphex/boolean.h"
@@ -180,10 +184,33 @@ std::vector<std::uint8_t> coincident(const PointTable& table, const IdMesh& surf
   return shared;
 }
 
+// The first of the `count` ends at `to` equal to u, or `count` when none is. Four ends are
+// compared at once: scanning a vertex's five to seven edges one by one, the loop's exit at an
+// unpredictable place cost more than the comparisons (tripod x armadillo's merge, 47,000 faces:
+// 3.5 ms for the twins, 2.2 so). `to` has 3 readable entries past the last.
+inline std::uint32_t first_equal(const VertexIndex* to, std::uint32_t count, VertexIndex u) {
+#if defined(__SSE2__)
+  const __m128i key = _mm_set1_epi32(int(u));
+  for (std::uint32_t i = 0; i < count; i += 4) {
+    const __m128i four = _mm_loadu_si128(reinterpret_cast<const __m128i*>(to + i));
+    std::uint32_t hits =
+        std::uint32_t(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(key, four))));
+    if (count - i < 4) hits &= (1u << (count - i)) - 1;
+    if (hits != 0) return i + std::uint32_t(__builtin_ctz(hits));
+  }
+  return count;
+#else
+  std::uint32_t i = 0;
+  while (i < count && to[i] != u) ++i;
+  return i;
+#endif
+}
+
 // The face across each edge, at 3 f + k for edge k of face f (kNone on a border): edge k runs
-// tri[f][k] -> tri[f][k + 1], and its twin is the edge leaving tri[f][k + 1] for tri[f][k]. The
-// edges leaving each vertex are listed contiguously with their ends, so the search reads one
-// short run of memory (a hash table of all edges, or the faces around the vertex, did not).
+// tri[f][k] -> tri[f][k + 1], and its twin is the first edge leaving tri[f][k + 1] for tri[f][k].
+// The edges leaving each vertex are listed contiguously, their ends apart from their faces, so
+// the search reads one short run of memory (a hash table of all edges, or the faces around the
+// vertex, did not).
 std::vector<std::uint32_t> edge_twins(const std::vector<Triangle>& tri, std::size_t nv) {
   const std::size_t nf = tri.size();
   std::vector<std::uint32_t> twin(3 * nf, kNone);
@@ -191,22 +218,21 @@ std::vector<std::uint32_t> edge_twins(const std::vector<Triangle>& tri, std::siz
   for (const Triangle& t : tri)
     for (VertexIndex v : t) ++start[v + 1];
   for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  struct Leaving {
-    VertexIndex to;
-    std::uint32_t face;
-  };
-  std::vector<Leaving> leaving(3 * nf);
+  std::vector<VertexIndex> to(3 * nf + 3, kNone);  // padded for first_equal
+  std::vector<std::uint32_t> face(3 * nf);
   std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
   for (std::uint32_t f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) leaving[fill[tri[f][k]]++] = {tri[f][(k + 1) % 3], f};
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t slot = fill[tri[f][k]]++;
+      to[slot] = tri[f][(k + 1) % 3];
+      face[slot] = f;
+    }
   for (std::uint32_t f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k) {
       const VertexIndex u = tri[f][k], v = tri[f][(k + 1) % 3];
-      for (std::uint32_t i = start[v]; i < start[v + 1]; ++i)
-        if (leaving[i].to == u) {
-          twin[3 * f + k] = leaving[i].face;
-          break;
-        }
+      const std::uint32_t count = start[v + 1] - start[v];
+      const std::uint32_t i = first_equal(to.data() + start[v], count, u);
+      if (i < count) twin[3 * f + k] = face[start[v] + i];
     }
   return twin;
 }
