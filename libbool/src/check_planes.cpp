@@ -99,18 +99,10 @@ const FacePlanes::Plane& FacePlanes::publish(std::uint32_t t) const {
   const std::uint32_t index = next_record(t);
   const Triangle& f = mesh_.triangles[t];
   const Xyz &p = xyz_[f[0]], &q = xyz_[f[1]], &r = xyz_[f[2]];
-  const double a[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-  const double b[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
   Plane& plane =
       blocks_[index >> kBlockShift].load(std::memory_order_relaxed)[index & (kBlock - 1)];
-  plane.reach = 0;
+  plane.plane = DoublePlane::through(p, q, r);
   plane.corner[0] = p, plane.corner[1] = q, plane.corner[2] = r;
-  for (int k = 0; k < 3; ++k) {
-    const int i = (k + 1) % 3, j = (k + 2) % 3;
-    plane.normal[k] = a[i] * b[j] - a[j] * b[i];
-    plane.magnitude[k] = std::fabs(a[i] * b[j]) + std::fabs(a[j] * b[i]);
-    plane.reach = std::max({plane.reach, std::fabs(a[k]), std::fabs(b[k])});
-  }
   slot_[t].store(kFirstRecord + index, std::memory_order_release);
   return plane;
 }

@@ -15,18 +15,13 @@
 #include <optional>
 #include <vector>
 
+#include "double_plane.h"
 #include "morphex/mesh.h"
 #include "static_filter.h"
 
 namespace morphex::detail {
 
-// The side of x is the sign of (x - p) . N with N = (q - p) x (r - p), the orientation's
-// determinant in another order: rounding the differences, the cross product and the dot product
-// errs by less than 9 units of 2^-52 of sum_k |x - p|_k M_k, M_k the magnitudes of N_k's two
-// products; 1e-14 of it leaves a wide margin under any rounding mode. When the points are only
-// known within `error` of their doubles (a rational mesh: a rotated input, a Boolean's output),
-// the exact determinant is moreover within orientation_near_slack of the doubles' one, as in
-// static_orientation_near (this test is that determinant, evaluated from a precomputed normal).
+// The planes' side tests are DoublePlane's (double_plane.h).
 class FacePlanes {
  public:
   // Without doubles (`xyz` empty: coordinates out of the filters' range) every test declines.
@@ -79,8 +74,7 @@ class FacePlanes {
   // With the triangle's corners beside its plane: the traversal's side tests (millions of pairs
   // of slivers along a tube) then read two records instead of a plane and four scattered points.
   struct alignas(64) Plane {
-    double normal[3], magnitude[3];
-    double reach;  // the largest coordinate of q - p and r - p
+    DoublePlane plane;
     Xyz corner[3];
   };
   // Face f's record, computed on its first use by whichever thread gets there first (others wait
@@ -99,20 +93,7 @@ class FacePlanes {
   // slot_[f]: kNone, kBusy, or kFirstRecord + the index of f's record (in order of first use).
   static constexpr std::uint32_t kNone = 0, kBusy = 1, kFirstRecord = 2;
   std::optional<int> side(const Plane& plane, const Xyz& v) const {
-    const Xyz& p = plane.corner[0];
-    const double c[3] = {v[0] - p[0], v[1] - p[1], v[2] - p[2]};
-    const double det = c[0] * plane.normal[0] + c[1] * plane.normal[1] + c[2] * plane.normal[2];
-    const double permanent = std::fabs(c[0]) * plane.magnitude[0] +
-                             std::fabs(c[1]) * plane.magnitude[1] +
-                             std::fabs(c[2]) * plane.magnitude[2];
-    if (!(permanent > kStaticTiny && permanent < kStaticHuge)) return std::nullopt;
-    double bound = 1e-14 * permanent;
-    if (error_ > 0)
-      bound += orientation_near_slack(
-          std::max({plane.reach, std::fabs(c[0]), std::fabs(c[1]), std::fabs(c[2])}), error_);
-    if (det > bound) return 1;
-    if (-det > bound) return -1;
-    return std::nullopt;
+    return plane.plane.side(plane.corner[0], v, error_);
   }
   const Mesh& mesh_;
   const std::vector<Xyz>& xyz_;

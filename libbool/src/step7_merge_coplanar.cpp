@@ -27,6 +27,7 @@
 #endif
 
 #include "boolean_internal.h"
+#include "double_plane.h"
 #include "flat_map.h"
 #include "morphex/boolean.h"
 #include "morphex/parallel_points.h"
@@ -293,20 +294,45 @@ struct Regions {
 // Whether the faces across each edge lie in one plane, alike oriented, at 3 f + k for edge k of
 // face f < its twin (the flood fill reads the lower face's entry). Decided in parallel, each
 // thread with its own cache of plane pairs: the decisions, exact wherever the planes are one, are
-// the costly part of finding the regions.
+// the costly part of finding the regions. Most edges of a curved surface join two planes that a
+// side test in doubles tells apart: the lower face's plane is then computed once for its three
+// edges, and only the corners of the other plane not on it are read (tripod x armadillo's merge,
+// 71,000 edges: 4.4 ms with an orientation filter per edge, 3.7 so).
 std::vector<std::uint8_t> coplanar_edges(const Regions& s) {
   const std::size_t nf = s.surface.triangles.size();
   std::vector<std::uint8_t> same(3 * nf, 0);
+  const auto& xyz = s.table.input_near_doubles();
+  const double error = s.table.input_error();
   tbb::enumerable_thread_specific<SamePlane> planes([&] { return SamePlane(s.table, s.planes); });
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, std::uint32_t(nf), 1024),
                     [&](const tbb::blocked_range<std::uint32_t>& range) {
                       SamePlane& same_plane = planes.local();
-                      for (std::uint32_t f = range.begin(); f < range.end(); ++f)
+                      for (std::uint32_t f = range.begin(); f < range.end(); ++f) {
+                        const std::uint32_t a = s.plane_of[f];
+                        const std::array<PointId, 3>& pa = s.planes[a];
+                        const bool doubles = !xyz.empty() && s.table.is_input(pa[0]) &&
+                                             s.table.is_input(pa[1]) && s.table.is_input(pa[2]);
+                        std::optional<DoublePlane> plane;  // a's, once an edge needs it
+                        // A corner of plane b certainly off plane a: b is not a.
+                        auto apart = [&](std::uint32_t b) {
+                          if (!doubles) return false;
+                          if (!plane)
+                            plane = DoublePlane::through(xyz[pa[0]], xyz[pa[1]], xyz[pa[2]]);
+                          for (const PointId c : s.planes[b]) {
+                            if (c == pa[0] || c == pa[1] || c == pa[2] || !s.table.is_input(c))
+                              continue;
+                            const std::optional<int> side = plane->side(xyz[pa[0]], xyz[c], error);
+                            if (side && *side != 0) return true;
+                          }
+                          return false;
+                        };
                         for (int k = 0; k < 3; ++k) {
                           const std::uint32_t g = s.twin_face(f, k);
-                          if (g != kNone && f < g)
-                            same[3 * f + k] = same_plane(s.plane_of[f], s.plane_of[g]);
+                          if (g == kNone || g < f) continue;
+                          const std::uint32_t b = s.plane_of[g];
+                          same[3 * f + k] = a == b || (!apart(b) && same_plane(a, b));
                         }
+                      }
                     });
   return same;
 }
