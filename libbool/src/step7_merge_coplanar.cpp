@@ -113,22 +113,28 @@ std::optional<std::vector<Triangle>> triangulate_region(
 }
 
 // For each vertex flagged in `of_interest`, whether another vertex has its position: the same
-// point, or an equal one. Vertices are bucketed by the grid cells their interval boxes cover
-// (coincident points have overlapping boxes), and only vertices sharing a cell with a flagged one
-// are compared exactly.
+// point, or an equal one. The flagged vertices are bucketed by the grid cells their interval
+// boxes cover (coincident points have overlapping boxes), and only vertices sharing a cell with a
+// flagged one are compared exactly. The flagged ones are few (the candidates of a merge) and
+// usually in one part of the surface: the other vertices are dropped by the box around them.
 std::vector<std::uint8_t> coincident(const PointTable& table, const IdMesh& surface,
                                      const std::vector<std::uint8_t>& of_interest) {
   const std::size_t nv = surface.vertex_point.size();
   std::vector<std::uint8_t> shared(nv, 0);
   // Double boxes: coordinates beyond float range stay finite.
-  std::vector<CGAL::Bbox_3> boxes(nv);
-  CGAL::Bbox_3 frame;
-  for (std::size_t v = 0; v < nv; ++v) {
-    boxes[v] = table.approx(surface.vertex_point[v]).bbox();
-    frame += boxes[v];
-  }
-  // Cells about 2^-20 of the extent: far wider than any point's interval box, so that a box
-  // covers one cell, rarely two along an axis.
+  auto box_of = [&](VertexIndex v) { return table.approx(surface.vertex_point[v]).bbox(); };
+  std::vector<VertexIndex> flagged;
+  std::vector<CGAL::Bbox_3> flagged_box;
+  CGAL::Bbox_3 frame;  // around the flagged boxes
+  for (VertexIndex v = 0; v < nv; ++v)
+    if (of_interest[v]) {
+      flagged.push_back(v);
+      flagged_box.push_back(box_of(v));
+      frame += flagged_box.back();
+    }
+  if (flagged.empty()) return shared;
+  // Cells about 2^-20 of the flagged boxes' extent: far wider than any point's interval box, so
+  // that a box covers one cell, rarely two along an axis.
   double cell = 0;
   for (int k = 0; k < 3; ++k) cell = std::max(cell, frame.max(k) - frame.min(k));
   cell = cell > 0 ? std::ldexp(cell, -20) : 1;
@@ -137,8 +143,8 @@ std::vector<std::uint8_t> coincident(const PointTable& table, const IdMesh& surf
     if (!finite) return std::numeric_limits<std::int64_t>::max();
     std::int64_t count = 1;
     for (int k = 0; k < 3; ++k) {
-      lo[k] = std::int64_t(std::floor((b.min(k) - frame.min(k)) / cell));
-      hi[k] = std::int64_t(std::floor((b.max(k) - frame.min(k)) / cell));
+      lo[k] = std::int64_t(std::floor((std::max(b.min(k), frame.min(k)) - frame.min(k)) / cell));
+      hi[k] = std::int64_t(std::floor((std::min(b.max(k), frame.max(k)) - frame.min(k)) / cell));
       count *= std::min<std::int64_t>(hi[k] - lo[k] + 1, 1 << 20);
     }
     return count;
@@ -152,34 +158,35 @@ std::vector<std::uint8_t> coincident(const PointTable& table, const IdMesh& surf
           visit(mix64(std::uint64_t(x) * 0x9e3779b97f4a7c15ull ^ std::uint64_t(y) << 21 ^
                       std::uint64_t(z) << 42));
   };
-  auto compare = [&](VertexIndex u, VertexIndex v) {
-    if (v != u && CGAL::do_overlap(boxes[u], boxes[v]) &&
+  // i: a flagged vertex's place in `flagged`.
+  auto compare = [&](VertexIndex u, const CGAL::Bbox_3& box, std::uint32_t i) {
+    const VertexIndex v = flagged[i];
+    if (v != u && CGAL::do_overlap(box, flagged_box[i]) &&
         table.equal(surface.vertex_point[u], surface.vertex_point[v]))
       shared[v] = 1;
   };
-  std::unordered_map<std::uint64_t, std::vector<VertexIndex>> cells;
-  std::vector<VertexIndex> flagged, wide_flagged;
-  for (VertexIndex v = 0; v < nv; ++v) {
-    if (!of_interest[v]) continue;
-    flagged.push_back(v);
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
+  std::vector<std::uint32_t> wide_flagged;
+  for (std::uint32_t i = 0; i < flagged.size(); ++i) {
     std::int64_t lo[3], hi[3];
-    if (cell_range(boxes[v], lo, hi) > kMaxCells)
-      wide_flagged.push_back(v);
+    if (cell_range(flagged_box[i], lo, hi) > kMaxCells)
+      wide_flagged.push_back(i);
     else
-      for_each_cell(lo, hi, [&](std::uint64_t key) { cells[key].push_back(v); });
+      for_each_cell(lo, hi, [&](std::uint64_t key) { cells[key].push_back(i); });
   }
-  if (flagged.empty()) return shared;
   for (VertexIndex u = 0; u < nv; ++u) {
-    for (const VertexIndex v : wide_flagged) compare(u, v);
+    const CGAL::Bbox_3 box = box_of(u);
+    if (!CGAL::do_overlap(box, frame)) continue;  // meets no flagged box
+    for (const std::uint32_t i : wide_flagged) compare(u, box, i);
     std::int64_t lo[3], hi[3];
-    if (cell_range(boxes[u], lo, hi) > kMaxCells) {
-      for (const VertexIndex v : flagged) compare(u, v);
+    if (cell_range(box, lo, hi) > kMaxCells) {
+      for (std::uint32_t i = 0; i < flagged.size(); ++i) compare(u, box, i);
       continue;
     }
     for_each_cell(lo, hi, [&](std::uint64_t key) {
       const auto it = cells.find(key);
       if (it == cells.end()) return;
-      for (const VertexIndex v : it->second) compare(u, v);
+      for (const std::uint32_t i : it->second) compare(u, box, i);
     });
   }
   return shared;
