@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The coplanar merge of a Boolean's result: no vertex is left inside a flat region, on double and
+// on rational (turned) inputs, curved surfaces against flat faces included.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "morphex/boolean.h"
+#include "morphex/check.h"
+#include "morphex/generators.h"
+
+using namespace morphex;
+
+namespace {
+
+// The vertices all of whose faces lie in one plane, decided exactly on the mesh's points: the
+// merge removes every such vertex of a clean result (one region around it, no crease).
+std::size_t flat_vertices(const Mesh& mesh) {
+  std::vector<std::vector<std::uint32_t>> faces_of(mesh.num_vertices());
+  for (std::uint32_t f = 0; f < mesh.num_triangles(); ++f)
+    for (const VertexIndex v : mesh.triangles[f]) faces_of[v].push_back(f);
+  std::size_t flat = 0;
+  for (VertexIndex v = 0; v < mesh.num_vertices(); ++v) {
+    if (faces_of[v].empty()) continue;
+    const Triangle& first = mesh.triangles[faces_of[v].front()];
+    const Point &p = mesh.points[first[0]], &q = mesh.points[first[1]], &r = mesh.points[first[2]];
+    bool in_plane = true;
+    for (const std::uint32_t f : faces_of[v])
+      for (const VertexIndex w : mesh.triangles[f])
+        in_plane = in_plane && CGAL::orientation(p, q, r, mesh.points[w]) == CGAL::COPLANAR;
+    flat += in_plane;
+  }
+  return flat;
+}
+
+// The Boolean merged and unmerged: both valid with one exact volume, the merged one with no flat
+// vertex and no more faces (`flat`: the unmerged one has flat vertices). Returns the merged one.
+Mesh merged_checked(const Mesh& a, const Mesh& b, BooleanOp op, bool flat) {
+  BooleanOptions unmerged_options;
+  unmerged_options.merge_coplanar = false;
+  const BooleanResult merged = compute_boolean(a, b, op);
+  const BooleanResult unmerged = compute_boolean(a, b, op, unmerged_options);
+  EXPECT_TRUE(merged.ok()) << merged.message;
+  EXPECT_TRUE(unmerged.ok()) << unmerged.message;
+  const MeshReport report = check_mesh(merged.mesh), raw = check_mesh(unmerged.mesh);
+  EXPECT_TRUE(report.valid_solid()) << describe_problems(report);
+  EXPECT_EQ(report.volume, raw.volume);
+  EXPECT_LE(merged.mesh.num_triangles(), unmerged.mesh.num_triangles());
+  if (flat) EXPECT_GT(flat_vertices(unmerged.mesh), 0u);
+  EXPECT_EQ(flat_vertices(merged.mesh), 0u);
+  return merged.mesh;
+}
+
+// A turn by a rational quaternion: coordinates no longer doubles.
+const Transformation kTurn = quaternion_rotation(FT(7), FT(1), FT(2), FT(3));
+
+}  // namespace
+
+// Two boxes overlapping along x, with common top, bottom, front and back planes: the unmerged
+// union has vertices inside those faces (where one box's edges cross the other's facets), which
+// only the exact stage finds coplanar; merged, it is the 3x2x1 box's 12 triangles.
+TEST(BooleanMerge, OverlappingBoxesMergeIntoOneBox) {
+  const Mesh a = make_box(Point(-1, -1, -1), Point(1, 1, 0));
+  const Mesh b = make_box(Point(0, -1, -1), Point(2, 1, 0));
+  for (const bool turned : {false, true}) {
+    SCOPED_TRACE(turned ? "turned" : "as made");
+    const Mesh merged = turned ? merged_checked(transformed(a, kTurn), transformed(b, kTurn),
+                                                BooleanOp::Union, true)
+                               : merged_checked(a, b, BooleanOp::Union, true);
+    EXPECT_EQ(merged.num_triangles(), 12u);
+    EXPECT_EQ(merged.num_vertices(), 8u);
+  }
+}
+
+// A sphere pushed through a box's top face: the face is cut along the sphere, whose own facets
+// (curved, each its own plane) are told apart from their neighbours in doubles.
+TEST(BooleanMerge, SphereThroughABoxFaceLeavesNoFlatVertex) {
+  const Mesh box = make_box(Point(-1, -1, -1), Point(1, 1, FT(1) / 8));
+  const Mesh sphere = make_icosphere(3, FT(1) / 2);
+  for (const BooleanOp op : {BooleanOp::Union, BooleanOp::Difference, BooleanOp::Intersection}) {
+    SCOPED_TRACE(to_string(op));
+    merged_checked(box, sphere, op, false);
+    SCOPED_TRACE("turned");
+    merged_checked(transformed(box, kTurn), transformed(sphere, kTurn), op, false);
+  }
+}
+
+// Two cubes sharing a face, turned: the side walls of both lie in common planes that only the
+// exact stage recognizes (different facets), and the union is the 2x1x1 box's 12 triangles.
+TEST(BooleanMerge, TurnedCubesSharingAFaceMergeIntoOneBox) {
+  const auto [a, b] = make_cubes_sharing_face();
+  const Mesh merged =
+      merged_checked(transformed(a, kTurn), transformed(b, kTurn), BooleanOp::Union, false);
+  EXPECT_EQ(merged.num_triangles(), 12u);
+  EXPECT_EQ(merged.num_vertices(), 8u);
+}
