@@ -72,6 +72,20 @@ TEST(BooleanMerge, OverlappingBoxesMergeIntoOneBox) {
   }
 }
 
+// A prism whose top is a fan of 16 facets and a box overlapping it, with common top and bottom
+// planes: the top's flat region spans many planes, tested against its first plane's linear form.
+TEST(BooleanMerge, FannedTopAndBoxMergeIntoOneFace) {
+  const Mesh prism = make_fan_prism(16, 1.0, 1.0);
+  const Mesh box = make_box(Point(0, FT(-1) / 2, 0), Point(2, FT(1) / 2, 1));
+  for (const bool turned : {false, true}) {
+    SCOPED_TRACE(turned ? "turned" : "as made");
+    if (turned)
+      merged_checked(transformed(prism, kTurn), transformed(box, kTurn), BooleanOp::Union, true);
+    else
+      merged_checked(prism, box, BooleanOp::Union, true);
+  }
+}
+
 // A sphere pushed through a box's top face: the face is cut along the sphere, whose own facets
 // (curved, each its own plane) are told apart from their neighbours in doubles.
 TEST(BooleanMerge, SphereThroughABoxFaceLeavesNoFlatVertex) {

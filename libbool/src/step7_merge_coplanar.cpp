@@ -11,7 +11,6 @@
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -245,45 +244,6 @@ std::vector<std::uint32_t> edge_twins(const std::vector<Triangle>& tri, std::siz
   return twin;
 }
 
-// Whether two planes (indices into `planes`) are one: each corner of the second is on the first
-// and the normals agree. Many edges join faces of the same two planes, so the answer is cached
-// per pair of planes.
-class SamePlane {
- public:
-  SamePlane(const PointTable& table, const std::vector<std::array<PointId, 3>>& planes)
-      : table_(table), planes_(planes) {}
-
-  bool operator()(std::uint32_t a, std::uint32_t b) {
-    if (a == b) return true;
-    // The filter first, on each corner of b: most edges of a curved surface join two planes it
-    // tells apart at once, and those need no cache (a lookup costs more than the filter).
-    const auto &pa = planes_[a], &pb = planes_[b];
-    bool undecided[3];
-    for (int k = 0; k < 3; ++k) {
-      const CGAL::Uncertain<CGAL::Sign> s = table_.orientation_filter(pa[0], pa[1], pa[2], pb[k]);
-      if (s.is_certain() && s.make_certain() != CGAL::ZERO) return false;
-      undecided[k] = !s.is_certain();
-    }
-    const std::uint64_t key = edge_key(std::min(a, b), std::max(a, b));
-    if (const std::uint8_t* known = cache_.find(key)) return *known != 0;
-    // The corners the filter left undecided, exactly (orientation_exact: in doubles for double
-    // inputs, else in fixed-size integers when they fit). Most pairs that get here lie in one
-    // plane, where no filter can decide; each facet meets a few others, so an exact plane
-    // equation per facet (GMP integers) would cost more than it saves.
-    bool same = true;
-    for (int k = 0; k < 3 && same; ++k)
-      same = !undecided[k] || table_.orientation_exact(pa[0], pa[1], pa[2], pb[k]) == CGAL::ZERO;
-    same = same && table_.normal_dot(pa, pb) == CGAL::POSITIVE;
-    cache_.emplace(key, same);
-    return same;
-  }
-
- private:
-  const PointTable& table_;
-  const std::vector<std::array<PointId, 3>>& planes_;
-  FlatMap<std::uint64_t, std::uint8_t, Hash64> cache_;
-};
-
 // The surface being merged with what every later step reads: its adjacency and its coplanar
 // regions (merging never crosses a region's border).
 struct Regions {
@@ -298,29 +258,30 @@ struct Regions {
   std::uint32_t twin_face(std::uint32_t f, int k) const { return twin[3 * f + k]; }
 };
 
-// Whether the faces across each edge lie in one plane, alike oriented, at 3 f + k for edge k of
-// face f < its twin (the flood fill reads the lower face's entry). Decided in parallel, each
-// thread with its own cache of plane pairs: the decisions, exact wherever the planes are one, are
-// the costly part of finding the regions. Most edges of a curved surface join two planes that a
-// side test in doubles tells apart: the lower face's plane is then computed once for its three
-// edges, and only the corners of the other plane not on it are read (tripod x armadillo's merge,
-// 71,000 edges: 4.4 ms with an orientation filter per edge, 3.7 so).
-std::vector<std::uint8_t> coplanar_edges(const Regions& s) {
+// What the doubles say of an edge between two faces, at 3 f + k for edge k of face f < its twin.
+enum EdgePlanes : std::uint8_t {
+  kApart,      // the faces' planes differ (a corner of one is certainly off the other), or no twin
+  kOnePlane,   // both faces lie in one input facet's plane
+  kUndecided,  // distinct planes that may be one: the exact stage decides
+};
+
+// Each edge's EdgePlanes, in parallel. Most edges of a curved surface join two planes that a side
+// test in doubles tells apart: the lower face's plane is computed once for its three edges, and
+// only the corners of the other plane not on it are read (tripod x armadillo's merge, 71,000
+// edges: 4.4 ms with an orientation filter per edge, 3.7 so).
+std::vector<std::uint8_t> screen_edges(const Regions& s) {
   const std::size_t nf = s.surface.triangles.size();
-  std::vector<std::uint8_t> same(3 * nf, 0);
+  std::vector<std::uint8_t> kind(3 * nf, kApart);
   const auto& xyz = s.table.input_near_doubles();
   const double error = s.table.input_error();
-  tbb::enumerable_thread_specific<SamePlane> planes([&] { return SamePlane(s.table, s.planes); });
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, std::uint32_t(nf), 1024),
                     [&](const tbb::blocked_range<std::uint32_t>& range) {
-                      SamePlane& same_plane = planes.local();
                       for (std::uint32_t f = range.begin(); f < range.end(); ++f) {
                         const std::uint32_t a = s.plane_of[f];
                         const std::array<PointId, 3>& pa = s.planes[a];
                         const bool doubles = !xyz.empty() && s.table.is_input(pa[0]) &&
                                              s.table.is_input(pa[1]) && s.table.is_input(pa[2]);
                         std::optional<DoublePlane> plane;  // a's, once an edge needs it
-                        // A corner of plane b certainly off plane a: b is not a.
                         auto apart = [&](std::uint32_t b) {
                           if (!doubles) return false;
                           if (!plane)
@@ -337,30 +298,71 @@ std::vector<std::uint8_t> coplanar_edges(const Regions& s) {
                           const std::uint32_t g = s.twin_face(f, k);
                           if (g == kNone || g < f) continue;
                           const std::uint32_t b = s.plane_of[g];
-                          same[3 * f + k] = a == b || (!apart(b) && same_plane(a, b));
+                          kind[3 * f + k] = a == b ? kOnePlane : apart(b) ? kApart : kUndecided;
                         }
                       }
                     });
-  return same;
+  return kind;
 }
 
 // Numbers the coplanar regions: flood fill across edges whose two faces lie in one plane, alike
-// oriented.
+// oriented. That relation between planes is an equivalence, so a face joins a region exactly when
+// its plane is the region's: each other plane is tested once per region, and once a region has
+// needed a few exact tests (a large flat face of a CAD part, many facets in one plane) they are
+// of points against the seed's plane by its linear form, computed once (PlaneSides). Testing each
+// edge's two planes instead (a 4x4 determinant per pair of planes, cached) was most of the merge
+// on flat faces: cheese x fandisk's regions 15 ms, 9 so.
 void find_regions(Regions& s) {
+  constexpr int kTestsBeforeForm = 4;
   const std::size_t nf = s.surface.triangles.size();
-  const std::vector<std::uint8_t> same = coplanar_edges(s);
+  const std::vector<std::uint8_t> kind = screen_edges(s);
   // The entry of the edge f -> g, kept at the lower face.
-  auto across = [&](std::uint32_t f, int k, std::uint32_t g) {
-    if (f < g) return same[3 * f + k] != 0;
+  auto kind_across = [&](std::uint32_t f, int k, std::uint32_t g) -> std::uint8_t {
+    if (f < g) return kind[3 * f + k];
     for (int j = 0; j < 3; ++j)
-      if (s.twin_face(g, j) == f) return same[3 * g + j] != 0;
-    return false;
+      if (s.twin_face(g, j) == f) return kind[3 * g + j];
+    return kApart;
   };
+  // By plane: the last region it was tested against, and the answer.
+  std::vector<std::uint32_t> tested_for(s.planes.size(), kNone);
+  std::vector<std::uint8_t> joins(s.planes.size(), 0);
   s.region.assign(nf, kNone);
   std::vector<std::uint32_t> stack;
+  // The seed's linear form pays once a region has needed a few exact tests (a large flat face of
+  // a CAD part); a small region tests each plane against its neighbour's, as one orientation
+  // each. Declared once: the form is large, and most regions are one face that never needs it.
+  std::optional<PointTable::PlaneSides> sides;
+  int tests = 0;
   for (std::uint32_t start = 0; start < nf; ++start) {
     if (s.region[start] != kNone) continue;
     const std::uint32_t r = s.count++;
+    const std::array<PointId, 3>& seed = s.planes[s.plane_of[start]];
+    sides.reset();
+    tests = 0;
+    // Whether plane b, across an edge from a face of the region in plane a, is the seed's plane
+    // (a's, the region's planes being one): b's corners that are a's lie on it already, the
+    // filters may put another off it, and the exact stage decides the rest.
+    auto same_as_seed = [&](std::uint32_t a, std::uint32_t b) {
+      if (tested_for[b] == r) return joins[b] != 0;
+      const std::array<PointId, 3>&pa = s.planes[a], &pb = s.planes[b];
+      bool undecided[3], same = true;
+      for (int k = 0; k < 3 && same; ++k) {
+        const CGAL::Uncertain<CGAL::Sign> o =
+            s.table.orientation_filter(pa[0], pa[1], pa[2], pb[k]);
+        same = !o.is_certain() || o.make_certain() == CGAL::ZERO;
+        undecided[k] = !o.is_certain();
+      }
+      for (int k = 0; k < 3 && same; ++k) {
+        if (!undecided[k]) continue;
+        if (!sides && ++tests > kTestsBeforeForm) sides.emplace(s.table, seed);
+        same = (sides ? sides->exact(pb[k])
+                      : s.table.orientation_exact(pa[0], pa[1], pa[2], pb[k])) == CGAL::ZERO;
+      }
+      same = same && s.table.normal_dot(pa, pb) == CGAL::POSITIVE;
+      tested_for[b] = r;
+      joins[b] = same;
+      return same;
+    };
     s.region[start] = r;
     stack.push_back(start);
     while (!stack.empty()) {
@@ -368,7 +370,11 @@ void find_regions(Regions& s) {
       stack.pop_back();
       for (int i = 0; i < 3; ++i) {
         const std::uint32_t g = s.twin_face(f, i);
-        if (g == kNone || s.region[g] != kNone || !across(f, i, g)) continue;
+        if (g == kNone || s.region[g] != kNone) continue;
+        const std::uint8_t across = kind_across(f, i, g);
+        if (across == kApart ||
+            (across == kUndecided && !same_as_seed(s.plane_of[f], s.plane_of[g])))
+          continue;
         s.region[g] = r;
         stack.push_back(g);
       }
