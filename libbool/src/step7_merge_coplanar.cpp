@@ -265,42 +265,43 @@ enum EdgePlanes : std::uint8_t {
   kUndecided,  // distinct planes that may be one: the exact stage decides
 };
 
-// Each edge's EdgePlanes, in parallel. Most edges of a curved surface join two planes that a side
-// test in doubles tells apart: the lower face's plane is computed once for its three edges, and
-// only the corners of the other plane not on it are read (tripod x armadillo's merge, 71,000
-// edges: 4.4 ms with an orientation filter per edge, 3.7 so).
+// The EdgePlanes of face f's edges to higher faces, into kind[3 f + k]. Most edges of a curved
+// surface join two planes that a side test in doubles tells apart: f's plane is computed once
+// for its three edges, and only the corners of the other plane not on it are read (tripod x
+// armadillo's merge, 71,000 edges: 4.4 ms with an orientation filter per edge, 3.7 so).
+void screen_face(const Regions& s, std::uint32_t f, std::vector<std::uint8_t>& kind) {
+  const auto& xyz = s.table.input_near_doubles();
+  const std::uint32_t a = s.plane_of[f];
+  const std::array<PointId, 3>& pa = s.planes[a];
+  const bool doubles =
+      !xyz.empty() && s.table.is_input(pa[0]) && s.table.is_input(pa[1]) && s.table.is_input(pa[2]);
+  std::optional<DoublePlane> plane;  // a's, once an edge needs it
+  auto apart = [&](std::uint32_t b) {
+    if (!doubles) return false;
+    if (!plane) plane = DoublePlane::through(xyz[pa[0]], xyz[pa[1]], xyz[pa[2]]);
+    for (const PointId c : s.planes[b]) {
+      if (c == pa[0] || c == pa[1] || c == pa[2] || !s.table.is_input(c)) continue;
+      const std::optional<int> side = plane->side(xyz[pa[0]], xyz[c], s.table.input_error());
+      if (side && *side != 0) return true;
+    }
+    return false;
+  };
+  for (int k = 0; k < 3; ++k) {
+    const std::uint32_t g = s.twin_face(f, k);
+    if (g == kNone || g < f) continue;
+    const std::uint32_t b = s.plane_of[g];
+    kind[3 * f + k] = a == b ? kOnePlane : apart(b) ? kApart : kUndecided;
+  }
+}
+
+// Each edge's EdgePlanes, in parallel.
 std::vector<std::uint8_t> screen_edges(const Regions& s) {
   const std::size_t nf = s.surface.triangles.size();
   std::vector<std::uint8_t> kind(3 * nf, kApart);
-  const auto& xyz = s.table.input_near_doubles();
-  const double error = s.table.input_error();
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, std::uint32_t(nf), 1024),
                     [&](const tbb::blocked_range<std::uint32_t>& range) {
-                      for (std::uint32_t f = range.begin(); f < range.end(); ++f) {
-                        const std::uint32_t a = s.plane_of[f];
-                        const std::array<PointId, 3>& pa = s.planes[a];
-                        const bool doubles = !xyz.empty() && s.table.is_input(pa[0]) &&
-                                             s.table.is_input(pa[1]) && s.table.is_input(pa[2]);
-                        std::optional<DoublePlane> plane;  // a's, once an edge needs it
-                        auto apart = [&](std::uint32_t b) {
-                          if (!doubles) return false;
-                          if (!plane)
-                            plane = DoublePlane::through(xyz[pa[0]], xyz[pa[1]], xyz[pa[2]]);
-                          for (const PointId c : s.planes[b]) {
-                            if (c == pa[0] || c == pa[1] || c == pa[2] || !s.table.is_input(c))
-                              continue;
-                            const std::optional<int> side = plane->side(xyz[pa[0]], xyz[c], error);
-                            if (side && *side != 0) return true;
-                          }
-                          return false;
-                        };
-                        for (int k = 0; k < 3; ++k) {
-                          const std::uint32_t g = s.twin_face(f, k);
-                          if (g == kNone || g < f) continue;
-                          const std::uint32_t b = s.plane_of[g];
-                          kind[3 * f + k] = a == b ? kOnePlane : apart(b) ? kApart : kUndecided;
-                        }
-                      }
+                      for (std::uint32_t f = range.begin(); f < range.end(); ++f)
+                        screen_face(s, f, kind);
                     });
   return kind;
 }
