@@ -9,6 +9,7 @@
 // known plane (its input facet's), so coplanarity is decided on the input facets' corners (small,
 // cached exact coordinates) and once per pair of planes, never on constructed points.
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <tbb/parallel_for.h>
@@ -47,7 +48,9 @@ std::optional<std::vector<Triangle>> triangulate_region(
     const std::vector<std::pair<VertexIndex, VertexIndex>>& boundary, const Triangle& seed) {
   using Traits = TableTraits<dropped>;
   using Vb = CGAL::Triangulation_vertex_base_with_info_2<VertexIndex, Traits>;
-  using Fb = CGAL::Constrained_triangulation_face_base_2<Traits>;
+  // Each face's depth: its number of boundary crossings from the unbounded face (-1: not yet).
+  using Fbb = CGAL::Triangulation_face_base_with_info_2<int, Traits>;
+  using Fb = CGAL::Constrained_triangulation_face_base_2<Traits, Fbb>;
   using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
   using Cdt = CGAL::Constrained_Delaunay_triangulation_2<
       Traits, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
@@ -71,14 +74,14 @@ std::optional<std::vector<Triangle>> triangulate_region(
     return std::nullopt;  // crossing constraints would need new points: keep the faces
   }
   // Inside = odd number of boundary crossings from the unbounded face.
-  std::unordered_map<typename Cdt::Face_handle, int> depth;
+  for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->info() = -1;
   std::queue<typename Cdt::Face_handle> frontier;
   std::vector<typename Cdt::Face_handle> next_level{cdt.infinite_face()};
   for (int level = 0; !next_level.empty(); ++level) {
     std::vector<typename Cdt::Face_handle> crossing;
     for (auto f : next_level)
-      if (!depth.count(f)) {
-        depth[f] = level;
+      if (f->info() < 0) {
+        f->info() = level;
         frontier.push(f);
       }
     next_level.clear();
@@ -87,11 +90,11 @@ std::optional<std::vector<Triangle>> triangulate_region(
       frontier.pop();
       for (int i = 0; i < 3; ++i) {
         auto n = f->neighbor(i);
-        if (depth.count(n)) continue;
+        if (n->info() >= 0) continue;
         if (f->is_constrained(i))
           crossing.push_back(n);
         else {
-          depth[n] = level;
+          n->info() = level;
           frontier.push(n);
         }
       }
@@ -103,7 +106,7 @@ std::optional<std::vector<Triangle>> triangulate_region(
       table.orientation_2(dropped, p[seed[0]], p[seed[1]], p[seed[2]]) == CGAL::NEGATIVE;
   std::vector<Triangle> out;
   for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
-    if (depth[f] % 2 == 0) continue;
+    if (f->info() < 0 || f->info() % 2 == 0) continue;  // unreached faces count as outside
     Triangle t{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()};
     if (flip) std::swap(t[1], t[2]);
     out.push_back(t);
