@@ -7,7 +7,7 @@
 //
 // The work is done on point ids of a PointTable, before output points exist: every face lies in a
 // known plane (its input facet's), so coplanarity is decided on the input facets' corners (small,
-// cached exact coordinates) and once per pair of planes, never on constructed points.
+// cached exact coordinates) and once per plane and region, never on constructed points.
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
