@@ -311,13 +311,11 @@ std::vector<std::uint8_t> screen_edges(const Regions& s) {
 
 // Numbers the coplanar regions: flood fill across edges whose two faces lie in one plane, alike
 // oriented. That relation between planes is an equivalence, so a face joins a region exactly when
-// its plane is the region's: each other plane is tested once per region, and once a region has
-// needed a few exact tests (a large flat face of a CAD part, many facets in one plane) they are
+// its plane is the region's: each other plane is tested once per region, and the exact tests are
 // of points against the seed's plane by its linear form, computed once (PlaneSides). Testing each
 // edge's two planes instead (a 4x4 determinant per pair of planes, cached) was most of the merge
 // on flat faces: cheese x fandisk's regions 15 ms, 9 so.
 void find_regions(Regions& s) {
-  constexpr int kTestsBeforeForm = 4;
   const std::size_t nf = s.surface.triangles.size();
   const std::vector<std::uint8_t> kind = screen_edges(s);
   // The entry of the edge f -> g, kept at the lower face.
@@ -332,17 +330,14 @@ void find_regions(Regions& s) {
   std::vector<std::uint8_t> joins(s.planes.size(), 0);
   s.region.assign(nf, kNone);
   std::vector<std::uint32_t> stack;
-  // The seed's linear form pays once a region has needed a few exact tests (a large flat face of
-  // a CAD part); a small region tests each plane against its neighbour's, as one orientation
-  // each. Declared once: the form is large, and most regions are one face that never needs it.
+  // The seed's plane sides, made when a region first needs an exact test. Declared once: the
+  // object is large, and most regions are one face that never needs it.
   std::optional<PointTable::PlaneSides> sides;
-  int tests = 0;
   for (std::uint32_t start = 0; start < nf; ++start) {
     if (s.region[start] != kNone) continue;
     const std::uint32_t r = s.count++;
     const std::array<PointId, 3>& seed = s.planes[s.plane_of[start]];
     sides.reset();
-    tests = 0;
     // Whether plane b, across an edge from a face of the region in plane a, is the seed's plane
     // (a's, the region's planes being one): b's corners that are a's lie on it already, the
     // filters may put another off it, and the exact stage decides the rest.
@@ -358,9 +353,8 @@ void find_regions(Regions& s) {
       }
       for (int k = 0; k < 3 && same; ++k) {
         if (!undecided[k]) continue;
-        if (!sides && ++tests > kTestsBeforeForm) sides.emplace(s.table, seed);
-        same = (sides ? sides->exact(pb[k])
-                      : s.table.orientation_exact(pa[0], pa[1], pa[2], pb[k])) == CGAL::ZERO;
+        if (!sides) sides.emplace(s.table, seed);
+        same = sides->exact(pb[k]) == CGAL::ZERO;
       }
       same = same && s.table.normal_dot(pa, pb) == CGAL::POSITIVE;
       tested_for[b] = r;
