@@ -3,6 +3,8 @@
 // on rational (turned) inputs, curved surfaces against flat faces included.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <utility>
 #include <vector>
 
 #include "morphex/boolean.h"
@@ -107,4 +109,55 @@ TEST(BooleanMerge, TurnedCubesSharingAFaceMergeIntoOneBox) {
       merged_checked(transformed(a, kTurn), transformed(b, kTurn), BooleanOp::Union, false);
   EXPECT_EQ(merged.num_triangles(), 12u);
   EXPECT_EQ(merged.num_vertices(), 8u);
+}
+
+namespace {
+
+// The box [-1, 1]^2 x [-1, 0] with its bottom a fan of four triangles around its centre (a flat
+// vertex of the input itself), outward.
+Mesh box_with_fanned_bottom() {
+  Mesh m;
+  for (const int z : {-1, 0})
+    for (const auto& [x, y] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}})
+      m.points.emplace_back(x, y, z);
+  m.points.emplace_back(0, 0, -1);                            // 8: the bottom's centre
+  m.triangles = {{4, 5, 6}, {4, 6, 7},                        // top
+                 {8, 1, 0}, {8, 2, 1}, {8, 3, 2}, {8, 0, 3},  // bottom, seen from below
+                 {0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5},  // sides
+                 {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+  return m;
+}
+
+bool has_vertex(const Mesh& mesh, const Point& p) {
+  return std::find(mesh.points.begin(), mesh.points.end(), p) != mesh.points.end();
+}
+
+}  // namespace
+
+// A box standing on half of another's top: the union's contact leaves the point where the lower
+// top's diagonal crosses the upper box's wall on a straight crease, which the merge removes; the
+// lower box's bottom, which the upper one does not touch, keeps its own centre vertex (the merge
+// changes only what the Boolean cut).
+TEST(BooleanMerge, UntouchedFacesKeepTheirVertices) {
+  const Mesh a = box_with_fanned_bottom();
+  ASSERT_TRUE(check_mesh(a).valid_solid()) << describe_problems(check_mesh(a));
+  const Mesh b = make_box(Point(0, -1, 0), Point(2, 1, 1));
+  for (const bool turned : {false, true}) {
+    SCOPED_TRACE(turned ? "turned" : "as made");
+    auto place = [&](const Point& p) { return turned ? kTurn(p) : p; };
+    const Mesh pa = turned ? transformed(a, kTurn) : a, pb = turned ? transformed(b, kTurn) : b;
+    BooleanOptions unmerged_options;
+    unmerged_options.merge_coplanar = false;
+    const BooleanResult merged = compute_boolean(pa, pb, BooleanOp::Union);
+    const BooleanResult unmerged = compute_boolean(pa, pb, BooleanOp::Union, unmerged_options);
+    ASSERT_TRUE(merged.ok()) << merged.message;
+    ASSERT_TRUE(unmerged.ok()) << unmerged.message;
+    const MeshReport report = check_mesh(merged.mesh);
+    EXPECT_TRUE(report.valid_solid()) << describe_problems(report);
+    EXPECT_EQ(report.volume, check_mesh(unmerged.mesh).volume);
+    EXPECT_TRUE(has_vertex(unmerged.mesh, place(Point(0, 0, 0))));
+    EXPECT_FALSE(has_vertex(merged.mesh, place(Point(0, 0, 0))));
+    EXPECT_TRUE(has_vertex(merged.mesh, place(Point(0, 0, -1))));
+    EXPECT_EQ(flat_vertices(merged.mesh), 1u);
+  }
 }

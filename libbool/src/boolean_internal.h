@@ -224,11 +224,15 @@ IdMesh separate_non_manifold(PointTable& points, const std::vector<Triangle>& fa
 
 // merge_coplanar_faces on a surface over point ids, where face f lies in the plane of the
 // triangle planes[plane_of[f]] (three point ids, oriented as the face): coplanarity is decided on
-// those planes, once per pair.
+// those planes, once per plane and region.
 // plane_of is updated to the merged surface's faces (a merged face lies in its region's plane).
+// With `touched` (by face: 1 for a face a Boolean made or cut, 0 for an input facet kept whole),
+// only vertices of touched faces may go: elsewhere a Boolean's result keeps its inputs' faces as
+// they were, and the merge does not look there.
 void merge_coplanar(const PointTable& points, IdMesh& surface,
                     const std::vector<std::array<PointId, 3>>& planes,
-                    std::vector<std::uint32_t>& plane_of);
+                    std::vector<std::uint32_t>& plane_of,
+                    const std::vector<std::uint8_t>* touched = nullptr);
 
 // The mesh with the surface's points (input points, lazily evaluated constructions).
 Mesh materialize(const PointTable& points, const IdMesh& surface);

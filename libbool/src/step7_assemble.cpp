@@ -437,8 +437,16 @@ Mesh assemble(const Mesh& a, const Mesh& b, Intersection& x, const Refined refin
     std::vector<std::uint32_t> plane_of_facet[2] = {
         std::vector<std::uint32_t>(a.num_triangles(), kNone),
         std::vector<std::uint32_t>(b.num_triangles(), kNone)};
+    // Faces of facets the other mesh touches (cut, or split at a point) may hold removable
+    // vertices; the others are input facets kept whole, around their inputs' own vertices.
+    std::vector<std::uint8_t> cut_facet[2] = {std::vector<std::uint8_t>(a.num_triangles(), 0),
+                                              std::vector<std::uint8_t>(b.num_triangles(), 0)};
+    for (int side = 0; side < 2; ++side)
+      for (const auto& entry : x.cuts[side]) cut_facet[side][entry.first] = 1;
+    std::vector<std::uint8_t> touched(origin.size());
     for (std::size_t f = 0; f < origin.size(); ++f) {
       const FaceOrigin& o = origin[f];
+      touched[f] = cut_facet[o.mesh][o.face];
       std::uint32_t& plane = plane_of_facet[o.mesh][o.face];
       if (plane == kNone) {
         const Triangle& t = meshes[o.mesh]->triangles[o.face];
@@ -451,7 +459,7 @@ Mesh assemble(const Mesh& a, const Mesh& b, Intersection& x, const Refined refin
       }
       plane_of[f] = plane;
     }
-    merge_coplanar(x.points, surface, planes, plane_of);
+    merge_coplanar(x.points, surface, planes, plane_of, &touched);
   } else if (provenance) {
     *provenance = std::move(origin);
   }

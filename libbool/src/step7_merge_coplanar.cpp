@@ -8,6 +8,11 @@
 // The work is done on point ids of a PointTable, before output points exist: every face lies in a
 // known plane (its input facet's), so coplanarity is decided on the input facets' corners (small,
 // cached exact coordinates) and once per plane and region, never on constructed points.
+//
+// After a Boolean, only vertices of faces the Boolean cut may go: the other faces are input
+// facets kept whole, around the inputs' own vertices, which the result keeps as they were. The
+// merge then looks only at the regions around those vertices (tripod x armadillo: 47,000 faces,
+// a few hundred of them cut, 3 vertices removed: the merge took 9 ms over the whole surface).
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
@@ -15,20 +20,15 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <memory>
 #include <optional>
 #include <queue>
 #include <unordered_map>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 #include "boolean_internal.h"
 #include "double_plane.h"
-#include "flat_map.h"
+#include "merge_adjacency.h"
 #include "morphex/boolean.h"
 #include "morphex/parallel_points.h"
 #include "spatial.h"
@@ -38,7 +38,7 @@ namespace morphex {
 namespace detail {
 namespace {
 
-constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+constexpr std::uint32_t kNone = kNoFace;  // no face, no region
 
 // The new triangles of a set of faces, from its boundary (edges over surface vertices), or nullopt
 // when it must stay as it is.
@@ -114,139 +114,6 @@ std::optional<std::vector<Triangle>> triangulate_region(
   return out;
 }
 
-// For each vertex flagged in `of_interest`, whether another vertex has its position: the same
-// point, or an equal one. The flagged vertices are bucketed by the grid cells their interval
-// boxes cover (coincident points have overlapping boxes), and only vertices sharing a cell with a
-// flagged one are compared exactly. The flagged ones are few (the candidates of a merge) and
-// usually in one part of the surface: the other vertices are dropped by the box around them.
-std::vector<std::uint8_t> coincident(const PointTable& table, const IdMesh& surface,
-                                     const std::vector<std::uint8_t>& of_interest) {
-  const std::size_t nv = surface.vertex_point.size();
-  std::vector<std::uint8_t> shared(nv, 0);
-  // Double boxes: coordinates beyond float range stay finite.
-  auto box_of = [&](VertexIndex v) { return table.approx(surface.vertex_point[v]).bbox(); };
-  std::vector<VertexIndex> flagged;
-  std::vector<CGAL::Bbox_3> flagged_box;
-  CGAL::Bbox_3 frame;  // around the flagged boxes
-  for (VertexIndex v = 0; v < nv; ++v)
-    if (of_interest[v]) {
-      flagged.push_back(v);
-      flagged_box.push_back(box_of(v));
-      frame += flagged_box.back();
-    }
-  if (flagged.empty()) return shared;
-  // Cells about 2^-20 of the flagged boxes' extent: far wider than any point's interval box, so
-  // that a box covers one cell, rarely two along an axis.
-  double cell = 0;
-  for (int k = 0; k < 3; ++k) cell = std::max(cell, frame.max(k) - frame.min(k));
-  cell = cell > 0 ? std::ldexp(cell, -20) : 1;
-  const bool finite = std::isfinite(cell);  // else every box counts as wide
-  auto cell_range = [&](const CGAL::Bbox_3& b, std::int64_t(&lo)[3], std::int64_t(&hi)[3]) {
-    if (!finite) return std::numeric_limits<std::int64_t>::max();
-    std::int64_t count = 1;
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::int64_t(std::floor((std::max(b.min(k), frame.min(k)) - frame.min(k)) / cell));
-      hi[k] = std::int64_t(std::floor((std::min(b.max(k), frame.max(k)) - frame.min(k)) / cell));
-      count *= std::min<std::int64_t>(hi[k] - lo[k] + 1, 1 << 20);
-    }
-    return count;
-  };
-  // Boxes over a few cells (constructions whose intervals are wide) are compared directly.
-  constexpr std::int64_t kMaxCells = 8;
-  auto for_each_cell = [&](const std::int64_t(&lo)[3], const std::int64_t(&hi)[3], auto&& visit) {
-    for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
-      for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
-        for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
-          visit(mix64(std::uint64_t(x) * 0x9e3779b97f4a7c15ull ^ std::uint64_t(y) << 21 ^
-                      std::uint64_t(z) << 42));
-  };
-  // i: a flagged vertex's place in `flagged`.
-  auto compare = [&](VertexIndex u, const CGAL::Bbox_3& box, std::uint32_t i) {
-    const VertexIndex v = flagged[i];
-    if (v != u && CGAL::do_overlap(box, flagged_box[i]) &&
-        table.equal(surface.vertex_point[u], surface.vertex_point[v]))
-      shared[v] = 1;
-  };
-  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
-  std::vector<std::uint32_t> wide_flagged;
-  for (std::uint32_t i = 0; i < flagged.size(); ++i) {
-    std::int64_t lo[3], hi[3];
-    if (cell_range(flagged_box[i], lo, hi) > kMaxCells)
-      wide_flagged.push_back(i);
-    else
-      for_each_cell(lo, hi, [&](std::uint64_t key) { cells[key].push_back(i); });
-  }
-  for (VertexIndex u = 0; u < nv; ++u) {
-    const CGAL::Bbox_3 box = box_of(u);
-    if (!CGAL::do_overlap(box, frame)) continue;  // meets no flagged box
-    for (const std::uint32_t i : wide_flagged) compare(u, box, i);
-    std::int64_t lo[3], hi[3];
-    if (cell_range(box, lo, hi) > kMaxCells) {
-      for (std::uint32_t i = 0; i < flagged.size(); ++i) compare(u, box, i);
-      continue;
-    }
-    for_each_cell(lo, hi, [&](std::uint64_t key) {
-      const auto it = cells.find(key);
-      if (it == cells.end()) return;
-      for (const std::uint32_t i : it->second) compare(u, box, i);
-    });
-  }
-  return shared;
-}
-
-// The first of the `count` ends at `to` equal to u, or `count` when none is. Four ends are
-// compared at once: scanning a vertex's five to seven edges one by one, the loop's exit at an
-// unpredictable place cost more than the comparisons (tripod x armadillo's merge, 47,000 faces:
-// 3.5 ms for the twins, 2.2 so). `to` has 3 readable entries past the last.
-inline std::uint32_t first_equal(const VertexIndex* to, std::uint32_t count, VertexIndex u) {
-#if defined(__SSE2__)
-  const __m128i key = _mm_set1_epi32(int(u));
-  for (std::uint32_t i = 0; i < count; i += 4) {
-    const __m128i four = _mm_loadu_si128(reinterpret_cast<const __m128i*>(to + i));
-    std::uint32_t hits =
-        std::uint32_t(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(key, four))));
-    if (count - i < 4) hits &= (1u << (count - i)) - 1;
-    if (hits != 0) return i + std::uint32_t(__builtin_ctz(hits));
-  }
-  return count;
-#else
-  std::uint32_t i = 0;
-  while (i < count && to[i] != u) ++i;
-  return i;
-#endif
-}
-
-// The face across each edge, at 3 f + k for edge k of face f (kNone on a border): edge k runs
-// tri[f][k] -> tri[f][k + 1], and its twin is the first edge leaving tri[f][k + 1] for tri[f][k].
-// The edges leaving each vertex are listed contiguously, their ends apart from their faces, so
-// the search reads one short run of memory (a hash table of all edges, or the faces around the
-// vertex, did not).
-std::vector<std::uint32_t> edge_twins(const std::vector<Triangle>& tri, std::size_t nv) {
-  const std::size_t nf = tri.size();
-  std::vector<std::uint32_t> twin(3 * nf, kNone);
-  std::vector<std::uint32_t> start(nv + 1, 0);
-  for (const Triangle& t : tri)
-    for (VertexIndex v : t) ++start[v + 1];
-  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  std::vector<VertexIndex> to(3 * nf + 3, kNone);  // padded for first_equal
-  std::vector<std::uint32_t> face(3 * nf);
-  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-  for (std::uint32_t f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t slot = fill[tri[f][k]]++;
-      to[slot] = tri[f][(k + 1) % 3];
-      face[slot] = f;
-    }
-  for (std::uint32_t f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) {
-      const VertexIndex u = tri[f][k], v = tri[f][(k + 1) % 3];
-      const std::uint32_t count = start[v + 1] - start[v];
-      const std::uint32_t i = first_equal(to.data() + start[v], count, u);
-      if (i < count) twin[3 * f + k] = face[start[v] + i];
-    }
-  return twin;
-}
-
 // The surface being merged with what every later step reads: its adjacency and its coplanar
 // regions (merging never crosses a region's border).
 struct Regions {
@@ -254,11 +121,14 @@ struct Regions {
   const IdMesh& surface;
   const std::vector<std::array<PointId, 3>>& planes;
   const std::vector<std::uint32_t>& plane_of;
-  std::vector<std::uint32_t> twin;    // see edge_twins
+  VertexEdges edges;
+  std::vector<std::uint32_t> twin;    // VertexEdges::all_twins, or empty: edges.twin on demand
   std::vector<std::uint32_t> region;  // of each face
   std::uint32_t count = 0;            // regions
 
-  std::uint32_t twin_face(std::uint32_t f, int k) const { return twin[3 * f + k]; }
+  std::uint32_t twin_face(std::uint32_t f, int k) const {
+    return twin.empty() ? edges.twin(f, k) : twin[3 * f + k];
+  }
 };
 
 // What the doubles say of an edge between two faces, at 3 f + k for edge k of face f < its twin.
@@ -268,32 +138,49 @@ enum EdgePlanes : std::uint8_t {
   kUndecided,  // distinct planes that may be one: the exact stage decides
 };
 
-// The EdgePlanes of face f's edges to higher faces, into kind[3 f + k]. Most edges of a curved
-// surface join two planes that a side test in doubles tells apart: f's plane is computed once
-// for its three edges, and only the corners of the other plane not on it are read (tripod x
+// Face f's plane against the planes of the faces across its edges, in doubles. Most edges of a
+// curved surface join two planes that a side test tells apart: f's plane is computed once for
+// its three edges, and only the corners of the other plane not on it are read (tripod x
 // armadillo's merge, 71,000 edges: 4.4 ms with an orientation filter per edge, 3.7 so).
-void screen_face(const Regions& s, std::uint32_t f, std::vector<std::uint8_t>& kind) {
-  const auto& xyz = s.table.input_near_doubles();
-  const std::uint32_t a = s.plane_of[f];
-  const std::array<PointId, 3>& pa = s.planes[a];
-  const bool doubles =
-      !xyz.empty() && s.table.is_input(pa[0]) && s.table.is_input(pa[1]) && s.table.is_input(pa[2]);
-  std::optional<DoublePlane> plane;  // a's, once an edge needs it
-  auto apart = [&](std::uint32_t b) {
-    if (!doubles) return false;
-    if (!plane) plane = DoublePlane::through(xyz[pa[0]], xyz[pa[1]], xyz[pa[2]]);
-    for (const PointId c : s.planes[b]) {
-      if (c == pa[0] || c == pa[1] || c == pa[2] || !s.table.is_input(c)) continue;
-      const std::optional<int> side = plane->side(xyz[pa[0]], xyz[c], s.table.input_error());
+class FaceScreen {
+ public:
+  FaceScreen(const Regions& s, std::uint32_t f)
+      : s_(s), xyz_(s.table.input_near_doubles()), a_(s.plane_of[f]) {
+    const std::array<PointId, 3>& pa = s.planes[a_];
+    doubles_ = !xyz_.empty() && s.table.is_input(pa[0]) && s.table.is_input(pa[1]) &&
+               s.table.is_input(pa[2]);
+  }
+  // The EdgePlanes of f's edge to face g.
+  EdgePlanes against(std::uint32_t g) {
+    const std::uint32_t b = s_.plane_of[g];
+    return a_ == b ? kOnePlane : apart(b) ? kApart : kUndecided;
+  }
+
+ private:
+  bool apart(std::uint32_t b) {
+    if (!doubles_) return false;
+    const std::array<PointId, 3>& pa = s_.planes[a_];
+    if (!plane_) plane_ = DoublePlane::through(xyz_[pa[0]], xyz_[pa[1]], xyz_[pa[2]]);
+    for (const PointId c : s_.planes[b]) {
+      if (c == pa[0] || c == pa[1] || c == pa[2] || !s_.table.is_input(c)) continue;
+      const std::optional<int> side = plane_->side(xyz_[pa[0]], xyz_[c], s_.table.input_error());
       if (side && *side != 0) return true;
     }
     return false;
-  };
+  }
+  const Regions& s_;
+  const std::vector<std::array<double, 3>>& xyz_;
+  const std::uint32_t a_;
+  bool doubles_;
+  std::optional<DoublePlane> plane_;  // a_'s, once an edge needs it
+};
+
+// The EdgePlanes of face f's edges to higher faces, into kind[3 f + k].
+void screen_face(const Regions& s, std::uint32_t f, std::vector<std::uint8_t>& kind) {
+  FaceScreen screen(s, f);
   for (int k = 0; k < 3; ++k) {
     const std::uint32_t g = s.twin_face(f, k);
-    if (g == kNone || g < f) continue;
-    const std::uint32_t b = s.plane_of[g];
-    kind[3 * f + k] = a == b ? kOnePlane : apart(b) ? kApart : kUndecided;
+    if (g != kNone && g > f) kind[3 * f + k] = screen.against(g);
   }
 }
 
@@ -315,9 +202,14 @@ std::vector<std::uint8_t> screen_edges(const Regions& s) {
 // of points against the seed's plane by its linear form, computed once (PlaneSides). Testing each
 // edge's two planes instead (a 4x4 determinant per pair of planes, cached) was most of the merge
 // on flat faces: cheese x fandisk's regions 15 ms, 9 so.
-void find_regions(Regions& s) {
+//
+// Given `active` vertices (those a Boolean may have made removable), only the regions of the faces
+// around them are filled, and every other face is a region of its own: none of their vertices
+// is a candidate, and no filled region reaches them. The edges are then screened as the fill
+// reaches them; for the whole surface, all at once in parallel.
+void find_regions(Regions& s, const std::vector<VertexIndex>* active) {
   const std::size_t nf = s.surface.triangles.size();
-  const std::vector<std::uint8_t> kind = screen_edges(s);
+  const std::vector<std::uint8_t> kind = active ? std::vector<std::uint8_t>() : screen_edges(s);
   // The entry of the edge f -> g, kept at the lower face.
   auto kind_across = [&](std::uint32_t f, int k, std::uint32_t g) -> std::uint8_t {
     if (f < g) return kind[3 * f + k];
@@ -333,8 +225,8 @@ void find_regions(Regions& s) {
   // The seed's plane sides, made when a region first needs an exact test. Declared once: the
   // object is large, and most regions are one face that never needs it.
   std::optional<PointTable::PlaneSides> sides;
-  for (std::uint32_t start = 0; start < nf; ++start) {
-    if (s.region[start] != kNone) continue;
+  auto fill = [&](std::uint32_t start) {
+    if (s.region[start] != kNone) return;
     const std::uint32_t r = s.count++;
     const std::array<PointId, 3>& seed = s.planes[s.plane_of[start]];
     sides.reset();
@@ -366,10 +258,11 @@ void find_regions(Regions& s) {
     while (!stack.empty()) {
       const std::uint32_t f = stack.back();
       stack.pop_back();
+      FaceScreen screen(s, f);
       for (int i = 0; i < 3; ++i) {
         const std::uint32_t g = s.twin_face(f, i);
         if (g == kNone || s.region[g] != kNone) continue;
-        const std::uint8_t across = kind_across(f, i, g);
+        const std::uint8_t across = kind.empty() ? screen.against(g) : kind_across(f, i, g);
         if (across == kApart ||
             (across == kUndecided && !same_as_seed(s.plane_of[f], s.plane_of[g])))
           continue;
@@ -377,7 +270,15 @@ void find_regions(Regions& s) {
         stack.push_back(g);
       }
     }
+  };
+  if (!active) {
+    for (std::uint32_t f = 0; f < nf; ++f) fill(f);
+    return;
   }
+  for (const VertexIndex v : *active)
+    for (const std::uint32_t* f = s.edges.faces_begin(v); f != s.edges.faces_end(v); ++f) fill(*f);
+  for (std::uint32_t f = 0; f < nf; ++f)
+    if (s.region[f] == kNone) s.region[f] = s.count++;
 }
 
 // Vertices that may be removable: inside one region, or between exactly two (first_region and
@@ -390,7 +291,8 @@ struct Candidates {
 
 // Both regions of a candidate need two faces or more (a corner of a lone triangle stays), which
 // leaves few candidates; only those are examined further.
-Candidates find_candidates(const Regions& s) {
+// Only `active` vertices, when given, are considered (see find_regions).
+Candidates find_candidates(const Regions& s, const std::vector<VertexIndex>* active) {
   const auto& tri = s.surface.triangles;
   const std::size_t nf = tri.size(), nv = s.surface.vertex_point.size();
   std::vector<std::uint32_t> region_size(s.count, 0);
@@ -399,24 +301,32 @@ Candidates find_candidates(const Regions& s) {
   c.first_region.assign(nv, kNone);
   c.second_region.assign(nv, kNone);
   std::vector<std::uint8_t> many_regions(nv, 0);
-  for (std::uint32_t f = 0; f < nf; ++f)
-    for (VertexIndex v : tri[f]) {
-      const std::uint32_t r = s.region[f];
-      if (c.first_region[v] == kNone || c.first_region[v] == r)
-        c.first_region[v] = r;
-      else if (c.second_region[v] == kNone || c.second_region[v] == r)
-        c.second_region[v] = r;
-      else
-        many_regions[v] = 1;
-    }
-  c.flag.assign(nv, 0);
-  for (VertexIndex v = 0; v < nv; ++v) {
-    if (c.first_region[v] == kNone || many_regions[v] || region_size[c.first_region[v]] < 2)
-      continue;
-    if (c.second_region[v] != kNone && region_size[c.second_region[v]] < 2) continue;
+  auto note = [&](VertexIndex v, std::uint32_t f) {  // face f is around v
+    const std::uint32_t r = s.region[f];
+    if (c.first_region[v] == kNone || c.first_region[v] == r)
+      c.first_region[v] = r;
+    else if (c.second_region[v] == kNone || c.second_region[v] == r)
+      c.second_region[v] = r;
+    else
+      many_regions[v] = 1;
+  };
+  auto consider = [&](VertexIndex v) {
+    if (c.first_region[v] == kNone || many_regions[v] || region_size[c.first_region[v]] < 2) return;
+    if (c.second_region[v] != kNone && region_size[c.second_region[v]] < 2) return;
     c.list.push_back(v);
     c.flag[v] = 1;
+  };
+  c.flag.assign(nv, 0);
+  if (active) {
+    for (const VertexIndex v : *active)
+      for (const std::uint32_t* f = s.edges.faces_begin(v); f != s.edges.faces_end(v); ++f)
+        note(v, *f);
+    for (const VertexIndex v : *active) consider(v);
+    return c;
   }
+  for (std::uint32_t f = 0; f < nf; ++f)
+    for (VertexIndex v : tri[f]) note(v, f);
+  for (VertexIndex v = 0; v < nv; ++v) consider(v);
   return c;
 }
 
@@ -638,14 +548,29 @@ IdMesh compacted(const std::vector<PointId>& point, const std::vector<Triangle>&
 // that do, and only their faces are re-triangulated.
 void merge_coplanar(const PointTable& table, IdMesh& surface,
                     const std::vector<std::array<PointId, 3>>& planes,
-                    std::vector<std::uint32_t>& plane_of) {
-  const std::size_t nf = surface.triangles.size();
+                    std::vector<std::uint32_t>& plane_of,
+                    const std::vector<std::uint8_t>* touched) {
+  const std::size_t nf = surface.triangles.size(), nv = surface.vertex_point.size();
   if (nf == 0) return;
-  Regions s{table, surface, planes, plane_of,
-            edge_twins(surface.triangles, surface.vertex_point.size())};
-  find_regions(s);
+  Regions s{table, surface, planes, plane_of, VertexEdges(surface.triangles, nv)};
+  // The vertices that may go: those of the touched faces, or all.
+  std::vector<VertexIndex> active;
+  if (touched) {
+    std::vector<std::uint8_t> seen(nv, 0);
+    for (std::uint32_t f = 0; f < nf; ++f)
+      if ((*touched)[f])
+        for (const VertexIndex v : surface.triangles[f])
+          if (!seen[v]) {
+            seen[v] = 1;
+            active.push_back(v);
+          }
+    if (active.empty()) return;
+  } else {
+    s.twin = s.edges.all_twins();
+  }
+  find_regions(s, touched ? &active : nullptr);
   if (s.count == nf) return;  // nothing coplanar to merge
-  const Candidates candidates = find_candidates(s);
+  const Candidates candidates = find_candidates(s, touched ? &active : nullptr);
   if (candidates.list.empty()) return;
   const Removal removal = find_removable(s, candidates, frozen_regions(s, candidates));
   std::optional<Faces> merged = retriangulate(s, removal);
