@@ -161,3 +161,39 @@ TEST(BooleanMerge, UntouchedFacesKeepTheirVertices) {
     EXPECT_EQ(flat_vertices(merged.mesh), 1u);
   }
 }
+
+// Where the inputs have no removable vertex of their own, merging only around what the Boolean
+// cut removes exactly what merging the whole unmerged result removes: boxes placed on a half-unit
+// grid against a unit cube (coplanar faces, shared edges and corners, nested and touching boxes),
+// every operation, as made and turned.
+TEST(BooleanMerge, AroundTheCutAsOverTheWholeSurface) {
+  const Mesh cube = make_box(Point(0, 0, 0), Point(1, 1, 1));
+  std::size_t merged_somewhere = 0;
+  for (int dx = -2; dx <= 2; ++dx)
+    for (int dy = 0; dy <= 2; ++dy)
+      for (int dz = 0; dz <= 1; ++dz) {
+        const FT x = FT(dx) / 2, y = FT(dy) / 2, z = FT(dz) / 2;
+        const Mesh box = make_box(Point(x, y, z), Point(x + 1, y + FT(1) / 2, z + 1));
+        for (const bool turned : {false, true}) {
+          const Mesh a = turned ? transformed(cube, kTurn) : cube,
+                     b = turned ? transformed(box, kTurn) : box;
+          for (const BooleanOp op :
+               {BooleanOp::Union, BooleanOp::Intersection, BooleanOp::Difference}) {
+            SCOPED_TRACE(::testing::Message() << to_string(op) << " box at " << dx << "/2 " << dy
+                                              << "/2 " << dz << "/2" << (turned ? " turned" : ""));
+            BooleanOptions unmerged_options;
+            unmerged_options.merge_coplanar = false;
+            const BooleanResult merged = compute_boolean(a, b, op);
+            const BooleanResult unmerged = compute_boolean(a, b, op, unmerged_options);
+            ASSERT_TRUE(merged.ok()) << merged.message;
+            ASSERT_TRUE(unmerged.ok()) << unmerged.message;
+            const Mesh whole = merge_coplanar_faces(unmerged.mesh);
+            EXPECT_EQ(merged.mesh.num_triangles(), whole.num_triangles());
+            EXPECT_EQ(merged.mesh.num_vertices(), whole.num_vertices());
+            EXPECT_EQ(check_mesh(merged.mesh).volume, check_mesh(whole).volume);
+            merged_somewhere += merged.mesh.num_triangles() < unmerged.mesh.num_triangles();
+          }
+        }
+      }
+  EXPECT_GT(merged_somewhere, 30u);  // the merge had work to do in many of the 180 cases
+}

@@ -393,9 +393,10 @@ Mesh assemble(const Mesh& a, const Mesh& b, Intersection& x, const Refined refin
   }
 
   // A vertex can only become removable by merging coplanar faces when the faces around it lie in
-  // at most two planes. Around a special point the facets of each mesh are coplanar with each
-  // other or the point stays (A's and B's facets meet there transversally, unless coplanar facets
-  // overlapped, which already asks for the merge); one test usually refutes it.
+  // at most two planes: a special point where A's and B's facets meet transversally stays (three
+  // planes or more, usually found among its first faces), one on a flat face or a straight crease
+  // of what remains (coplanar facets overlapped, or the other mesh touched a face or an edge only)
+  // may go.
   SpecialCorners around = special_corners(faces, x.flags);  // (point, 3 face + k)
   bool may_merge = merge && x.coplanar_overlaps;
   if (merge && !may_merge) {
@@ -414,16 +415,15 @@ Mesh assemble(const Mesh& a, const Mesh& b, Intersection& x, const Refined refin
     for (std::size_t i = 0; i < around.size() && !may_merge;) {
       std::size_t j = i;
       while (j < around.size() && around[j].first == around[i].first) ++j;
-      bool flat[2] = {true, true};
-      const FaceOrigin* first[2] = {nullptr, nullptr};
-      for (std::size_t k = i; k < j && (flat[0] || flat[1]); ++k) {
+      const FaceOrigin* plane[2] = {nullptr, nullptr};  // a face in each plane met so far
+      bool few = true;                                  // at most two planes
+      for (std::size_t k = i; k < j && few; ++k) {
         const FaceOrigin& o = origin[around[k].second / 3];
-        if (!first[o.mesh])
-          first[o.mesh] = &o;
-        else if (flat[o.mesh])
-          flat[o.mesh] = coplanar(*first[o.mesh], o);
+        if ((plane[0] && coplanar(*plane[0], o)) || (plane[1] && coplanar(*plane[1], o))) continue;
+        if (plane[1]) few = false;
+        (plane[0] ? plane[1] : plane[0]) = &o;
       }
-      may_merge = flat[0] && flat[1];
+      may_merge = few;
       i = j;
     }
   }
