@@ -35,13 +35,18 @@ std::size_t flat_vertices(const Mesh& mesh) {
   return flat;
 }
 
+// The Boolean with its coplanar merge, and without it.
+std::pair<BooleanResult, BooleanResult> merged_and_unmerged(const Mesh& a, const Mesh& b,
+                                                            BooleanOp op) {
+  BooleanOptions unmerged_options;
+  unmerged_options.merge_coplanar = false;
+  return {compute_boolean(a, b, op), compute_boolean(a, b, op, unmerged_options)};
+}
+
 // The Boolean merged and unmerged: both valid with one exact volume, the merged one with no flat
 // vertex and no more faces (`flat`: the unmerged one has flat vertices). Returns the merged one.
 Mesh merged_checked(const Mesh& a, const Mesh& b, BooleanOp op, bool flat) {
-  BooleanOptions unmerged_options;
-  unmerged_options.merge_coplanar = false;
-  const BooleanResult merged = compute_boolean(a, b, op);
-  const BooleanResult unmerged = compute_boolean(a, b, op, unmerged_options);
+  const auto [merged, unmerged] = merged_and_unmerged(a, b, op);
   EXPECT_TRUE(merged.ok()) << merged.message;
   EXPECT_TRUE(unmerged.ok()) << unmerged.message;
   const MeshReport report = check_mesh(merged.mesh), raw = check_mesh(unmerged.mesh);
@@ -146,10 +151,7 @@ TEST(BooleanMerge, UntouchedFacesKeepTheirVertices) {
     SCOPED_TRACE(turned ? "turned" : "as made");
     auto place = [&](const Point& p) { return turned ? kTurn(p) : p; };
     const Mesh pa = turned ? transformed(a, kTurn) : a, pb = turned ? transformed(b, kTurn) : b;
-    BooleanOptions unmerged_options;
-    unmerged_options.merge_coplanar = false;
-    const BooleanResult merged = compute_boolean(pa, pb, BooleanOp::Union);
-    const BooleanResult unmerged = compute_boolean(pa, pb, BooleanOp::Union, unmerged_options);
+    const auto [merged, unmerged] = merged_and_unmerged(pa, pb, BooleanOp::Union);
     ASSERT_TRUE(merged.ok()) << merged.message;
     ASSERT_TRUE(unmerged.ok()) << unmerged.message;
     const MeshReport report = check_mesh(merged.mesh);
@@ -181,10 +183,7 @@ TEST(BooleanMerge, AroundTheCutAsOverTheWholeSurface) {
                {BooleanOp::Union, BooleanOp::Intersection, BooleanOp::Difference}) {
             SCOPED_TRACE(::testing::Message() << to_string(op) << " box at " << dx << "/2 " << dy
                                               << "/2 " << dz << "/2" << (turned ? " turned" : ""));
-            BooleanOptions unmerged_options;
-            unmerged_options.merge_coplanar = false;
-            const BooleanResult merged = compute_boolean(a, b, op);
-            const BooleanResult unmerged = compute_boolean(a, b, op, unmerged_options);
+            const auto [merged, unmerged] = merged_and_unmerged(a, b, op);
             ASSERT_TRUE(merged.ok()) << merged.message;
             ASSERT_TRUE(unmerged.ok()) << unmerged.message;
             const Mesh whole = merge_coplanar_faces(unmerged.mesh);
