@@ -212,7 +212,19 @@ class PointTable {
     return CGAL::sign(normal * (approx(s) - approx(p)));
   }
   // orientation of (p, q, r) seen along the axis `dropped` (coordinates u < v of the other two).
-  CGAL::Sign orientation_2(int dropped, PointId p, PointId q, PointId r) const;
+  // `facet`: the input triangle (of one side) that p, q and r lie on, when the caller knows it;
+  // then collinear_by_recipes is tried before the exact stage.
+  CGAL::Sign orientation_2(int dropped, PointId p, PointId q, PointId r,
+                           const std::array<PointId, 3>* facet = nullptr) const;
+  // Whether p, q and r, three points of the input triangle `facet`, are collinear by how they
+  // were made, without their exact coordinates: each lies on a line or plane of the other side's
+  // input points (the edge that crosses the facet, the facet that its edge crosses), and when
+  // those span one plane, other than the facet's, the three points lie on its line with the
+  // facet's plane. false when that is not known (not that they are not collinear). For the cut
+  // points of a flat face made of many facets crossing one facet of the other side: exactly
+  // collinear, each of their orientations would otherwise need their exact coordinates.
+  bool collinear_by_recipes(const std::array<PointId, 3>& facet, PointId p, PointId q,
+                            PointId r) const;
   // CGAL's side_of_oriented_circle of the projected points.
   CGAL::Sign side_of_oriented_circle(int dropped, PointId p, PointId q, PointId r, PointId t) const;
   CGAL::Comparison_result compare(int axis, PointId p, PointId q) const;

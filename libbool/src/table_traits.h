@@ -3,6 +3,7 @@
 // coordinate axis: the constrained Delaunay triangulations of cut facets and of merged regions.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "point_table.h"
@@ -32,12 +33,13 @@ class TableTraits {
 
   struct Orientation_2 {
     const PointTable* table;
+    const std::array<PointId, 3>* facet;
     CGAL::Orientation operator()(const TablePoint& p, const TablePoint& q,
                                  const TablePoint& r) const {
       // Three points on one edge of the facet: collinear by construction.
       if ((p.edges & q.edges & r.edges) || p.id == q.id || q.id == r.id || p.id == r.id)
         return CGAL::COLLINEAR;
-      return table->orientation_2(dropped, p.id, q.id, r.id);
+      return table->orientation_2(dropped, p.id, q.id, r.id, facet);
     }
   };
   struct Side_of_oriented_circle_2 {
@@ -77,8 +79,12 @@ class TableTraits {
     }
   };
 
-  explicit TableTraits(const PointTable* table = nullptr) : table_(table) {}
-  Orientation_2 orientation_2_object() const { return {table_}; }
+  // `facet`: the input triangle every point lies on, if there is one (a cut facet), for
+  // PointTable::collinear_by_recipes; it must outlive the traits.
+  explicit TableTraits(const PointTable* table = nullptr,
+                       const std::array<PointId, 3>* facet = nullptr)
+      : table_(table), facet_(facet) {}
+  Orientation_2 orientation_2_object() const { return {table_, facet_}; }
   Side_of_oriented_circle_2 side_of_oriented_circle_2_object() const { return {table_}; }
   Compare_x_2 compare_x_2_object() const { return {table_}; }
   Compare_y_2 compare_y_2_object() const { return {table_}; }
@@ -90,6 +96,7 @@ class TableTraits {
 
  private:
   const PointTable* table_;
+  const std::array<PointId, 3>* facet_;
 };
 
 }  // namespace morphex::detail
