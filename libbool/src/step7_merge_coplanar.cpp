@@ -350,13 +350,17 @@ struct Creases {
   std::vector<std::uint32_t> count;
   std::vector<std::array<VertexIndex, 2>> ends;
   std::vector<std::uint32_t> face_at;  // a face of each candidate, for its plane
+  // Of each candidate: the faces on both sides of a crease edge, when every crease edge of it
+  // has a face across (kNone, kNone otherwise).
+  std::vector<std::array<std::uint32_t, 2>> across;
 };
 
 Creases find_creases(const Regions& s, const Candidates& c) {
   const auto& tri = s.surface.triangles;
   const std::size_t nv = s.surface.vertex_point.size();
   Creases creases{std::vector<std::uint32_t>(nv, 0), std::vector<std::array<VertexIndex, 2>>(nv),
-                  std::vector<std::uint32_t>(nv, kNone)};
+                  std::vector<std::uint32_t>(nv, kNone),
+                  std::vector<std::array<std::uint32_t, 2>>(nv, {kNone, 0})};
   for (std::uint32_t f = 0; f < tri.size(); ++f)
     for (int i = 0; i < 3; ++i) {
       const VertexIndex u = tri[f][i], v = tri[f][(i + 1) % 3];
@@ -366,19 +370,45 @@ Creases find_creases(const Regions& s, const Candidates& c) {
       if (g != kNone && s.region[g] == s.region[f]) continue;
       if (creases.count[u] < 2) creases.ends[u][creases.count[u]] = v;
       ++creases.count[u];
+      // kNone, 0 until a crease edge is seen; kNone, kNone once one has no face across.
+      auto& across = creases.across[u];
+      if (g == kNone)
+        across = {kNone, kNone};
+      else if (across[0] == kNone && across[1] == 0)
+        across = {f, g};
     }
+  for (auto& across : creases.across)
+    if (across[0] == kNone) across[1] = kNone;
   return creases;
 }
 
-// a, v, b collinear (all three in the plane of `face`, a face of v) with v strictly between a
-// and b: only then does dropping v leave the crease straight, with no T-junction.
+// Whether faces f and g lie in two distinct planes. Every face of a region lies in its plane, and
+// the faces around a candidate lie in two regions: a crease edge with faces on both sides then
+// lies in both regions' planes, and when those are distinct, so do the candidate and both crease
+// neighbours, on the planes' common line. They are then collinear without evaluating their
+// orientation, which for cut points would need their exact coordinates (a flat face of many
+// facets crossing another makes whole rows of them).
+bool distinct_planes(const Regions& s, std::uint32_t f, std::uint32_t g) {
+  const std::uint32_t a = s.plane_of[f], b = s.plane_of[g];
+  if (a == b) return false;
+  const std::array<PointId, 3>&pa = s.planes[a], &pb = s.planes[b];
+  for (const PointId c : pb)
+    if (s.table.orientation(pa[0], pa[1], pa[2], c) != CGAL::ZERO) return true;
+  return false;
+}
+
+// a, v, b collinear (all three in the plane of `face`, a face of v; known to be when `collinear`)
+// with v strictly between a and b: only then does dropping v leave the crease straight, with no
+// T-junction.
 bool strictly_between(const Regions& s, std::uint32_t face, VertexIndex a, VertexIndex v,
-                      VertexIndex b) {
+                      VertexIndex b, bool collinear) {
   const PointTable& table = s.table;
   const auto& point = s.surface.vertex_point;
-  const auto& plane = s.planes[s.plane_of[face]];
-  const int dropped = table.dominant_axis(plane[0], plane[1], plane[2]);
-  if (table.orientation_2(dropped, point[a], point[v], point[b]) != CGAL::ZERO) return false;
+  if (!collinear) {
+    const auto& plane = s.planes[s.plane_of[face]];
+    const int dropped = table.dominant_axis(plane[0], plane[1], plane[2]);
+    if (table.orientation_2(dropped, point[a], point[v], point[b]) != CGAL::ZERO) return false;
+  }
   for (int axis = 0; axis < 3; ++axis) {
     const CGAL::Comparison_result ab = table.compare(axis, point[a], point[b]);
     if (ab == CGAL::EQUAL) continue;
@@ -407,8 +437,11 @@ Removal find_removable(const Regions& s, const Candidates& c,
     bool remove = false;
     if (second == kNone)
       remove = creases.count[v] == 0;
-    else if (creases.count[v] == 2)
-      remove = strictly_between(s, creases.face_at[v], creases.ends[v][0], v, creases.ends[v][1]);
+    else if (creases.count[v] == 2) {
+      const auto [f, g] = creases.across[v];
+      remove = strictly_between(s, creases.face_at[v], creases.ends[v][0], v, creases.ends[v][1],
+                                f != kNone && distinct_planes(s, f, g));
+    }
     if (!remove) continue;
     removal.vertex[v] = 1;
     removal.region_changes[first] = 1;
