@@ -21,6 +21,8 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -46,7 +48,8 @@ constexpr std::uint32_t kNone = kNoFace;  // no face, no region
 template <int dropped>
 std::optional<std::vector<Triangle>> triangulate_region(
     const PointTable& table, const IdMesh& surface,
-    const std::vector<std::pair<VertexIndex, VertexIndex>>& boundary, const Triangle& seed) {
+    const std::vector<std::pair<VertexIndex, VertexIndex>>& boundary, const Triangle& seed,
+    const std::array<PointId, 3>& plane) {
   using Traits = TableTraits<dropped>;
   using Vb = CGAL::Triangulation_vertex_base_with_info_2<VertexIndex, Traits>;
   // Each face's depth: its number of boundary crossings from the unbounded face (-1: not yet).
@@ -55,7 +58,9 @@ std::optional<std::vector<Triangle>> triangulate_region(
   using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
   using Cdt = CGAL::Constrained_Delaunay_triangulation_2<
       Traits, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
-  Cdt cdt{Traits(&table)};
+  // Every point lies in the region's plane, an input facet's: their recipes tell many collinear
+  // boundary points apart without their exact coordinates (see PointTable::collinear_by_recipes).
+  Cdt cdt{Traits(&table, &plane)};
   auto insert = [&](VertexIndex v) -> std::optional<typename Cdt::Vertex_handle> {
     const std::size_t before = cdt.number_of_vertices();
     auto h = cdt.insert(TablePoint{surface.vertex_point[v], 0});
@@ -409,7 +414,16 @@ bool strictly_between(const Regions& s, std::uint32_t face, VertexIndex a, Verte
     const int dropped = table.dominant_axis(plane[0], plane[1], plane[2]);
     if (table.orientation_2(dropped, point[a], point[v], point[b]) != CGAL::ZERO) return false;
   }
-  for (int axis = 0; axis < 3; ++axis) {
+  // Along any axis on which a and b differ; the one they differ most on first, where intervals
+  // tell the order apart (on another, a crease parallel to a coordinate plane would need the
+  // points' exact coordinates to find them equal).
+  const ApproxPoint &pa = table.approx(point[a]), &pb = table.approx(point[b]);
+  std::array<int, 3> axes = {0, 1, 2};
+  std::array<double, 3> extent;
+  for (int axis = 0; axis < 3; ++axis)
+    extent[axis] = std::abs(pb.cartesian(axis).inf() - pa.cartesian(axis).inf());
+  std::sort(axes.begin(), axes.end(), [&](int i, int j) { return extent[i] > extent[j]; });
+  for (const int axis : axes) {
     const CGAL::Comparison_result ab = table.compare(axis, point[a], point[b]);
     if (ab == CGAL::EQUAL) continue;
     return table.compare(axis, point[a], point[v]) == ab &&
@@ -511,11 +525,11 @@ std::optional<std::vector<Triangle>> triangulate_in_plane(const Regions& s,
                                                           const Triangle& seed) {
   switch (s.table.dominant_axis(plane[0], plane[1], plane[2])) {
     case 0:
-      return triangulate_region<0>(s.table, s.surface, boundary, seed);
+      return triangulate_region<0>(s.table, s.surface, boundary, seed, plane);
     case 1:
-      return triangulate_region<1>(s.table, s.surface, boundary, seed);
+      return triangulate_region<1>(s.table, s.surface, boundary, seed, plane);
     default:
-      return triangulate_region<2>(s.table, s.surface, boundary, seed);
+      return triangulate_region<2>(s.table, s.surface, boundary, seed, plane);
   }
 }
 
