@@ -14,9 +14,6 @@
 // merge then looks only at the regions around those vertices (tripod x armadillo's union: 47,000
 // faces, 3 vertices removed near the cut; the assembly took 12 ms with the whole surface merged,
 // 5.4 so).
-#include <CGAL/Constrained_Delaunay_triangulation_2.h>
-#include <CGAL/Triangulation_face_base_with_info_2.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <tbb/parallel_for.h>
 
@@ -26,99 +23,21 @@
 #include <limits>
 #include <memory>
 #include <optional>
-#include <queue>
 #include <unordered_map>
 
 #include "boolean_internal.h"
 #include "double_plane.h"
 #include "merge_adjacency.h"
+#include "merge_triangulate.h"
 #include "morphex/boolean.h"
 #include "morphex/parallel_points.h"
 #include "spatial.h"
-#include "table_traits.h"
 
 namespace morphex {
 namespace detail {
 namespace {
 
 constexpr std::uint32_t kNone = kNoFace;  // no face, no region
-
-// The new triangles of a set of faces, from its boundary (edges over surface vertices), or nullopt
-// when it must stay as it is.
-template <int dropped>
-std::optional<std::vector<Triangle>> triangulate_region(
-    const PointTable& table, const IdMesh& surface,
-    const std::vector<std::pair<VertexIndex, VertexIndex>>& boundary, const Triangle& seed,
-    const std::array<PointId, 3>& plane) {
-  using Traits = TableTraits<dropped>;
-  using Vb = CGAL::Triangulation_vertex_base_with_info_2<VertexIndex, Traits>;
-  // Each face's depth: its number of boundary crossings from the unbounded face (-1: not yet).
-  using Fbb = CGAL::Triangulation_face_base_with_info_2<int, Traits>;
-  using Fb = CGAL::Constrained_triangulation_face_base_2<Traits, Fbb>;
-  using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
-  using Cdt = CGAL::Constrained_Delaunay_triangulation_2<
-      Traits, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
-  // Every point lies in the region's plane, an input facet's: their recipes tell many collinear
-  // boundary points apart without their exact coordinates (see PointTable::collinear_by_recipes).
-  Cdt cdt{Traits(&table, &plane)};
-  auto insert = [&](VertexIndex v) -> std::optional<typename Cdt::Vertex_handle> {
-    const std::size_t before = cdt.number_of_vertices();
-    auto h = cdt.insert(TablePoint{surface.vertex_point[v], 0});
-    if (cdt.number_of_vertices() > before)
-      h->info() = v;
-    else if (h->info() != v)
-      return std::nullopt;  // two vertices at one position: a separated non-manifold feature
-    return h;
-  };
-  try {
-    for (const auto& [u, w] : boundary) {
-      const auto a = insert(u), b = insert(w);
-      if (!a || !b) return std::nullopt;
-      cdt.insert_constraint(*a, *b);
-    }
-  } catch (const std::exception&) {
-    return std::nullopt;  // crossing constraints would need new points: keep the faces
-  }
-  // Inside = odd number of boundary crossings from the unbounded face.
-  for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) f->info() = -1;
-  std::queue<typename Cdt::Face_handle> frontier;
-  std::vector<typename Cdt::Face_handle> next_level{cdt.infinite_face()};
-  for (int level = 0; !next_level.empty(); ++level) {
-    std::vector<typename Cdt::Face_handle> crossing;
-    for (auto f : next_level)
-      if (f->info() < 0) {
-        f->info() = level;
-        frontier.push(f);
-      }
-    next_level.clear();
-    while (!frontier.empty()) {
-      auto f = frontier.front();
-      frontier.pop();
-      for (int i = 0; i < 3; ++i) {
-        auto n = f->neighbor(i);
-        if (n->info() >= 0) continue;
-        if (f->is_constrained(i))
-          crossing.push_back(n);
-        else {
-          n->info() = level;
-          frontier.push(n);
-        }
-      }
-    }
-    next_level = std::move(crossing);
-  }
-  const auto& p = surface.vertex_point;
-  const bool flip =
-      table.orientation_2(dropped, p[seed[0]], p[seed[1]], p[seed[2]]) == CGAL::NEGATIVE;
-  std::vector<Triangle> out;
-  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
-    if (f->info() < 0 || f->info() % 2 == 0) continue;  // unreached faces count as outside
-    Triangle t{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()};
-    if (flip) std::swap(t[1], t[2]);
-    out.push_back(t);
-  }
-  return out;
-}
 
 // The surface being merged with what every later step reads: its adjacency and its coplanar
 // regions (merging never crosses a region's border).
@@ -483,9 +402,6 @@ Changes changing_faces(const Regions& s, const Removal& removal) {
   return changes;
 }
 
-// Directed edges between surface vertices, each oriented as in the face it bounds.
-using Boundary = std::vector<std::pair<VertexIndex, VertexIndex>>;
-
 // The boundary of region r's changing faces with each run of removable vertices skipped, or
 // nullopt when a run does not lead on to a kept vertex. `next` is scratch space, kept by the
 // caller so that its buckets are reused from region to region.
@@ -518,21 +434,6 @@ std::optional<Boundary> boundary_without_removable(
   return boundary;
 }
 
-// triangulate_region in the coordinate plane the region's plane projects to without folding.
-std::optional<std::vector<Triangle>> triangulate_in_plane(const Regions& s,
-                                                          const std::array<PointId, 3>& plane,
-                                                          const Boundary& boundary,
-                                                          const Triangle& seed) {
-  switch (s.table.dominant_axis(plane[0], plane[1], plane[2])) {
-    case 0:
-      return triangulate_region<0>(s.table, s.surface, boundary, seed, plane);
-    case 1:
-      return triangulate_region<1>(s.table, s.surface, boundary, seed, plane);
-    default:
-      return triangulate_region<2>(s.table, s.surface, boundary, seed, plane);
-  }
-}
-
 // The faces of the merged surface, each with the index of its plane.
 struct Faces {
   std::vector<Triangle> triangles;
@@ -557,7 +458,8 @@ std::optional<Faces> retriangulate(const Regions& s, const Removal& removal) {
         boundary_without_removable(s, removal, changes, r, next);
     std::optional<std::vector<Triangle>> merged;
     if (boundary)
-      merged = triangulate_in_plane(s, s.planes[s.plane_of[seed]], *boundary, tri[seed]);
+      merged = triangulate_in_plane(s.table, s.surface, s.planes[s.plane_of[seed]], *boundary,
+                                    tri[seed]);
     // Rare (coincident vertices in the region): a neighbour may already have dropped a shared
     // crease vertex, so the only safe answer is the unmerged surface, which is always valid.
     if (!merged) return std::nullopt;
