@@ -4,6 +4,7 @@
 // to the exact stage.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <memory>
 #include <numeric>
 #include <random>
@@ -524,6 +525,75 @@ TEST(PointTable, CollinearByRecipesOnlyWhenExactlyCollinear) {
         << i;
   }
   EXPECT_LT(collinear, 100);
+}
+
+// Crossings of a plane perpendicular to an axis (its three points share that coordinate) have
+// that coordinate exactly, as an interval of one point when it is a double; crossings of edges
+// perpendicular to an axis compare along it as their ends do: every comparison agrees with CGAL,
+// equal coordinates included.
+TEST(PointTable, CrossingsOfAxisPerpendicularPlanesAndEdgesCompareExactly) {
+  RandomPoints random(31);
+  Mesh a, b;
+  const FT half(0.5), third = FT(1) / 3;
+  // a: a plane x = 1/2, edges whose ends share x = 1/3 (not a double), and edges whose ends' x
+  // differ from 1/3 by less than the intervals can tell; b: points around them.
+  for (int i = 0; i < 3; ++i)
+    a.points.push_back(Point(half, random.coordinate(), random.coordinate()));
+  for (int i = 0; i < 20; ++i)
+    a.points.push_back(Point(third, random.coordinate(), random.coordinate()));
+  const FT tiny = FT(1) / FT(std::pow(2.0, 80));
+  for (int i = 0; i < 20; ++i)
+    a.points.push_back(Point(third + (1 + i % 2) * tiny, random.coordinate(), random.coordinate()));
+  for (int i = 0; i < 40; ++i) b.points.push_back(random.point());
+  detail::PointTable table(a, b);
+  auto id = [&](int side, std::size_t v) { return table.vertex(side, std::uint32_t(v)); };
+  const Kernel::Plane_3 plane(a.points[0], a.points[1], a.points[2]);
+  ASSERT_FALSE(plane.is_degenerate());
+  std::vector<detail::PointId> on_plane, on_edges, ids;
+  for (std::size_t p = 0; p < 40; ++p)
+    for (std::size_t q = p + 1; q < 40; q += 7) {
+      const auto sp = plane.oriented_side(b.points[p]), sq = plane.oriented_side(b.points[q]);
+      if (sp != CGAL::ON_ORIENTED_BOUNDARY && sq != CGAL::ON_ORIENTED_BOUNDARY && sp != sq)
+        on_plane.push_back(table.add({detail::Recipe::Kind::EdgePlane, -1, id(1, p), id(1, q),
+                                      id(0, 0), id(0, 1), id(0, 2)}));
+    }
+  for (std::size_t e = 3; e + 1 < 43; e += 2)
+    for (std::size_t k = 0; k + 2 < 40; k += 3) {
+      const Kernel::Plane_3 other(b.points[k], b.points[k + 1], b.points[k + 2]);
+      const auto sp = other.oriented_side(a.points[e]), sq = other.oriented_side(a.points[e + 1]);
+      if (!other.is_degenerate() && sp != CGAL::ON_ORIENTED_BOUNDARY &&
+          sq != CGAL::ON_ORIENTED_BOUNDARY && sp != sq)
+        on_edges.push_back(table.add({detail::Recipe::Kind::EdgePlane, -1, id(0, e), id(0, e + 1),
+                                      id(1, k), id(1, k + 1), id(1, k + 2)}));
+    }
+  ASSERT_GE(on_plane.size(), 20u);
+  ASSERT_GE(on_edges.size(), 20u);
+  for (const detail::PointId x : on_plane) {
+    EXPECT_TRUE(table.approx(x).cartesian(0).is_point());
+    EXPECT_EQ(table.point(x).x(), half);
+  }
+  int near = 0;
+  for (const detail::PointId x : on_edges) {
+    const FT x0 = table.point(x).x();
+    if (table.recipe(x).p < 23)
+      EXPECT_EQ(x0, third);
+    else
+      near += third < x0 && x0 < third + 2 * tiny;
+  }
+  EXPECT_GE(near, 10);
+  for (std::size_t v = 0; v < 43; ++v) ids.push_back(id(0, v));
+  ids.insert(ids.end(), on_plane.begin(), on_plane.end());
+  ids.insert(ids.end(), on_edges.begin(), on_edges.end());
+  int equal = 0;
+  for (const detail::PointId p : ids)
+    for (const detail::PointId q : ids)
+      for (int axis = 0; axis < 3; ++axis) {
+        const CGAL::Comparison_result expected =
+            CGAL::compare(table.point(p).cartesian(axis), table.point(q).cartesian(axis));
+        ASSERT_EQ(table.compare(axis, p, q), expected) << p << " " << q << " " << axis;
+        equal += p != q && expected == CGAL::EQUAL;
+      }
+  EXPECT_GT(equal, 1000);
 }
 
 // The point table's constructed points: references taken before the array grows past several

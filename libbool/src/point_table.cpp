@@ -284,6 +284,16 @@ ApproxPoint PointTable::approximate(const Recipe& r) const {
   for (int i = 0; i < 3; ++i)
     c[i] = clamp(p.cartesian(i) + t * (q.cartesian(i) - p.cartesian(i)),
                  hull(p.cartesian(i), q.cartesian(i)));
+  // A plane whose three points share one exact coordinate (a CAD model's face perpendicular to
+  // an axis) is that coordinate's plane: its crossings have that coordinate exactly. Without it,
+  // the cut points of such a face compare equal along that axis only in exact arithmetic.
+  if (r.kind == Recipe::Kind::EdgePlane) {
+    const ApproxPoint& pc = approx(r.c);
+    for (int i = 0; i < 3; ++i) {
+      const Interval& x = a.cartesian(i);
+      if (x.is_point() && b.cartesian(i).is_same(x) && pc.cartesian(i).is_same(x)) c[i] = x;
+    }
+  }
   return ApproxPoint(c[0], c[1], c[2]);
 }
 
@@ -497,8 +507,24 @@ CGAL::Comparison_result PointTable::compare(int axis, PointId p, PointId q) cons
         CGAL::compare(approx(p).cartesian(axis), approx(q).cartesian(axis));
     if (CGAL::is_certain(c)) return CGAL::get_certain(c);
   }
+  // Points whose coordinate is an input point's by their recipes compare as those inputs do.
+  const PointId sp = coordinate_source(axis, p), sq = coordinate_source(axis, q);
+  if ((sp != p || sq != q) && is_input(sp) && is_input(sq)) return compare(axis, sp, sq);
   const Homogeneous &hp = exact(p), &hq = exact(q);
   return CGAL::Comparison_result(sgn(hp[axis] * hq[3] - hq[axis] * hp[3]));
+}
+
+PointId PointTable::coordinate_source(int axis, PointId id) const {
+  if (is_input(id)) return id;
+  const Recipe& r = recipe(id);
+  if (r.kind != Recipe::Kind::EdgePlane && r.kind != Recipe::Kind::EdgeProjectedLine) return id;
+  // On the segment pq: p's coordinate if q has it too. On the plane abc: a's if b and c have it
+  // (their plane is then that coordinate's).
+  if (compare(axis, r.p, r.q) == CGAL::EQUAL) return r.p;
+  if (r.kind == Recipe::Kind::EdgePlane && compare(axis, r.a, r.b) == CGAL::EQUAL &&
+      compare(axis, r.a, r.c) == CGAL::EQUAL)
+    return r.a;
+  return id;
 }
 
 bool PointTable::equal(PointId p, PointId q) const {
