@@ -10,6 +10,7 @@
 #include <random>
 #include <string>
 
+#include "facet_lines.h"
 #include "filtered.h"
 #include "fixed_integer.h"
 #include "point_index.h"
@@ -439,7 +440,7 @@ TEST(PointTable, PredicatesAndConstructionsAgreeWithCgal) {
 // on a plane with the facet, and of edges of a in the facet's plane with that plane of b. Only
 // exactly collinear triples are called collinear: not crossings of b's edges that lie in the
 // facet's plane itself (their common plane is the facet's), nor of b's edges off the plane.
-TEST(PointTable, CollinearByRecipesOnlyWhenExactlyCollinear) {
+TEST(FacetLines, CollinearByRecipesOnlyWhenExactlyCollinear) {
   RandomPoints random(21);
   Mesh a, b;
   for (int i = 0; i < 3; ++i) a.points.push_back(random.point());
@@ -504,12 +505,16 @@ TEST(PointTable, CollinearByRecipesOnlyWhenExactlyCollinear) {
     return from[std::uniform_int_distribution<std::size_t>(0, from.size() - 1)(pick)];
   };
   const int dropped = table.dominant_axis(facet[0], facet[1], facet[2]);
+  // One object for all triples, as a triangulation asks (it keeps the plane it found), and a
+  // fresh one for each.
+  detail::FacetLines lines(table, facet);
   int decided = 0;
   for (int i = 0; i < 3000; ++i) {
     const detail::PointId p = any(on_line), q = any(on_line), r = any(on_line);
     if (p == q || q == r || p == r) continue;
-    ASSERT_TRUE(table.collinear_by_recipes(facet, p, q, r)) << i;
-    ASSERT_EQ(table.orientation_2(dropped, p, q, r, &facet), CGAL::COLLINEAR) << i;
+    ASSERT_TRUE(detail::FacetLines(table, facet).collinear(p, q, r)) << i;
+    ASSERT_TRUE(lines.collinear(p, q, r)) << i;
+    ASSERT_EQ(table.orientation_2(dropped, p, q, r, &lines), CGAL::COLLINEAR) << i;
     ++decided;
   }
   EXPECT_GE(decided, 2500);
@@ -520,8 +525,11 @@ TEST(PointTable, CollinearByRecipesOnlyWhenExactlyCollinear) {
     if (p == q || q == r || p == r) continue;
     const bool exactly = CGAL::collinear(table.point(p), table.point(q), table.point(r));
     collinear += exactly;
-    if (!exactly) ASSERT_FALSE(table.collinear_by_recipes(facet, p, q, r)) << i;
-    ASSERT_EQ(table.orientation_2(dropped, p, q, r, &facet), table.orientation_2(dropped, p, q, r))
+    if (!exactly) {
+      ASSERT_FALSE(detail::FacetLines(table, facet).collinear(p, q, r)) << i;
+      ASSERT_FALSE(lines.collinear(p, q, r)) << i;
+    }
+    ASSERT_EQ(table.orientation_2(dropped, p, q, r, &lines), table.orientation_2(dropped, p, q, r))
         << i;
   }
   EXPECT_LT(collinear, 100);

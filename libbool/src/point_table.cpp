@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 
+#include "facet_lines.h"
 #include "filtered.h"
 #include "fixed_integer.h"
 #include "morphex/union_find.h"
@@ -389,7 +390,7 @@ CGAL::Sign PointTable::PlaneSides::exact(PointId s) const {
 }
 
 CGAL::Sign PointTable::orientation_2(int dropped, PointId p, PointId q, PointId r,
-                                     const std::array<PointId, 3>* facet) const {
+                                     FacetLines* lines) const {
   if (p == q || q == r || p == r) return CGAL::ZERO;
   const int u = dropped == 0 ? 1 : 0, v = dropped == 2 ? 1 : 2;
   if (!input_xyz_.empty() && p < num_inputs_ && q < num_inputs_ && r < num_inputs_) {
@@ -412,7 +413,7 @@ CGAL::Sign PointTable::orientation_2(int dropped, PointId p, PointId q, PointId 
             exact_orientation_2_of_doubles(u, v, input_xyz_[p], input_xyz_[q], input_xyz_[r]))
       return CGAL::Sign(*o);
   }
-  if (facet && collinear_by_recipes(*facet, p, q, r)) return CGAL::ZERO;
+  if (lines && lines->collinear(p, q, r)) return CGAL::ZERO;
   const Homogeneous &hp = exact(p), &hq = exact(q), &hr = exact(r);
   // det [p 1; q 1; r 1] in homogeneous rows, the W factors positive: in fixed-size integers
   // when they fit (no allocation: nearly collinear constructed points in a retriangulation come
@@ -421,61 +422,6 @@ CGAL::Sign PointTable::orientation_2(int dropped, PointId p, PointId q, PointId 
   if (const auto sign = fixed_sign_of_det3(rows, u, v, 3)) return CGAL::Sign(*sign);
   return CGAL::Sign(
       sgn(determinant_3<mpz_class>(hp[u], hp[v], hp[3], hq[u], hq[v], hq[3], hr[u], hr[v], hr[3])));
-}
-
-bool PointTable::collinear_by_recipes(const std::array<PointId, 3>& facet, PointId p, PointId q,
-                                      PointId r) const {
-  if (same_mesh_ || !is_input(facet[0])) return false;
-  const bool side = facet[0] >= num_a_;
-  auto other = [&](PointId id) { return is_input(id) && (id >= num_a_) != side; };
-  // The input points spanning what each point lies on: itself, its edge's line or the plane its
-  // edge crosses, whichever belongs to the other side (a point on a line seen along an axis lies
-  // on its edge, not on that line).
-  std::array<PointId, 9> span;
-  int n = 0;
-  for (const PointId x : {p, q, r}) {
-    if (is_input(x)) {
-      span[n++] = x;
-      continue;
-    }
-    const Recipe& recipe = this->recipe(x);
-    if (recipe.kind != Recipe::Kind::EdgePlane && recipe.kind != Recipe::Kind::EdgeProjectedLine)
-      return false;
-    if (other(recipe.p)) {
-      span[n++] = recipe.p;
-      span[n++] = recipe.q;
-    } else if (recipe.kind == Recipe::Kind::EdgePlane && other(recipe.a)) {
-      span[n++] = recipe.a;
-      span[n++] = recipe.b;
-      span[n++] = recipe.c;
-    } else {
-      return false;
-    }
-  }
-  std::sort(span.begin(), span.begin() + n);
-  n = int(std::unique(span.begin(), span.begin() + n) - span.begin());
-  // Three of them not on one line, a, b and c; if there are none, the three points are on the
-  // line of them all.
-  auto on_line = [&](PointId a, PointId b, PointId c) {
-    for (int axis = 0; axis < 3; ++axis)
-      if (orientation_2(axis, a, b, c) != CGAL::ZERO) return false;
-    return true;
-  };
-  const PointId a = span[0];
-  int i = 1;
-  while (i < n && equal(a, span[i])) ++i;
-  if (i == n) return true;
-  const PointId b = span[i];
-  int j = i + 1;
-  while (j < n && on_line(a, b, span[j])) ++j;
-  if (j == n) return true;
-  const PointId c = span[j];
-  for (int k = i + 1; k < n; ++k)
-    if (k != j && orientation(a, b, c, span[k]) != CGAL::ZERO) return false;
-  // Their plane is not the facet's: it meets the facet's plane in a line.
-  for (const PointId x : {a, b, c})
-    if (orientation(facet[0], facet[1], facet[2], x) != CGAL::ZERO) return true;
-  return false;
 }
 
 CGAL::Sign PointTable::side_of_oriented_circle(int dropped, PointId p, PointId q, PointId r,

@@ -31,6 +31,8 @@
 
 namespace morphex::detail {
 
+class FacetLines;
+
 // Interval arithmetic needs the FPU rounding toward +infinity, and switching the mode costs about
 // as much as a small predicate. A loop that evaluates many predicates holds an UpwardRounding for
 // its whole block; the predicates then leave the mode alone (IntervalStage), and their exact
@@ -141,6 +143,9 @@ class PointTable {
     return side == 0 || same_mesh_ ? v : PointId(num_a_ + v);
   }
   std::size_t num_inputs() const { return num_inputs_; }
+  bool same_mesh() const { return same_mesh_; }
+  // 0 for a point of a, 1 for b's (an input id).
+  int side_of_input(PointId id) const { return id < num_a_ ? 0 : 1; }
   // The input points as doubles, by id, when every input point is one (else empty): for
   // callers that run the static filters themselves on differences they reuse.
   const std::vector<std::array<double, 3>>& input_doubles() const {
@@ -212,19 +217,9 @@ class PointTable {
     return CGAL::sign(normal * (approx(s) - approx(p)));
   }
   // orientation of (p, q, r) seen along the axis `dropped` (coordinates u < v of the other two).
-  // `facet`: the input triangle (of one side) that p, q and r lie on, when the caller knows it;
-  // then collinear_by_recipes is tried before the exact stage.
+  // `lines`: the points' facet, when the caller knows one; it is asked before the exact stage.
   CGAL::Sign orientation_2(int dropped, PointId p, PointId q, PointId r,
-                           const std::array<PointId, 3>* facet = nullptr) const;
-  // Whether p, q and r, three points of the input triangle `facet`, are collinear by how they
-  // were made, without their exact coordinates: each lies on a line or plane of the other side's
-  // input points (the edge that crosses the facet, the facet that its edge crosses), and when
-  // those span one plane, other than the facet's, the three points lie on its line with the
-  // facet's plane. false when that is not known (not that they are not collinear). For the cut
-  // points of a flat face made of many facets crossing one facet of the other side: exactly
-  // collinear, each of their orientations would otherwise need their exact coordinates.
-  bool collinear_by_recipes(const std::array<PointId, 3>& facet, PointId p, PointId q,
-                            PointId r) const;
+                           FacetLines* lines = nullptr) const;
   // CGAL's side_of_oriented_circle of the projected points.
   CGAL::Sign side_of_oriented_circle(int dropped, PointId p, PointId q, PointId r, PointId t) const;
   CGAL::Comparison_result compare(int axis, PointId p, PointId q) const;

@@ -55,8 +55,8 @@ void triangulate(const Intersection& x, const std::array<CutPoint, 3>& corners,
   using Cdt = CGAL::Constrained_Delaunay_triangulation_2<
       Traits, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
   const PointTable& table = x.points;
-  const std::array<PointId, 3> facet_corners = {corners[0].id, corners[1].id, corners[2].id};
-  Cdt cdt{Traits(&table, &facet_corners)};
+  FacetLines lines(table, {corners[0].id, corners[1].id, corners[2].id});
+  Cdt cdt{Traits(&table, &lines)};
   std::vector<std::pair<PointId, typename Cdt::Vertex_handle>> handles;
   handles.reserve(points.size());
   // Inserted along the plane's first coordinate, each located from the one before: cut points

@@ -34,8 +34,9 @@ std::optional<std::vector<Triangle>> triangulate_region(
   using Cdt = CGAL::Constrained_Delaunay_triangulation_2<
       Traits, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
   // Every point lies in the region's plane, an input facet's: their recipes tell many collinear
-  // boundary points apart without their exact coordinates (see PointTable::collinear_by_recipes).
-  Cdt cdt{Traits(&table, &plane)};
+  // boundary points apart without their exact coordinates (facet_lines.h).
+  FacetLines lines(table, plane);
+  Cdt cdt{Traits(&table, &lines)};
   auto insert = [&](VertexIndex v) -> std::optional<typename Cdt::Vertex_handle> {
     const std::size_t before = cdt.number_of_vertices();
     auto h = cdt.insert(TablePoint{surface.vertex_point[v], 0});
@@ -127,9 +128,10 @@ bool fill_short_loop(const PointTable& table, const IdMesh& surface, int dropped
     return true;
   }
   const auto& p = surface.vertex_point;
-  const CGAL::Sign turn = table.orientation_2(dropped, p[seed[0]], p[seed[1]], p[seed[2]], &plane);
+  FacetLines lines(table, plane);
+  const CGAL::Sign turn = table.orientation_2(dropped, p[seed[0]], p[seed[1]], p[seed[2]], &lines);
   auto turns = [&](VertexIndex a, VertexIndex b, VertexIndex c) {
-    return table.orientation_2(dropped, p[a], p[b], p[c], &plane) == turn;
+    return table.orientation_2(dropped, p[a], p[b], p[c], &lines) == turn;
   };
   const VertexIndex a = loop[0], b = loop[1], c = loop[2], d = loop[3];
   const bool ac = turns(a, b, c) && turns(a, c, d), bd = turns(b, c, d) && turns(b, d, a);

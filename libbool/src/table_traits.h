@@ -3,9 +3,9 @@
 // coordinate axis: the constrained Delaunay triangulations of cut facets and of merged regions.
 #pragma once
 
-#include <array>
 #include <cstdint>
 
+#include "facet_lines.h"
 #include "point_table.h"
 
 namespace morphex::detail {
@@ -33,13 +33,13 @@ class TableTraits {
 
   struct Orientation_2 {
     const PointTable* table;
-    const std::array<PointId, 3>* facet;
+    FacetLines* lines;
     CGAL::Orientation operator()(const TablePoint& p, const TablePoint& q,
                                  const TablePoint& r) const {
       // Three points on one edge of the facet: collinear by construction.
       if ((p.edges & q.edges & r.edges) || p.id == q.id || q.id == r.id || p.id == r.id)
         return CGAL::COLLINEAR;
-      return table->orientation_2(dropped, p.id, q.id, r.id, facet);
+      return table->orientation_2(dropped, p.id, q.id, r.id, lines);
     }
   };
   struct Side_of_oriented_circle_2 {
@@ -79,12 +79,11 @@ class TableTraits {
     }
   };
 
-  // `facet`: the input triangle every point lies on, if there is one (a cut facet), for
-  // PointTable::collinear_by_recipes; it must outlive the traits.
-  explicit TableTraits(const PointTable* table = nullptr,
-                       const std::array<PointId, 3>* facet = nullptr)
-      : table_(table), facet_(facet) {}
-  Orientation_2 orientation_2_object() const { return {table_, facet_}; }
+  // `lines`: the input facet every point lies on, if there is one (a cut facet, a region in a
+  // facet's plane); it must outlive the traits.
+  explicit TableTraits(const PointTable* table = nullptr, FacetLines* lines = nullptr)
+      : table_(table), lines_(lines) {}
+  Orientation_2 orientation_2_object() const { return {table_, lines_}; }
   Side_of_oriented_circle_2 side_of_oriented_circle_2_object() const { return {table_}; }
   Compare_x_2 compare_x_2_object() const { return {table_}; }
   Compare_y_2 compare_y_2_object() const { return {table_}; }
@@ -96,7 +95,7 @@ class TableTraits {
 
  private:
   const PointTable* table_;
-  const std::array<PointId, 3>* facet_;
+  FacetLines* lines_;
 };
 
 }  // namespace morphex::detail
