@@ -5,6 +5,10 @@
 
 namespace morphex::detail {
 
+namespace {
+constexpr std::size_t kKept = 64;  // points kept on the plane: lookups stay a short scan
+}
+
 std::vector<PointId> FacetLines::span(PointId p, PointId q, PointId r) const {
   const PointTable& t = table_;
   const PointId corner = facet_[0];
@@ -37,12 +41,8 @@ bool FacetLines::on_kept_plane(const std::vector<PointId>& span) {
   if (!plane_) return false;
   for (const PointId x : span) {
     if (std::find(on_.begin(), on_.end(), x) != on_.end()) continue;
-    if (std::find(off_.begin(), off_.end(), x) != off_.end()) return false;
-    if ((*plane_)(x) != CGAL::ZERO) {
-      off_.push_back(x);
-      return false;
-    }
-    on_.push_back(x);
+    if ((*plane_)(x) != CGAL::ZERO) return false;
+    if (on_.size() < kKept) on_.push_back(x);
   }
   return true;
 }
@@ -74,8 +74,7 @@ bool FacetLines::collinear(PointId p, PointId q, PointId r) {
   for (const PointId x : abc)
     if (t.orientation(facet_[0], facet_[1], facet_[2], x) != CGAL::ZERO) {
       plane_.emplace(t, abc);
-      on_ = s;
-      off_.clear();
+      on_.assign(s.begin(), s.begin() + std::ptrdiff_t(std::min(s.size(), kKept)));
       return true;
     }
   return false;

@@ -17,7 +17,7 @@ namespace morphex::detail {
 // points lie on its line with the facet's plane. A flat face of the other mesh made of many
 // facets puts rows of such points on a facet, exactly collinear: each of their orientations
 // would otherwise need their exact coordinates. A triangulation asks about the same rows again
-// and again, so the last plane found is kept with the input points known on and off it.
+// and again, so the last plane found is kept with the input points known on it.
 // One per triangulation (not thread-safe).
 class FacetLines {
  public:
@@ -31,14 +31,14 @@ class FacetLines {
   // The input points spanning what p, q and r lie on, sorted and distinct; empty when a point's
   // recipe tells nothing (a crossing of a line seen along an axis lies on its edge only).
   std::vector<PointId> span(PointId p, PointId q, PointId r) const;
-  // Whether every point of `span` lies on the kept plane, as far as the kept lists tell or its
-  // linear form decides (the lists are updated).
+  // Whether every point of `span` lies on the kept plane, as far as the kept list tells or its
+  // linear form decides (the list is updated).
   bool on_kept_plane(const std::vector<PointId>& span);
 
   const PointTable& table_;
   const std::array<PointId, 3> facet_;
   std::optional<PointTable::PlaneSides> plane_;  // the last plane found, never the facet's
-  std::vector<PointId> on_, off_;                // input points known on and off it
+  std::vector<PointId> on_;                      // input points known on it (a few dozen)
 };
 
 }  // namespace morphex::detail

@@ -167,6 +167,10 @@ class PointTable {
   }
   // Exact homogeneous coordinates, computed once (thread-safe).
   const Homogeneous& exact(PointId id) const;
+  // Whether exact(id) was computed already.
+  bool has_exact(PointId id) const {
+    return exact_slot(id).load(std::memory_order_acquire) != nullptr;
+  }
   // The exact point: the input point itself, or a lazily evaluated construction.
   Point point(PointId id) const;
   const Point& input(PointId id) const {
