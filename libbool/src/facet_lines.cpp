@@ -13,7 +13,7 @@ std::vector<PointId> FacetLines::span(PointId p, PointId q, PointId r) const {
   const PointTable& t = table_;
   const PointId corner = facet_[0];
   if (!t.is_input(corner) || t.same_mesh()) return {};
-  const bool side = t.side_of_input(corner);
+  const int side = t.side_of_input(corner);
   auto other = [&](PointId id) { return t.is_input(id) && t.side_of_input(id) != side; };
   std::vector<PointId> out;
   for (const PointId x : {p, q, r}) {

@@ -227,10 +227,10 @@ class PointTable {
   // CGAL's side_of_oriented_circle of the projected points.
   CGAL::Sign side_of_oriented_circle(int dropped, PointId p, PointId q, PointId r, PointId t) const;
   CGAL::Comparison_result compare(int axis, PointId p, PointId q) const;
-  // An input point whose coordinate `axis` is exactly id's by id's recipe (a crossing of an edge
-  // or plane perpendicular to the axis), or id itself. Only for inputs (for which compare is
-  // cheap), and for constructed points of a face perpendicular to an axis of a CAD model, whose
-  // intervals overlap though their coordinates are equal.
+  // An input point whose coordinate `axis` is id's exactly by id's recipe (a crossing of an edge,
+  // or of a plane, perpendicular to the axis), or id itself. compare() asks these inputs, which
+  // is cheap, before constructing exact coordinates: the cut points of a CAD model's face
+  // perpendicular to an axis have equal coordinates and overlapping intervals.
   PointId coordinate_source(int axis, PointId id) const;
   bool equal(PointId p, PointId q) const;
   // sign(((a1 - a0) x (a2 - a0)) x ((b1 - b0) x (b2 - b0)) . (q - p)): the order of p and q along
