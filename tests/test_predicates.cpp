@@ -4,46 +4,23 @@
 // to the exact stage.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <memory>
 #include <numeric>
 #include <random>
 #include <string>
 
-#include "facet_lines.h"
 #include "filtered.h"
 #include "fixed_integer.h"
 #include "point_index.h"
 #include "point_table.h"
 #include "projection_traits.h"
+#include "random_points.h"
 #include "stable_vector.h"
 #include "static_filter.h"
 #include "triangle_overlap.h"
 
 using namespace morphex;
-
-namespace {
-
-class RandomPoints {
- public:
-  explicit RandomPoints(unsigned seed) : random_(seed) {}
-  FT coordinate() {
-    // Mixed denominators (powers of two and others) and a few doubles.
-    std::uniform_int_distribution<int> numerator(-50, 50), denominator(1, 12), kind(0, 3);
-    if (kind(random_) == 0) return FT(std::uniform_real_distribution<double>(-3, 3)(random_));
-    return FT(numerator(random_)) / FT(denominator(random_));
-  }
-  Point point() {
-    const FT x = coordinate(), y = coordinate(), z = coordinate();
-    return Point(x, y, z);
-  }
-  FT weight() { return FT(std::uniform_int_distribution<int>(-7, 7)(random_)) / 5; }
-
- private:
-  std::mt19937 random_;
-};
-
-}  // namespace
+using test_support::RandomPoints;
 
 TEST(ExactPredicates, Orient3dAgreesWithCgalOnGeneralAndCoplanarPoints) {
   RandomPoints random(11);
@@ -434,174 +411,6 @@ TEST(PointTable, PredicatesAndConstructionsAgreeWithCgal) {
     const detail::Recipe& r = table.recipe(crossings[i]);
     ASSERT_EQ(table.orientation(r.a, r.b, r.c, crossings[i]), CGAL::COPLANAR) << i;
   }
-}
-
-// Cut points of one facet of a whose collinearity their recipes decide: crossings of b's edges
-// on a plane with the facet, and of edges of a in the facet's plane with that plane of b. Only
-// exactly collinear triples are called collinear: not crossings of b's edges that lie in the
-// facet's plane itself (their common plane is the facet's), nor of b's edges off the plane.
-TEST(FacetLines, CollinearByRecipesOnlyWhenExactlyCollinear) {
-  RandomPoints random(21);
-  Mesh a, b;
-  for (int i = 0; i < 3; ++i) a.points.push_back(random.point());
-  const Point f0 = a.points[0], f1 = a.points[1], f2 = a.points[2];
-  const Kernel::Plane_3 facet_plane(f0, f1, f2);
-  ASSERT_FALSE(facet_plane.is_degenerate());
-  const Point b0 = random.point(), b1 = random.point(), b2 = random.point();  // b's plane
-  b.points = {b0, b1, b2};
-  const Kernel::Plane_3 plane_b(b0, b1, b2);
-  ASSERT_FALSE(plane_b.is_degenerate());
-  auto on = [&](const Point& p, const Point& q, const Point& r) {
-    return p + random.weight() * (q - p) + random.weight() * (r - p);
-  };
-  // b: points on its plane, points off it, points in the facet's plane; a: points in the facet's
-  // plane, and planes of random points.
-  for (int i = 0; i < 40; ++i) b.points.push_back(on(b0, b1, b2));
-  for (int i = 0; i < 20; ++i) b.points.push_back(random.point());
-  for (int i = 0; i < 30; ++i) b.points.push_back(on(f0, f1, f2));
-  for (int i = 0; i < 30; ++i) a.points.push_back(on(f0, f1, f2));
-  for (int i = 0; i < 30; ++i) a.points.push_back(random.point());
-  detail::PointTable table(a, b);
-  auto id = [&](int side, std::size_t v) { return table.vertex(side, std::uint32_t(v)); };
-  const std::array<detail::PointId, 3> facet = {id(0, 0), id(0, 1), id(0, 2)};
-  // Crossings of the edges (p, q) of `side` with the plane (u, v, w), where it is a crossing.
-  auto crossings = [&](int side, std::size_t from, std::size_t to, int other, std::size_t u,
-                       std::size_t v, std::size_t w) {
-    const Mesh& mesh = side == 0 ? a : b;
-    const Mesh& plane_mesh = other == 0 ? a : b;
-    const Kernel::Plane_3 plane(plane_mesh.points[u], plane_mesh.points[v], plane_mesh.points[w]);
-    std::vector<detail::PointId> out;
-    for (std::size_t p = from; p < to; ++p)
-      for (std::size_t q = p + 1; q < to; q += 3) {
-        const auto sp = plane.oriented_side(mesh.points[p]),
-                   sq = plane.oriented_side(mesh.points[q]);
-        if (sp == CGAL::ON_ORIENTED_BOUNDARY || sq == CGAL::ON_ORIENTED_BOUNDARY || sp == sq)
-          continue;
-        out.push_back(table.add({detail::Recipe::Kind::EdgePlane, -1, id(side, p), id(side, q),
-                                 id(other, u), id(other, v), id(other, w)}));
-      }
-    return out;
-  };
-  // On the line of the facet's plane and b's: b's edges on its plane through the facet, the
-  // facet's own edges and a's edges in its plane through b's plane.
-  std::vector<detail::PointId> on_line = crossings(1, 3, 43, 0, 0, 1, 2);
-  for (const auto& more : {crossings(0, 0, 3, 1, 0, 1, 2), crossings(0, 3, 33, 1, 0, 1, 2)})
-    on_line.insert(on_line.end(), more.begin(), more.end());
-  // Elsewhere on the facet's plane: b's edges off b's plane through it, b's edges in it through
-  // planes of a.
-  std::vector<detail::PointId> elsewhere = crossings(1, 43, 63, 0, 0, 1, 2);
-  for (std::size_t k = 33; k + 2 < 63; k += 3) {
-    const auto more = crossings(1, 63, 93, 0, k, k + 1, k + 2);
-    elsewhere.insert(elsewhere.end(), more.begin(), more.end());
-  }
-  ASSERT_GE(on_line.size(), 60u);
-  ASSERT_GE(elsewhere.size(), 60u);
-  for (const detail::PointId x : on_line) {
-    ASSERT_EQ(table.orientation(facet[0], facet[1], facet[2], x), CGAL::COPLANAR);
-    ASSERT_EQ(plane_b.oriented_side(table.point(x)), CGAL::ON_ORIENTED_BOUNDARY);
-  }
-  std::mt19937 pick(22);
-  auto any = [&](const std::vector<detail::PointId>& from) {
-    return from[std::uniform_int_distribution<std::size_t>(0, from.size() - 1)(pick)];
-  };
-  const int dropped = table.dominant_axis(facet[0], facet[1], facet[2]);
-  // One object for all triples, as a triangulation asks (it keeps the plane it found), and a
-  // fresh one for each.
-  detail::FacetLines lines(table, facet);
-  int decided = 0;
-  for (int i = 0; i < 3000; ++i) {
-    const detail::PointId p = any(on_line), q = any(on_line), r = any(on_line);
-    if (p == q || q == r || p == r) continue;
-    ASSERT_TRUE(detail::FacetLines(table, facet).collinear(p, q, r)) << i;
-    ASSERT_TRUE(lines.collinear(p, q, r)) << i;
-    ASSERT_EQ(table.orientation_2(dropped, p, q, r, &lines), CGAL::COLLINEAR) << i;
-    ++decided;
-  }
-  EXPECT_GE(decided, 2500);
-  int collinear = 0;
-  for (int i = 0; i < 3000; ++i) {
-    const std::vector<detail::PointId>& first = i % 3 ? elsewhere : on_line;
-    const detail::PointId p = any(first), q = any(elsewhere), r = any(i % 2 ? elsewhere : on_line);
-    if (p == q || q == r || p == r) continue;
-    const bool exactly = CGAL::collinear(table.point(p), table.point(q), table.point(r));
-    collinear += exactly;
-    if (!exactly) {
-      ASSERT_FALSE(detail::FacetLines(table, facet).collinear(p, q, r)) << i;
-      ASSERT_FALSE(lines.collinear(p, q, r)) << i;
-    }
-    ASSERT_EQ(table.orientation_2(dropped, p, q, r, &lines), table.orientation_2(dropped, p, q, r))
-        << i;
-  }
-  EXPECT_LT(collinear, 100);
-}
-
-// Crossings of a plane perpendicular to an axis (its three points share that coordinate) have
-// that coordinate exactly, as an interval of one point when it is a double; crossings of edges
-// perpendicular to an axis compare along it as their ends do: every comparison agrees with CGAL,
-// equal coordinates included.
-TEST(PointTable, CrossingsOfAxisPerpendicularPlanesAndEdgesCompareExactly) {
-  RandomPoints random(31);
-  Mesh a, b;
-  const FT half(0.5), third = FT(1) / 3;
-  // a: a plane x = 1/2, edges whose ends share x = 1/3 (not a double), and edges whose ends' x
-  // differ from 1/3 by less than the intervals can tell; b: points around them.
-  for (int i = 0; i < 3; ++i)
-    a.points.push_back(Point(half, random.coordinate(), random.coordinate()));
-  for (int i = 0; i < 20; ++i)
-    a.points.push_back(Point(third, random.coordinate(), random.coordinate()));
-  const FT tiny = FT(1) / FT(std::pow(2.0, 80));
-  for (int i = 0; i < 20; ++i)
-    a.points.push_back(Point(third + (1 + i % 2) * tiny, random.coordinate(), random.coordinate()));
-  for (int i = 0; i < 40; ++i) b.points.push_back(random.point());
-  detail::PointTable table(a, b);
-  auto id = [&](int side, std::size_t v) { return table.vertex(side, std::uint32_t(v)); };
-  const Kernel::Plane_3 plane(a.points[0], a.points[1], a.points[2]);
-  ASSERT_FALSE(plane.is_degenerate());
-  std::vector<detail::PointId> on_plane, on_edges, ids;
-  for (std::size_t p = 0; p < 40; ++p)
-    for (std::size_t q = p + 1; q < 40; q += 7) {
-      const auto sp = plane.oriented_side(b.points[p]), sq = plane.oriented_side(b.points[q]);
-      if (sp != CGAL::ON_ORIENTED_BOUNDARY && sq != CGAL::ON_ORIENTED_BOUNDARY && sp != sq)
-        on_plane.push_back(table.add({detail::Recipe::Kind::EdgePlane, -1, id(1, p), id(1, q),
-                                      id(0, 0), id(0, 1), id(0, 2)}));
-    }
-  for (std::size_t e = 3; e + 1 < 43; e += 2)
-    for (std::size_t k = 0; k + 2 < 40; k += 3) {
-      const Kernel::Plane_3 other(b.points[k], b.points[k + 1], b.points[k + 2]);
-      const auto sp = other.oriented_side(a.points[e]), sq = other.oriented_side(a.points[e + 1]);
-      if (!other.is_degenerate() && sp != CGAL::ON_ORIENTED_BOUNDARY &&
-          sq != CGAL::ON_ORIENTED_BOUNDARY && sp != sq)
-        on_edges.push_back(table.add({detail::Recipe::Kind::EdgePlane, -1, id(0, e), id(0, e + 1),
-                                      id(1, k), id(1, k + 1), id(1, k + 2)}));
-    }
-  ASSERT_GE(on_plane.size(), 20u);
-  ASSERT_GE(on_edges.size(), 20u);
-  for (const detail::PointId x : on_plane) {
-    EXPECT_TRUE(table.approx(x).cartesian(0).is_point());
-    EXPECT_EQ(table.point(x).x(), half);
-  }
-  int near = 0;
-  for (const detail::PointId x : on_edges) {
-    const FT x0 = table.point(x).x();
-    if (table.recipe(x).p < 23)
-      EXPECT_EQ(x0, third);
-    else
-      near += third < x0 && x0 < third + 2 * tiny;
-  }
-  EXPECT_GE(near, 10);
-  for (std::size_t v = 0; v < 43; ++v) ids.push_back(id(0, v));
-  ids.insert(ids.end(), on_plane.begin(), on_plane.end());
-  ids.insert(ids.end(), on_edges.begin(), on_edges.end());
-  int equal = 0;
-  for (const detail::PointId p : ids)
-    for (const detail::PointId q : ids)
-      for (int axis = 0; axis < 3; ++axis) {
-        const CGAL::Comparison_result expected =
-            CGAL::compare(table.point(p).cartesian(axis), table.point(q).cartesian(axis));
-        ASSERT_EQ(table.compare(axis, p, q), expected) << p << " " << q << " " << axis;
-        equal += p != q && expected == CGAL::EQUAL;
-      }
-  EXPECT_GT(equal, 1000);
 }
 
 // The point table's constructed points: references taken before the array grows past several
