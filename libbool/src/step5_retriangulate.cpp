@@ -164,8 +164,8 @@ bool cut_by_one_segment(const Intersection& x, const std::array<CutPoint, 3>& co
   const bool flip =
       table.orientation_2(dropped, corners[0].id, corners[1].id, corners[2].id) == CGAL::NEGATIVE;
   const PointId a = other[0], b = other[1], c = other[2], d = other[3];
-  const CGAL::Sign in_circle = table.side_of_oriented_circle(dropped, a, b, c, d);
-  const bool diagonal_bd = (flip ? -in_circle : in_circle) == CGAL::POSITIVE;
+  const bool diagonal_bd =
+      delaunay_diagonal_is_bd(table, dropped, flip ? CGAL::NEGATIVE : CGAL::POSITIVE, a, b, c, d);
   const std::array<std::array<PointId, 3>, 3> triangles = {
       std::array<PointId, 3>{piece[0], piece[1], piece[2]},
       diagonal_bd ? std::array<PointId, 3>{a, b, d} : std::array<PointId, 3>{a, b, c},

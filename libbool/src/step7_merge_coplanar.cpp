@@ -274,9 +274,10 @@ struct Creases {
   std::vector<std::uint32_t> count;
   std::vector<std::array<VertexIndex, 2>> ends;
   std::vector<std::uint32_t> face_at;  // a face of each candidate, for its plane
-  // Of each candidate: the faces on both sides of a crease edge, when every crease edge of it
-  // has a face across (kNone, kNone otherwise).
+  // Of each candidate: the faces on both sides of its first crease edge (kNone, kNone if none),
+  // and whether a crease edge of it has no face across.
   std::vector<std::array<std::uint32_t, 2>> across;
+  std::vector<std::uint8_t> open;
 };
 
 Creases find_creases(const Regions& s, const Candidates& c) {
@@ -284,7 +285,8 @@ Creases find_creases(const Regions& s, const Candidates& c) {
   const std::size_t nv = s.surface.vertex_point.size();
   Creases creases{std::vector<std::uint32_t>(nv, 0), std::vector<std::array<VertexIndex, 2>>(nv),
                   std::vector<std::uint32_t>(nv, kNone),
-                  std::vector<std::array<std::uint32_t, 2>>(nv, {kNone, 0})};
+                  std::vector<std::array<std::uint32_t, 2>>(nv, {kNone, kNone}),
+                  std::vector<std::uint8_t>(nv, 0)};
   for (std::uint32_t f = 0; f < tri.size(); ++f)
     for (int i = 0; i < 3; ++i) {
       const VertexIndex u = tri[f][i], v = tri[f][(i + 1) % 3];
@@ -294,15 +296,11 @@ Creases find_creases(const Regions& s, const Candidates& c) {
       if (g != kNone && s.region[g] == s.region[f]) continue;
       if (creases.count[u] < 2) creases.ends[u][creases.count[u]] = v;
       ++creases.count[u];
-      // kNone, 0 until a crease edge is seen; kNone, kNone once one has no face across.
-      auto& across = creases.across[u];
       if (g == kNone)
-        across = {kNone, kNone};
-      else if (across[0] == kNone && across[1] == 0)
-        across = {f, g};
+        creases.open[u] = 1;
+      else if (creases.across[u][0] == kNone)
+        creases.across[u] = {f, g};
     }
-  for (auto& across : creases.across)
-    if (across[0] == kNone) across[1] = kNone;
   return creases;
 }
 
@@ -372,8 +370,9 @@ Removal find_removable(const Regions& s, const Candidates& c,
       remove = creases.count[v] == 0;
     else if (creases.count[v] == 2) {
       const auto [f, g] = creases.across[v];
+      const bool on_line = !creases.open[v] && f != kNone && distinct_planes(s, f, g);
       remove = strictly_between(s, creases.face_at[v], creases.ends[v][0], v, creases.ends[v][1],
-                                f != kNone && distinct_planes(s, f, g));
+                                on_line);
     }
     if (!remove) continue;
     removal.vertex[v] = 1;

@@ -136,11 +136,8 @@ bool fill_short_loop(const PointTable& table, const IdMesh& surface, int dropped
   const VertexIndex a = loop[0], b = loop[1], c = loop[2], d = loop[3];
   const bool ac = turns(a, b, c) && turns(a, c, d), bd = turns(b, c, d) && turns(b, d, a);
   if (!ac && !bd) return false;
-  // d inside the circle of a, b, c (counter-clockwise in the projection when turn is positive):
-  // the Delaunay diagonal is bd.
-  const CGAL::Sign in_circle = table.side_of_oriented_circle(dropped, p[a], p[b], p[c], p[d]);
   const bool use_bd =
-      !ac || (bd && (turn == CGAL::NEGATIVE ? -in_circle : in_circle) == CGAL::POSITIVE);
+      !ac || (bd && delaunay_diagonal_is_bd(table, dropped, turn, p[a], p[b], p[c], p[d]));
   if (use_bd) {
     out.push_back({b, c, d});
     out.push_back({b, d, a});

@@ -10,6 +10,15 @@
 
 namespace morphex::detail {
 
+// Whether the Delaunay diagonal of the convex quadrilateral a b c d (in order, turning `turn` seen
+// along the axis `dropped`) is bd: d strictly inside the circle through a, b and c. On a tie
+// either diagonal is Delaunay, and ac is taken.
+inline bool delaunay_diagonal_is_bd(const PointTable& table, int dropped, CGAL::Sign turn,
+                                    PointId a, PointId b, PointId c, PointId d) {
+  const CGAL::Sign in_circle = table.side_of_oriented_circle(dropped, a, b, c, d);
+  return (turn == CGAL::NEGATIVE ? -in_circle : in_circle) == CGAL::POSITIVE;
+}
+
 // A point of the facet's triangulation: its id and the facet edges it lies on.
 struct TablePoint {
   PointId id = 0;
