@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Predicates the point table decides from how points were made, without their exact coordinates:
-// collinear rows of cut points (facet_lines.h) and coordinates an input gives a crossing. Each is
-// checked against CGAL on the exact points, degenerate cases included.
+// collinear rows of cut points (facet_lines.h), coordinates an input gives a crossing, and points
+// on lines parallel to an axis. Each is checked against CGAL on the exact points, degenerate cases
+// included.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +12,7 @@
 #include "facet_lines.h"
 #include "point_table.h"
 #include "random_points.h"
+#include "static_filter.h"
 
 using namespace morphex;
 using test_support::RandomPoints;
@@ -181,4 +183,54 @@ TEST(PointTable, CrossingsOfAxisPerpendicularPlanesAndEdgesCompareExactly) {
         equal += p != q && expected == CGAL::EQUAL;
       }
   EXPECT_GT(equal, 1000);
+}
+
+// Quadruples of doubles on one or two lines parallel to a coordinate axis are coplanar by
+// comparisons alone (static_filter.h); the point table answers them so before its exact stage.
+// Coordinates of mixed magnitudes, so that most differences are not doubles, and points nudged
+// one unit in the last place off their line, which must not be taken for coplanar.
+TEST(PointTable, PointsOnTwoAxisParallelLinesAreCoplanarByComparisons) {
+  std::mt19937 random(41);
+  const std::vector<double> places = {0.0313356780, -0.0186299998, 3.75, 1e-7, -2.5e5};
+  std::uniform_int_distribution<std::size_t> place(0, places.size() - 1);
+  std::uniform_int_distribution<int> axis_of(0, 2), nudged(0, 4);
+  std::uniform_real_distribution<double> along(-1, 1);
+  Mesh a, b;
+  std::vector<int> axis_of_point;
+  for (int i = 0; i < 400; ++i) {
+    const int axis = i % 3, u = axis == 0 ? 1 : 0, v = axis == 2 ? 1 : 2;
+    detail::Xyz x;
+    x[axis] = std::ldexp(along(random), int(place(random)) * 9 - 20);
+    x[u] = places[place(random)];
+    x[v] = places[place(random)];
+    if (nudged(random) == 0) {
+      const int k = i % 2 ? u : v;
+      x[k] = std::nextafter(x[k], 1e9);
+    }
+    a.points.push_back(Point(x[0], x[1], x[2]));
+    axis_of_point.push_back(axis);
+  }
+  detail::PointTable table(a, b);
+  const auto& xyz = table.input_doubles();
+  ASSERT_EQ(xyz.size(), a.points.size());
+  std::uniform_int_distribution<std::uint32_t> pick(0, 399);
+  int claimed = 0, nonzero = 0;
+  for (int i = 0; i < 200000; ++i) {
+    // Points made along one axis, so that two lines (or one) often hold all four.
+    std::uint32_t ids[4] = {pick(random), 0, 0, 0};
+    for (int k = 1; k < 4; ++k) do
+        ids[k] = pick(random);
+      while (axis_of_point[ids[k]] != axis_of_point[ids[0]]);
+    const auto expected =
+        CGAL::orientation(a.points[ids[0]], a.points[ids[1]], a.points[ids[2]], a.points[ids[3]]);
+    if (detail::on_two_axis_lines(xyz[ids[0]], xyz[ids[1]], xyz[ids[2]], xyz[ids[3]])) {
+      ++claimed;
+      ASSERT_EQ(expected, CGAL::ZERO) << i;
+    }
+    nonzero += expected != CGAL::ZERO;
+    const auto p = [&](int k) { return table.vertex(0, ids[k]); };
+    ASSERT_EQ(table.orientation(p(0), p(1), p(2), p(3)), expected) << i;
+  }
+  EXPECT_GT(claimed, 1000);
+  EXPECT_GT(nonzero, 1000);
 }

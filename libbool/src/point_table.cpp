@@ -353,10 +353,10 @@ CGAL::Sign PointTable::orientation_exact(PointId p, PointId q, PointId r, PointI
   // coplanar ones of a CAD model, come here by the thousand).
   if (is_double(p) && is_double(q) && is_double(r) && is_double(s)) {
     // Error-free transformations need round to nearest, whatever scope the caller is in.
+    const Xyz &xp = input_xyz_[p], &xq = input_xyz_[q], &xr = input_xyz_[r], &xs = input_xyz_[s];
+    if (on_two_axis_lines(xp, xq, xr, xs)) return CGAL::ZERO;
     const CGAL::Protect_FPU_rounding<true> nearest(CGAL_FE_TONEAREST);
-    if (const auto o = exact_orientation_of_doubles(input_xyz_[p], input_xyz_[q], input_xyz_[r],
-                                                    input_xyz_[s]))
-      return CGAL::Sign(*o);
+    if (const auto o = exact_orientation_of_doubles(xp, xq, xr, xs)) return CGAL::Sign(*o);
   }
   // det [p 1; q 1; r 1; s 1] = -det(q - p, r - p, s - p), and the W factors are positive.
   const Homogeneous* rows[4] = {&exact(p), &exact(q), &exact(r), &exact(s)};

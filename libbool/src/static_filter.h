@@ -221,6 +221,29 @@ inline void exact_product(double a, double b, double& hi, double& lo) {
   lo = ((a_hi * b_hi - hi) + a_hi * b_lo + a_lo * b_hi) + a_lo * b_lo;
 }
 
+// Four points lie in one plane when, seen along a coordinate axis, they stand at no more than two
+// places: they lie on one or two lines parallel to that axis. Comparisons only, no arithmetic:
+// extrusions, fillets and prisms along an axis (CAD models) put such quadruples, exactly coplanar,
+// before the exact stage by the thousand, with coordinates of mixed magnitudes whose differences
+// are often not doubles.
+inline bool on_two_axis_lines(const Xyz& p, const Xyz& q, const Xyz& r, const Xyz& s) {
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = axis == 0 ? 1 : 0, v = axis == 2 ? 1 : 2;
+    auto same = [&](const Xyz& x, const Xyz& y) { return x[u] == y[u] && x[v] == y[v]; };
+    const Xyz* second = nullptr;  // the first place other than p's
+    bool two = true;
+    for (const Xyz* x : {&q, &r, &s}) {
+      if (same(*x, p)) continue;
+      if (second == nullptr)
+        second = x;
+      else if (!same(*x, *second))
+        two = false;
+    }
+    if (two) return true;
+  }
+  return false;
+}
+
 // sign det [q - p, r - p, s - p] exactly (CGAL's orientation(p, q, r, s)), or nullopt.
 inline std::optional<int> exact_orientation_of_doubles(const Xyz& p, const Xyz& q, const Xyz& r,
                                                        const Xyz& s) {
