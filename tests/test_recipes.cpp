@@ -234,3 +234,48 @@ TEST(PointTable, PointsOnTwoAxisParallelLinesAreCoplanarByComparisons) {
   EXPECT_GT(claimed, 1000);
   EXPECT_GT(nonzero, 1000);
 }
+
+// Parallelograms of doubles (a feature and its copy moved by one vector) are coplanar by their
+// exact differences alone (static_filter.h), in every order of their corners; a corner nudged by
+// the grid's finest unit in any coordinate breaks it, and the orientation is then CGAL's.
+TEST(StaticFilter, ParallelogramsOfDoublesAreCoplanarByTheirDifferences) {
+  std::mt19937 random(43);
+  std::uniform_int_distribution<std::int64_t> grid(-(std::int64_t(1) << 30), std::int64_t(1) << 30);
+  std::uniform_int_distribution<int> coordinate(0, 2), scale(0, 3);
+  auto point = [&] {  // binary fractions of mixed magnitudes whose sums and differences are exact
+    detail::Xyz x;
+    for (double& c : x) c = std::ldexp(double(grid(random)), -42 - 4 * scale(random));
+    return x;
+  };
+  auto cgal = [](const detail::Xyz& x) { return Point(x[0], x[1], x[2]); };
+  int claimed = 0, nudged_nonzero = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const detail::Xyz p = point(), q = point(), r = point();
+    detail::Xyz s;
+    for (int k = 0; k < 3; ++k) s[k] = r[k] + (q[k] - p[k]);
+    if (i % 2) {
+      const int k = coordinate(random);
+      s[k] += 0x1p-54;  // the grid's finest unit: the differences stay exact
+    }
+    // The four corners in each order around the parallelogram and across it.
+    const std::array<detail::Xyz, 4> corners = {p, q, r, s};
+    std::array<int, 4> order = {0, 1, 2, 3};
+    do {
+      const detail::Xyz &a = corners[order[0]], &b = corners[order[1]], &c = corners[order[2]],
+                        &d = corners[order[3]];
+      const int expected = int(CGAL::orientation(cgal(a), cgal(b), cgal(c), cgal(d)));
+      const auto o = detail::exact_orientation_of_doubles(a, b, c, d);
+      ASSERT_TRUE(o.has_value()) << i;
+      ASSERT_EQ(*o, expected) << i;
+      double u[3], v[3];
+      for (int k = 0; k < 3; ++k) u[k] = b[k] - a[k], v[k] = c[k] - a[k];
+      if (detail::parallelogram(a, b, c, d, u, v)) {
+        ++claimed;
+        ASSERT_EQ(expected, 0) << i;
+      }
+      nudged_nonzero += i % 2 && expected != 0;
+    } while (std::next_permutation(order.begin(), order.end()));
+  }
+  EXPECT_EQ(claimed, 2000 * 24);  // every order of every parallelogram
+  EXPECT_GT(nudged_nonzero, 2000 * 20);
+}

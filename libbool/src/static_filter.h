@@ -244,6 +244,23 @@ inline bool on_two_axis_lines(const Xyz& p, const Xyz& q, const Xyz& r, const Xy
   return false;
 }
 
+// p, q, r, s form a parallelogram, perhaps a flat one (so they are coplanar): one of the exact
+// differences u = q - p, v = r - p equals that of the opposite side. A mesh with
+// repeated features (a lattice, an array of holes) placed by an affine map in doubles keeps such
+// exact copies, by the ten thousand in one of the benchmark's CAD meshes.
+inline bool parallelogram(const Xyz& p, const Xyz& q, const Xyz& r, const Xyz& s, const double* u,
+                          const double* v) {
+  auto equal = [](const Xyz& a, const Xyz& b, const double* d) {  // a - b == d exactly
+    for (int k = 0; k < 3; ++k) {
+      double e;
+      if (!exact_difference(a[k], b[k], e) || e != d[k]) return false;
+    }
+    return true;
+  };
+  // The sides opposite each other: (p, q) and (r, s) either way, or (p, r) and (q, s).
+  return equal(s, r, u) || equal(r, s, u) || equal(q, s, v);
+}
+
 // sign det [q - p, r - p, s - p] exactly (CGAL's orientation(p, q, r, s)), or nullopt.
 inline std::optional<int> exact_orientation_of_doubles(const Xyz& p, const Xyz& q, const Xyz& r,
                                                        const Xyz& s) {
@@ -252,6 +269,7 @@ inline std::optional<int> exact_orientation_of_doubles(const Xyz& p, const Xyz& 
     if (!exact_difference(q[k], p[k], u[k]) || !exact_difference(r[k], p[k], v[k]) ||
         !exact_difference(s[k], p[k], w[k]))
       return std::nullopt;
+  if (parallelogram(p, q, r, s, u, v)) return 0;
   // u . (v x w): six products u_i v_j w_k, each exactly four doubles.
   static constexpr int kTerms[6][4] = {{0, 1, 2, 1},  {0, 2, 1, -1}, {1, 2, 0, 1},
                                        {1, 0, 2, -1}, {2, 0, 1, 1},  {2, 1, 0, -1}};
