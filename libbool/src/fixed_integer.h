@@ -23,14 +23,15 @@ struct FixedInteger {
   int size = 0;  // 0 for zero
   int sign = 0;  // -1, 0, +1
 
-  static std::optional<FixedInteger> of(const mpz_class& z) {
-    FixedInteger x;
+  // z into this; false when it has more than Limbs limbs. (Out-parameters here and below: the
+  // buffers are large, and returning them in optionals copied them at every step.)
+  bool assign(const mpz_class& z) {
     const std::size_t n = mpz_size(z.get_mpz_t());
-    if (n > std::size_t(Limbs)) return std::nullopt;
-    x.size = int(n);
-    x.sign = sgn(z);
-    for (std::size_t i = 0; i < n; ++i) x.limb[i] = mpz_getlimbn(z.get_mpz_t(), i);
-    return x;
+    if (n > std::size_t(Limbs)) return false;
+    size = int(n);
+    sign = sgn(z);
+    for (std::size_t i = 0; i < n; ++i) limb[i] = mpz_getlimbn(z.get_mpz_t(), i);
+    return true;
   }
 };
 
@@ -39,20 +40,19 @@ struct FixedInteger {
 template <int E>
 bool fixed_rows(const std::array<mpz_class, 4>* const* rows, int n, FixedInteger<E> (*m)[4]) {
   for (int i = 0; i < n; ++i)
-    for (int j = 0; j < 4; ++j) {
-      const auto x = FixedInteger<E>::of((*rows[i])[j]);
-      if (!x) return false;
-      m[i][j] = *x;
-    }
+    for (int j = 0; j < 4; ++j)
+      if (!m[i][j].assign((*rows[i])[j])) return false;
   return true;
 }
 
-// a * b, or nullopt when it may not fit in Out limbs.
+// r = a * b; false when it may not fit in Out limbs.
 template <int Out, int A, int B>
-std::optional<FixedInteger<Out>> multiply(const FixedInteger<A>& a, const FixedInteger<B>& b) {
-  FixedInteger<Out> r;
-  if (a.size == 0 || b.size == 0) return r;
-  if (a.size + b.size > Out) return std::nullopt;
+bool multiply(FixedInteger<Out>& r, const FixedInteger<A>& a, const FixedInteger<B>& b) {
+  if (a.size == 0 || b.size == 0) {
+    r.size = r.sign = 0;
+    return true;
+  }
+  if (a.size + b.size > Out) return false;
   if (a.size >= b.size)
     mpn_mul(r.limb, a.limb, a.size, b.limb, b.size);
   else
@@ -60,7 +60,7 @@ std::optional<FixedInteger<Out>> multiply(const FixedInteger<A>& a, const FixedI
   r.size = a.size + b.size;
   while (r.size > 0 && r.limb[r.size - 1] == 0) --r.size;
   r.sign = a.sign * b.sign;
-  return r;
+  return true;
 }
 
 // acc += sign * x, or false when the sum may not fit.
@@ -122,11 +122,8 @@ std::optional<int> fixed_sign_of_det3(const std::array<mpz_class, Columns>* rows
   FixedInteger<E> m[3][3];
   const int cols[3] = {c0, c1, c2};
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      const auto x = FixedInteger<E>::of((*rows[i])[cols[j]]);
-      if (!x) return std::nullopt;
-      m[i][j] = *x;
-    }
+    for (int j = 0; j < 3; ++j)
+      if (!m[i][j].assign((*rows[i])[cols[j]])) return std::nullopt;
   FixedInteger<3 * E + 1> det;
   // expansion along the first row: m00 (m11 m22 - m12 m21) - m01 (...) + m02 (...)
   const int signs[3] = {1, -1, 1};
@@ -134,11 +131,12 @@ std::optional<int> fixed_sign_of_det3(const std::array<mpz_class, Columns>* rows
     const int a = (k + 1) % 3, b = (k + 2) % 3;
     const int lo = std::min(a, b), hi = std::max(a, b);
     FixedInteger<2 * E + 1> minor;
-    const auto p = multiply<2 * E>(m[1][lo], m[2][hi]);
-    const auto q = multiply<2 * E>(m[1][hi], m[2][lo]);
-    if (!p || !q || !accumulate(minor, *p, 1) || !accumulate(minor, *q, -1)) return std::nullopt;
-    const auto term = multiply<3 * E + 1>(m[0][k], minor);
-    if (!term || !accumulate(det, *term, signs[k])) return std::nullopt;
+    FixedInteger<2 * E> p, q;
+    if (!multiply(p, m[1][lo], m[2][hi]) || !multiply(q, m[1][hi], m[2][lo]) ||
+        !accumulate(minor, p, 1) || !accumulate(minor, q, -1))
+      return std::nullopt;
+    FixedInteger<3 * E + 1> term;
+    if (!multiply(term, m[0][k], minor) || !accumulate(det, term, signs[k])) return std::nullopt;
   }
   return det.sign;
 }
@@ -149,12 +147,10 @@ inline std::optional<int> fixed_sign_of_det4(const std::array<mpz_class, 4>* row
   constexpr int E = 4;  // entries up to 256 bits
   FixedInteger<E> m[4][4];
   if (!fixed_rows<E>(rows, 4, m)) return std::nullopt;
-  auto minor = [&](int r, int i, int j) -> std::optional<FixedInteger<2 * E + 1>> {
-    FixedInteger<2 * E + 1> out;
-    const auto p = multiply<2 * E>(m[r][i], m[r + 1][j]);
-    const auto q = multiply<2 * E>(m[r][j], m[r + 1][i]);
-    if (!p || !q || !accumulate(out, *p, 1) || !accumulate(out, *q, -1)) return std::nullopt;
-    return out;
+  auto minor = [&](FixedInteger<2 * E + 1>& out, int r, int i, int j) {
+    FixedInteger<2 * E> p, q;
+    return multiply(p, m[r][i], m[r + 1][j]) && multiply(q, m[r][j], m[r + 1][i]) &&
+           accumulate(out, p, 1) && accumulate(out, q, -1);
   };
   // det = sum over column pairs (i, j) of the first two rows of +- minor01(i,j) minor23(rest)
   static constexpr int pairs[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
@@ -162,11 +158,11 @@ inline std::optional<int> fixed_sign_of_det4(const std::array<mpz_class, 4>* row
   static constexpr int signs[6] = {1, -1, 1, 1, -1, 1};
   FixedInteger<4 * E + 3> det;
   for (int k = 0; k < 6; ++k) {
-    const auto top = minor(0, pairs[k][0], pairs[k][1]);
-    const auto bottom = minor(2, pairs[k][2], pairs[k][3]);
-    if (!top || !bottom) return std::nullopt;
-    const auto term = multiply<4 * E + 2>(*top, *bottom);
-    if (!term || !accumulate(det, *term, signs[k])) return std::nullopt;
+    FixedInteger<2 * E + 1> top, bottom;
+    FixedInteger<4 * E + 2> term;
+    if (!minor(top, 0, pairs[k][0], pairs[k][1]) || !minor(bottom, 2, pairs[k][2], pairs[k][3]) ||
+        !multiply(term, top, bottom) || !accumulate(det, term, signs[k]))
+      return std::nullopt;
   }
   return det.sign;
 }
@@ -190,13 +186,13 @@ class FixedPlaneForm {
       for (int e = 0; e < 3; ++e) {
         const int lo = c[e == 0 ? 1 : 0], hi = c[e == 2 ? 1 : 2];
         FixedInteger<2 * E + 1> minor;
-        const auto p = multiply<2 * E>(m[1][lo], m[2][hi]);
-        const auto q = multiply<2 * E>(m[1][hi], m[2][lo]);
-        if (!p || !q || !accumulate(minor, *p, 1) || !accumulate(minor, *q, -1))
+        FixedInteger<2 * E> p, q;
+        if (!multiply(p, m[1][lo], m[2][hi]) || !multiply(q, m[1][hi], m[2][lo]) ||
+            !accumulate(minor, p, 1) || !accumulate(minor, q, -1))
           return std::nullopt;
-        const auto term = multiply<kCofactor - 1>(m[0][c[e]], minor);
+        FixedInteger<kCofactor - 1> term;
         const int sign = (e == 1 ? -1 : 1) * ((3 + j) % 2 == 0 ? 1 : -1);
-        if (!term || !accumulate(out, *term, sign)) return std::nullopt;
+        if (!multiply(term, m[0][c[e]], minor) || !accumulate(out, term, sign)) return std::nullopt;
       }
     }
     return form;
@@ -206,10 +202,10 @@ class FixedPlaneForm {
   std::optional<int> sign_at(const std::array<mpz_class, 4>& x) const {
     FixedInteger<kCofactor + E + 2> sum;
     for (int j = 0; j < 4; ++j) {
-      const auto xj = FixedInteger<E>::of(x[j]);
-      if (!xj) return std::nullopt;
-      const auto term = multiply<kCofactor + E>(cofactor_[j], *xj);
-      if (!term || !accumulate(sum, *term, 1)) return std::nullopt;
+      FixedInteger<E> xj;
+      FixedInteger<kCofactor + E> term;
+      if (!xj.assign(x[j]) || !multiply(term, cofactor_[j], xj) || !accumulate(sum, term, 1))
+        return std::nullopt;
     }
     return sum.sign;
   }
