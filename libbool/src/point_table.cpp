@@ -352,9 +352,9 @@ CGAL::Sign PointTable::orientation_exact(PointId p, PointId q, PointId r, PointI
   // integers' conversions and allocations (nearly coplanar facets of a rounded rotation, exactly
   // coplanar ones of a CAD model, come here by the thousand).
   if (is_double(p) && is_double(q) && is_double(r) && is_double(s)) {
-    // Error-free transformations need round to nearest, whatever scope the caller is in.
     const Xyz &xp = input_xyz_[p], &xq = input_xyz_[q], &xr = input_xyz_[r], &xs = input_xyz_[s];
     if (on_two_axis_lines(xp, xq, xr, xs)) return CGAL::ZERO;
+    // Error-free transformations need round to nearest, whatever scope the caller is in.
     const CGAL::Protect_FPU_rounding<true> nearest(CGAL_FE_TONEAREST);
     if (const auto o = exact_orientation_of_doubles(xp, xq, xr, xs)) return CGAL::Sign(*o);
   }
