@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Predicates the point table decides from how points were made, without their exact coordinates:
-// collinear rows of cut points (facet_lines.h), coordinates an input gives a crossing, and points
-// on lines parallel to an axis. Each is checked against CGAL on the exact points, degenerate cases
-// included.
+// Predicates decided from how points were made or placed, without their exact coordinates:
+// collinear rows of cut points (facet_lines.h), coordinates an input gives a crossing, points on
+// lines parallel to an axis and a parallelogram's corners (coplanar by comparisons and exact
+// differences, static_filter.h). Each is checked against CGAL on the exact points, degenerate
+// cases included.
 #include <gtest/gtest.h>
 
 #include <cmath>
