@@ -367,40 +367,44 @@ TEST(Streams, WritingToAStreamGivesTheSameBytesAsAFile) {
             FT(10) / 231);
 }
 
-// A result whose vertices are closer than the format's rounding re-reads as another mesh: refused
-// before any file exists, with the advice to write the exact format (issue 23, item 6).
-TEST(LossyOutput, RoundingThatMergesVerticesIsRefused) {
+// A result whose features are thinner than the format's spacing collapses when written: a unit
+// box at 1e300 is a point in doubles (written as the empty solid, and said so), and floats cannot
+// hold 1e300 at all: refused before any file exists (issue 42; issue 23 refused both).
+TEST(LossyOutput, ThinnerThanTheFormatCollapsesOutOfRangeIsRefused) {
   TempDir dir;
   const FT big(1e300);
   const Mesh m = make_box(Point(big, big, big), Point(big + 1, big + 1, big + 1));
-  for (const char* name : {"m.off", "m.obj", "m.ply", "m.stl", "m.glb"}) {
+  for (const char* name : {"m.off", "m.obj", "m.ply"}) {
+    const RoundingReport r = write_mesh(m, dir.file(name));
+    EXPECT_TRUE(r.collapsed) << name;
+  }
+  for (const char* name : {"m.stl", "m.glb"}) {
     try {
       write_mesh(m, dir.file(name));
       ADD_FAILURE() << name << ": no error";
     } catch (const LossyOutputError& e) {
-      EXPECT_CONTAINS(e.what(), dir.file(name) + ": the result cannot be written as ");
-      // doubles merge 1e300 and 1e300 + 1; floats cannot hold 1e300 at all
-      const bool floats =
-          fs::path(name).extension() == ".stl" || fs::path(name).extension() == ".glb";
-      EXPECT_CONTAINS(e.what(), floats ? "overflows its range" : "one point");
-      EXPECT_CONTAINS(e.what(), "; write the exact format instead (--exact");
+      EXPECT_CONTAINS(e.what(), dir.file(name) + ": the result cannot be written as 32-bit floats");
+      EXPECT_CONTAINS(e.what(), "outside the format's range");
     }
   }
-  EXPECT_EQ(dir.entries(), 0u);
-  write_mesh(m, dir.file("m.off"), {true});  // the exact format holds it
-  EXPECT_EQ(signed_volume(read_mesh(dir.file("m.off"))), FT(1));
+  EXPECT_EQ(dir.entries(), 3u);
+  write_mesh(m, dir.file("exact.off"), {true});  // the exact format holds it
+  EXPECT_EQ(signed_volume(read_mesh(dir.file("exact.off"))), FT(1));
 }
 
-TEST(LossyOutput, FloatFormatsAreCheckedAsFloats) {
+// A mesh that is not a solid is written as it is, vertex by vertex, and the report says that
+// rounding changed it (here a face flattened in floats).
+TEST(LossyOutput, NonSolidsAreRoundedAsTheyAre) {
   // 1 + 2^-30 is a double but not a float: in floats the added vertex is (1,0,0) again.
   Mesh m = make_tetrahedron();
   m.points.push_back(Point(1 + std::ldexp(1.0, -30), 0, 0));
   m.triangles.push_back({1, 4, 2});
-  std::ostringstream out;
-  EXPECT_NO_THROW(check_representable(m, false, "m.off"));
-  EXPECT_THROW(write_mesh(m, out, MeshFormat::Stl), LossyOutputError);
-  EXPECT_TRUE(out.str().empty());  // nothing written to the stream
-  EXPECT_NO_THROW(check_representable(make_cube(FT(1) / 3), true, "m.stl"));
+  std::ostringstream doubles, floats;
+  EXPECT_FALSE(write_mesh(m, doubles, MeshFormat::Off).not_a_solid);  // nothing moved
+  const RoundingReport r = write_mesh(m, floats, MeshFormat::Stl);
+  EXPECT_TRUE(r.not_a_solid);
+  EXPECT_EQ(r.rounds, 0u);
+  EXPECT_EQ(read_mesh_from_string(floats.str(), MeshFormat::Stl, "m.stl").num_triangles(), 5u);
 }
 
 // glTF binary for viewers: the header, the JSON chunk and the BIN chunk agree (issue 23, item 8).

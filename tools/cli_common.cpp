@@ -31,6 +31,24 @@ nlohmann::json result_stats(const Mesh& mesh, double seconds) {
   return j;
 }
 
+nlohmann::json rounding_json(const RoundingReport& r) {
+  nlohmann::json j = {{"moved_vertices", r.moved_vertices},
+                      {"rounds", r.rounds},
+                      {"resolved_pairs", r.broken_pairs},
+                      {"flattened_faces", r.flattened_faces},
+                      {"max_displacement", r.max_displacement},
+                      {"collapsed", r.collapsed}};
+  if (r.volume_measured) {
+    j["volume_change"] = r.volume_change;
+    j["relative_volume_change"] = r.relative_volume_change;
+  }
+  return j;
+}
+
+std::string shown_output(const std::string& path) {
+  return path == kStandardStream ? "<stdout>" : path;
+}
+
 std::string shown_path(const std::string& path) {
   return path == kStandardStream ? "<stdin>" : path;
 }
@@ -129,8 +147,16 @@ void write_result(const Mesh& mesh, const OutputArgs& args,
   options.exact = args.exact;
   options.provenance = command_line();
   if (!args.format.empty()) options.stream_format = format_from_name(args.format);
-  write_mesh(mesh, args.out, options);
-  if (!args.stats.empty()) emit_json(stats(), args.stats);
+  options.measure_rounding = !args.stats.empty();
+  const RoundingReport rounding = write_mesh(mesh, args.out, options);
+  if (rounding.collapsed)
+    print_error("warning: " + shown_output(args.out) +
+                ": the result is thinner than the format's resolution everywhere and collapsed "
+                "to an empty solid when rounded (--exact with a .off output keeps it)");
+  if (args.stats.empty()) return;
+  nlohmann::json j = stats();
+  if (!args.exact) j["rounding"] = rounding_json(rounding);
+  emit_json(j, args.stats);
 }
 
 void emit_json(const nlohmann::json& value, const std::string& target) {

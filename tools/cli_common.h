@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "morphex/mesh.h"
+#include "morphex/rounding.h"
 #include "morphex/stopwatch.h"
 
 namespace morphex::cli {
@@ -27,6 +28,11 @@ void emit_json(const nlohmann::json& value, const std::string& target);
 // The --stats keys every mesh-producing command shares (conventions.md): sizes, exact volume,
 // validity and the operation's wall time.
 nlohmann::json result_stats(const Mesh& mesh, double seconds);
+// What writing a plain format's rounding did (--stats key "rounding"): vertices moved, rounds
+// that resolved what rounding broke, the largest displacement and the volume change.
+nlohmann::json rounding_json(const RoundingReport& report);
+// An output path as messages name it ("-" is <stdout>).
+std::string shown_output(const std::string& path);
 
 // Reads an operand; a read error or an invalid solid is reported as "FILE: problem" and nullopt.
 std::optional<Mesh> read_solid(const std::string& path);

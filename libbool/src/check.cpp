@@ -641,6 +641,28 @@ MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
   return run_check(mesh, options, nullptr);
 }
 
+std::vector<std::pair<std::uint32_t, std::uint32_t>> detail::improper_pairs(
+    const Mesh& mesh, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& candidates) {
+  const PointTable table(mesh, mesh, true);
+  std::vector<PointId> position(mesh.num_vertices());
+  detail::PositionIndex index;
+  index.reserve(mesh.num_vertices());
+  const auto& doubles = table.input_doubles();
+  for (VertexIndex v = 0; v < mesh.num_vertices(); ++v)
+    position[v] = doubles.empty() ? index.find_or_insert(mesh.points[v], v)
+                                  : index.find_or_insert(doubles[v], v);
+  const TrianglePairs test(table, position);
+  std::vector<std::uint8_t> improper(candidates.size(), 0);
+  tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t k) {
+    const auto [i, j] = candidates[k];
+    improper[k] = test.improper(mesh.triangles[i], mesh.triangles[j]);
+  });
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
+  for (std::size_t k = 0; k < candidates.size(); ++k)
+    if (improper[k]) out.push_back(candidates[k]);
+  return out;
+}
+
 MeshReport detail::check_mesh_keeping_tree(const Mesh& mesh, const CheckOptions& options,
                                            std::optional<TriangleTree>& tree) {
   return run_check(mesh, options, &tree);

@@ -17,4 +17,10 @@ namespace morphex::detail {
 MeshReport check_mesh_keeping_tree(const Mesh& mesh, const CheckOptions& options,
                                    std::optional<TriangleTree>& tree);
 
+// The pairs among `candidates` (face indices, i != j) whose closed triangles meet other than in a
+// common vertex or a common edge, "common" by position (as the check decides it), in their order.
+// For checks that know where to look (rounding.cpp: only near what rounding moved).
+std::vector<std::pair<std::uint32_t, std::uint32_t>> improper_pairs(
+    const Mesh& mesh, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& candidates);
+
 }  // namespace morphex::detail

@@ -210,67 +210,94 @@ std::string provenance_line(const std::string& provenance) {
 
 namespace {
 
-// What the format cannot hold is refused before anything is written: --exact for a plain format,
-// and vertices that rounding would merge or faces it would flatten. 3MF is checked by write_3mf
-// on what lib3mf's text keeps.
-void check_writable(const Mesh& mesh, MeshFormat format, const WriteOptions& options,
-                    const std::string& name) {
+void check_exact_format(MeshFormat format, const WriteOptions& options, const std::string& name) {
   if (options.exact && format != MeshFormat::Off)
     throw InputError(name, "the exact format is OFF: use a .off output with --exact");
-  if (options.exact || format == MeshFormat::ThreeMf) return;
-  const bool floats = format == MeshFormat::Stl || format == MeshFormat::Glb;
-  check_representable(mesh, floats, name);
 }
 
+// The file's bytes: the exact OFF as it is, a plain format from the mesh rounded to its grid as a
+// valid solid (morphex/rounding.h). Composed before anything is written, so that a failure
+// leaves nothing behind.
 void emit(const Mesh& mesh, std::ostream& out, MeshFormat format, const WriteOptions& options,
-          const std::string& name) {
+          const std::string& name, RoundingReport& report) {
   const std::string note = provenance_line(options.provenance);
+  if (options.exact) {
+    detail::write_off_exact(mesh, out, note);
+    return;
+  }
+  RoundingOptions rounding;
+  rounding.grid = grid_of(format);
+  rounding.measure_volume = options.measure_rounding;
+  RoundedMesh rounded;
+  try {
+    rounded = round_mesh(mesh, rounding);
+  } catch (const LossyOutputError& e) {
+    throw LossyOutputError(name + ": " + e.what());
+  }
+  report = rounded.report;
+  const DoubleMesh& d = rounded.mesh;
   switch (format) {
     case MeshFormat::Off:
-      detail::write_off(mesh, out, options.exact, note);
+      detail::write_off(d, out, note);
       break;
     case MeshFormat::Obj:
-      detail::write_obj(mesh, out, note);
+      detail::write_obj(d, out, note);
       break;
     case MeshFormat::Stl:
-      detail::write_stl(mesh, out, note);
+      detail::write_stl(d, out, note);
       break;
     case MeshFormat::Ply:
-      detail::write_ply(mesh, out, note);
+      detail::write_ply(d, out, note);
       break;
     case MeshFormat::ThreeMf:
-      detail::write_3mf(mesh, out, note, name);
+      detail::write_3mf(d, out, note, name);
       break;
     case MeshFormat::Glb:
-      detail::write_glb(mesh, out, note);
+      detail::write_glb(d, out, note);
       break;
   }
 }
 
 }  // namespace
 
-void write_mesh(const Mesh& mesh, std::ostream& out, MeshFormat format,
-                const WriteOptions& options) {
+RoundingGrid grid_of(MeshFormat format) {
+  switch (format) {
+    case MeshFormat::Stl:
+    case MeshFormat::Glb:
+      return RoundingGrid::Float;
+    case MeshFormat::ThreeMf:
+      return RoundingGrid::ThreeMf;
+    default:
+      return RoundingGrid::Double;
+  }
+}
+
+RoundingReport write_mesh(const Mesh& mesh, std::ostream& out, MeshFormat format,
+                          const WriteOptions& options) {
   const std::string name = "<stdout>";
-  check_writable(mesh, format, options, name);
+  check_exact_format(format, options, name);
   // Composed in memory, then written at once: a failure midway leaves nothing on the stream.
   std::ostringstream text;
-  emit(mesh, text, format, options, name);
+  RoundingReport report;
+  emit(mesh, text, format, options, name, report);
   const std::string bytes = std::move(text).str();
   out.write(bytes.data(), std::streamsize(bytes.size()));
   out.flush();
   if (!out) throw std::runtime_error(name + ": write failed");
+  return report;
 }
 
-void write_mesh(const Mesh& mesh, const std::string& path, const WriteOptions& options) {
+RoundingReport write_mesh(const Mesh& mesh, const std::string& path, const WriteOptions& options) {
   if (path == kStandardStream) {
     if (!format_available(options.stream_format)) format_from_path("<stdout>.3mf");  // says why
-    write_mesh(mesh, std::cout, options.stream_format, options);
-    return;
+    return write_mesh(mesh, std::cout, options.stream_format, options);
   }
   const MeshFormat format = format_from_path(path);
-  check_writable(mesh, format, options, path);
-  write_file_atomically(path, [&](std::ostream& out) { emit(mesh, out, format, options, path); });
+  check_exact_format(format, options, path);
+  RoundingReport report;
+  write_file_atomically(path,
+                        [&](std::ostream& out) { emit(mesh, out, format, options, path, report); });
+  return report;
 }
 
 }  // namespace morphex

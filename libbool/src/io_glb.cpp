@@ -61,8 +61,7 @@ std::string gltf_json(std::size_t vertices, std::size_t indices, const float lo[
 
 }  // namespace
 
-void write_glb(const Mesh& mesh, std::ostream& out, const std::string& note) {
-  const DoubleMesh d = to_double(mesh);
+void write_glb(const DoubleMesh& d, std::ostream& out, const std::string& note) {
   std::string bin;
   bin.reserve(d.points.size() * 12 + d.triangles.size() * 12);
   float lo[3], hi[3];

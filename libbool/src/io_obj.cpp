@@ -46,13 +46,13 @@ Mesh read_obj(const std::string& content, const std::string& name) {
   return mesh;
 }
 
-void write_obj(const Mesh& m, std::ostream& out, const std::string& note) {
+void write_obj(const DoubleMesh& m, std::ostream& out, const std::string& note) {
   std::string text = "# " + note + "\n";
-  for (const Point& p : m.points) {
+  for (const auto& p : m.points) {
     text += "v";
     for (int k = 0; k < 3; ++k) {
       text += ' ';
-      append_double(text, CGAL::to_double(p.cartesian(k)));
+      append_double(text, p[k]);
     }
     text += '\n';
   }

@@ -72,26 +72,25 @@ Mesh read_off(const std::string& content, const std::string& name) {
   return mesh;
 }
 
-void write_off(const Mesh& m, std::ostream& out, bool exact, const std::string& note) {
-  std::string text = "OFF\n# " + note + "\n" + std::to_string(m.points.size()) + ' ' +
-                     std::to_string(m.triangles.size()) + " 0\n";
+namespace {
+
+// OFF's text, with each vertex's three coordinates appended by `coordinates`.
+template <class Points, class Coordinates>
+void write_off_text(const Points& points, const std::vector<Triangle>& triangles, std::ostream& out,
+                    const std::string& note, Coordinates coordinates) {
+  std::string text = "OFF\n# " + note + "\n" + std::to_string(points.size()) + ' ' +
+                     std::to_string(triangles.size()) + " 0\n";
   auto flush = [&](bool always) {
     if (always || text.size() > (1u << 20)) {
       out.write(text.data(), std::streamsize(text.size()));
       text.clear();
     }
   };
-  for (const Point& p : m.points) {
-    for (int k = 0; k < 3; ++k) {
-      if (exact)
-        text += to_rational_string(p.cartesian(k));
-      else
-        append_double(text, CGAL::to_double(p.cartesian(k)));
-      text += k < 2 ? ' ' : '\n';
-    }
+  for (const auto& p : points) {
+    coordinates(text, p);
     flush(false);
   }
-  for (const Triangle& t : m.triangles) {
+  for (const Triangle& t : triangles) {
     text += "3 ";
     for (int k = 0; k < 3; ++k) {
       text += std::to_string(t[k]);
@@ -100,6 +99,27 @@ void write_off(const Mesh& m, std::ostream& out, bool exact, const std::string& 
     flush(false);
   }
   flush(true);
+}
+
+}  // namespace
+
+void write_off_exact(const Mesh& m, std::ostream& out, const std::string& note) {
+  write_off_text(m.points, m.triangles, out, note, [](std::string& text, const Point& p) {
+    for (int k = 0; k < 3; ++k) {
+      text += to_rational_string(p.cartesian(k));
+      text += k < 2 ? ' ' : '\n';
+    }
+  });
+}
+
+void write_off(const DoubleMesh& m, std::ostream& out, const std::string& note) {
+  write_off_text(m.points, m.triangles, out, note,
+                 [](std::string& text, const std::array<double, 3>& p) {
+                   for (int k = 0; k < 3; ++k) {
+                     append_double(text, p[k]);
+                     text += k < 2 ? ' ' : '\n';
+                   }
+                 });
 }
 
 }  // namespace morphex::detail

@@ -213,12 +213,12 @@ Mesh read_ply(const std::string& content, const std::string& name) {
   return mesh;
 }
 
-void write_ply(const Mesh& m, std::ostream& out, const std::string& note) {
+void write_ply(const DoubleMesh& m, std::ostream& out, const std::string& note) {
   out << "ply\nformat binary_little_endian 1.0\ncomment " << note << "\nelement vertex "
       << m.points.size()
       << "\nproperty double x\nproperty double y\nproperty double z\nelement face "
       << m.triangles.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
-  for (const auto& p : to_double(m).points) out.write(reinterpret_cast<const char*>(p.data()), 24);
+  for (const auto& p : m.points) out.write(reinterpret_cast<const char*>(p.data()), 24);
   for (const Triangle& t : m.triangles) {
     const unsigned char three = 3;
     out.write(reinterpret_cast<const char*>(&three), 1);

@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "io_text.h"
+#include "separate_touching.h"
 
 namespace morphex::detail {
 
@@ -89,9 +90,7 @@ Mesh read_stl_ascii(const std::string& content, const std::string& name) {
   return mesh;
 }
 
-}  // namespace
-
-Mesh read_stl(const std::string& content, const std::string& name) {
+Mesh read_stl_welded(const std::string& content, const std::string& name) {
   if (content.empty()) throw InputError(name, "empty file");
   // Binary files may also start with "solid": the size formula decides first.
   if (content.size() >= 84) {
@@ -103,17 +102,24 @@ Mesh read_stl(const std::string& content, const std::string& name) {
   return read_stl_binary(content, name);
 }
 
-void write_stl(const Mesh& m, std::ostream& out, const std::string& note) {
+}  // namespace
+
+Mesh read_stl(const std::string& content, const std::string& name) {
+  Mesh mesh = read_stl_welded(content, name);
+  separate_touching(mesh);  // welding joined where a solid touches itself: undone
+  return mesh;
+}
+
+void write_stl(const DoubleMesh& d, std::ostream& out, const std::string& note) {
   // The header is free text, but it must not start with "solid" (ASCII STL); the note never does.
   char header[80] = {};
   note.copy(header, sizeof header);
   out.write(header, 80);
-  const std::uint32_t n = std::uint32_t(m.triangles.size());
+  const std::uint32_t n = std::uint32_t(d.triangles.size());
   out.write(reinterpret_cast<const char*>(&n), 4);
-  const DoubleMesh d = to_double(m);
   std::string records;
   records.reserve(std::size_t(n) * 50);
-  for (const Triangle& t : m.triangles) {
+  for (const Triangle& t : d.triangles) {
     float record[12] = {0, 0, 0};
     for (int k = 0; k < 3; ++k)
       for (int c = 0; c < 3; ++c) record[3 + 3 * k + c] = float(d.points[t[k]][c]);

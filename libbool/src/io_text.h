@@ -23,23 +23,20 @@ Mesh read_obj(const std::string& content, const std::string& name);
 Mesh read_stl(const std::string& content, const std::string& name);
 Mesh read_ply(const std::string& content, const std::string& name);
 // `note`: one line of provenance, written as the format's comment (provenance_line, io.h).
-void write_off(const Mesh& mesh, std::ostream& out, bool exact, const std::string& note);
-void write_obj(const Mesh& mesh, std::ostream& out, const std::string& note);
-void write_stl(const Mesh& mesh, std::ostream& out, const std::string& note);
-void write_ply(const Mesh& mesh, std::ostream& out, const std::string& note);
+// Plain formats write a mesh already rounded to their grid (morphex/rounding.h).
+void write_off_exact(const Mesh& mesh, std::ostream& out, const std::string& note);
+void write_off(const DoubleMesh& mesh, std::ostream& out, const std::string& note);
+void write_obj(const DoubleMesh& mesh, std::ostream& out, const std::string& note);
+void write_stl(const DoubleMesh& mesh, std::ostream& out, const std::string& note);
+void write_ply(const DoubleMesh& mesh, std::ostream& out, const std::string& note);
 // 3MF through lib3mf (io_3mf.cpp); without it (MORPHEX_3MF off) they throw InputError.
 bool have_3mf();
 Mesh read_3mf(const std::string& content, const std::string& name);
 // Refuses (LossyOutputError) a mesh that lib3mf's text would change into another one.
-void write_3mf(const Mesh& mesh, std::ostream& out, const std::string& note,
+void write_3mf(const DoubleMesh& mesh, std::ostream& out, const std::string& note,
                const std::string& name);
 // glTF 2.0 binary, for viewers (io_glb.cpp): float positions and uint32 indices.
-void write_glb(const Mesh& mesh, std::ostream& out, const std::string& note);
-// The rounded mesh re-read from a plain format is the written one: no vertex merged with another
-// one, no face flattened, every coordinate finite. `format` names the format in the message.
-void check_rounded(const Mesh& exact, const DoubleMesh& rounded, const std::string& name,
-                   const std::string& format);
-
+void write_glb(const DoubleMesh& mesh, std::ostream& out, const std::string& note);
 // Lines of a text, '#' comments stripped, split on whitespace; the tokens view the text.
 struct Line {
   std::size_t number = 0;

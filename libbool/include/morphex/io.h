@@ -13,6 +13,7 @@
 #include <string>
 
 #include "morphex/mesh.h"
+#include "morphex/rounding.h"
 
 namespace morphex {
 
@@ -63,29 +64,33 @@ struct WriteOptions {
   std::string provenance;
   // The format written to standard output (path "-"), which has no extension to choose it.
   MeshFormat stream_format = MeshFormat::Off;
+  // Measure the volume change of rounding (RoundingReport::volume_change): two exact volumes.
+  bool measure_rounding = false;
 };
 // The library's version ("0.1.0").
 const char* version();
 // The comment line a file written with `provenance` carries, without the format's comment marker.
 std::string provenance_line(const std::string& provenance);
-// Plain formats store doubles (OFF, OBJ, PLY) or floats (STL, 3MF, glb): written vertices are
-// rounded. When rounding would make two vertices one, flatten a face or overflow, the file would
-// re-read as another (invalid) mesh: write_mesh refuses with LossyOutputError instead.
-// "-" writes to standard output in options.stream_format.
-void write_mesh(const Mesh& mesh, const std::string& path, const WriteOptions& options = {});
+// Plain formats store doubles (OFF, OBJ, PLY), floats (STL, glb) or lib3mf's decimals (3MF):
+// the mesh is rounded to the format's grid as a valid solid (round_mesh, morphex/rounding.h), so
+// that the file read back is a valid solid within a few units in the last place of the exact one;
+// what rounding did is returned (all zero for the exact OFF). A coordinate outside the format's
+// range throws LossyOutputError. "-" writes to standard output in options.stream_format.
+RoundingReport write_mesh(const Mesh& mesh, const std::string& path,
+                          const WriteOptions& options = {});
 // The same into a stream: the whole file is composed in memory first, so a failure writes nothing.
-void write_mesh(const Mesh& mesh, std::ostream& out, MeshFormat format,
-                const WriteOptions& options = {});
+RoundingReport write_mesh(const Mesh& mesh, std::ostream& out, MeshFormat format,
+                          const WriteOptions& options = {});
+// The grid a format's readers see: doubles, floats (STL, glb) or lib3mf's decimals (3MF).
+RoundingGrid grid_of(MeshFormat format);
 
-// A result that the chosen plain format cannot represent (see write_mesh). Not a morphex::Error:
-// the input was fine and the operation ran; the output format is what fails (exit 1).
+// A result that the chosen plain format cannot hold at all: a coordinate outside its range (a
+// double beyond 3.4e38 in a float format). Not a morphex::Error: the input was fine and the
+// operation ran; the output format is what fails (exit 1).
 class LossyOutputError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
-// Throws LossyOutputError, naming `name`, when `mesh` rounded to doubles (or to floats when
-// `to_float`) has non-finite coordinates, merges vertices or flattens a face.
-void check_representable(const Mesh& mesh, bool to_float, const std::string& name);
 
 // Writes through `writer` into a temporary file next to `path`, then renames it over `path`:
 // readers never see a half-written file and a failure leaves the old file untouched.

@@ -1,0 +1,191 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// round_mesh (morphex/rounding.h): round, find what rounding broke, resolve it exactly, round the
+// new points again.
+#include "morphex/rounding.h"
+
+#include <mpfr.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cfloat>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+
+#include "morphex/check.h"
+#include "morphex/io.h"
+#include "morphex/winding.h"
+#include "rounding_check.h"
+
+namespace morphex {
+namespace {
+
+// The exact rational rounded once to `bits` of precision, to nearest (ties to even).
+double nearest_with_bits(const FT& value, int bits) {
+  const auto& exact = CGAL::exact(value);
+  mpfr_t x;
+  mpfr_init2(x, bits);
+  mpfr_set_q(x, exact.get_mpq_t(), MPFR_RNDN);
+  const double d = mpfr_get_d(x, MPFR_RNDN);  // exact: x has at most 53 bits
+  mpfr_clear(x);
+  return d;
+}
+
+// What lib3mf (1.8) reads back from a float it wrote: it writes the float's decimal expansion
+// cut after six decimals (truncated, not rounded: the float nearest 0.063531 is 0.0635309964 and
+// is written 0.063530), which its reader parses as the nearest float.
+float three_mf_reread(float f) {
+  char text[96];
+  std::snprintf(text, sizeof text, "%.24f", double(f));  // exact: a float has at most 24 decimals
+  if (char* point = std::strchr(text, '.')) point[7] = '\0';
+  return std::strtof(text, nullptr);
+}
+
+// The value nearest x that survives lib3mf's round trip unchanged: a float f whose cut expansion
+// d reads back as f. Only about half of the six-decimal numbers have one (the float nearest d
+// must not lie between d and zero), so the grid is 1e-6 with gaps: a coordinate moves by a few
+// 1e-6 at most.
+double three_mf_value(double x) {
+  const double k0 = std::nearbyint(x * 1e6);
+  double best = HUGE_VAL;
+  for (int dk = -12; dk <= 12; ++dk) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.6f", (k0 + dk) / 1e6);
+    const float nearest = std::strtof(text, nullptr);
+    // When the float nearest the decimal is below it (in magnitude), the next one away from zero
+    // is above it and still cuts to it (floats below 16 are finer than the decimals).
+    for (const float f : {nearest, std::nextafter(nearest, nearest < 0 ? -HUGE_VALF : HUGE_VALF)})
+      if (three_mf_reread(f) == f && std::fabs(double(f) - x) < std::fabs(best - x)) best = f;
+  }
+  return best;
+}
+
+}  // namespace
+
+double round_coordinate(const FT& value, RoundingGrid grid) {
+  const auto& approx = CGAL::approx(value);
+  // A double already (every coordinate read from a plain file) needs no exact evaluation.
+  double d = approx.is_point() ? approx.inf() : nearest_with_bits(value, 53);
+  if (grid == RoundingGrid::Double) return d;
+  // Rounded once from the exact value where it is not a double: a double rounding to floats
+  // could land an ulp away at a tie.
+  if (!approx.is_point()) d = nearest_with_bits(value, 24);
+  if (std::fabs(d) > FLT_MAX) return d > 0 ? HUGE_VAL : -HUGE_VAL;
+  const float f = float(d);  // exact unless subnormal
+  return grid == RoundingGrid::Float ? double(f) : three_mf_value(d);
+}
+
+namespace {
+
+const char* grid_name(RoundingGrid grid) {
+  switch (grid) {
+    case RoundingGrid::Double:
+      return "doubles (plain OFF, OBJ, PLY)";
+    case RoundingGrid::Float:
+      return "32-bit floats (STL, glb)";
+    case RoundingGrid::ThreeMf:
+      return "3MF (floats printed with six decimals by lib3mf)";
+  }
+  return "";
+}
+
+// Every point on the grid, in parallel blocks; returns how many moved and the largest change of
+// a coordinate. Throws LossyOutputError when a coordinate leaves the grid's range.
+std::size_t round_points(const Mesh& mesh, RoundingGrid grid, DoubleMesh& out,
+                         std::vector<std::uint8_t>& moved_flags, double& largest) {
+  out.points.resize(mesh.points.size());
+  moved_flags.assign(mesh.points.size(), 0);
+  out.triangles = mesh.triangles;
+  std::atomic<std::size_t> moved{0}, overflow{SIZE_MAX};
+  std::atomic<double> max_change{0};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.points.size(), 4096), [&](auto r) {
+    std::size_t block_moved = 0;
+    double block_change = 0;
+    for (std::size_t v = r.begin(); v != r.end(); ++v) {
+      bool changed = false;
+      for (int c = 0; c < 3; ++c) {
+        const FT& x = mesh.points[v][c];
+        const double d = round_coordinate(x, grid);
+        out.points[v][c] = d;
+        if (!std::isfinite(d)) {
+          std::size_t none = SIZE_MAX;
+          overflow.compare_exchange_strong(none, v);
+          continue;
+        }
+        const auto& a = CGAL::approx(x);
+        if (a.is_point() && a.inf() == d) continue;
+        changed = true;
+        block_change = std::max(block_change, std::max(std::fabs(a.inf() - d), std::fabs(a.sup() - d)));
+      }
+      block_moved += changed;
+      moved_flags[v] = changed;
+    }
+    moved += block_moved;
+    double seen = max_change.load();
+    while (block_change > seen && !max_change.compare_exchange_weak(seen, block_change)) {
+    }
+  });
+  if (overflow != SIZE_MAX)
+    throw LossyOutputError(std::string("the result cannot be written as ") + grid_name(grid) +
+                           ": vertex " + std::to_string(overflow.load()) +
+                           " lies outside the format's range");
+  largest = max_change;
+  return moved;
+}
+
+double to_double_volume(const FT& v) {
+  return CGAL::to_double(v);
+}
+
+}  // namespace
+
+RoundedMesh round_mesh(const Mesh& mesh, const RoundingOptions& options) {
+  RoundedMesh out;
+  RoundingReport& r = out.report;
+  Mesh resolved;  // the exact solid of the latest round, once one had to be resolved
+  const Mesh* current = &mesh;
+  for (;;) {
+    double change = 0;
+    std::vector<std::uint8_t> moved_flags;
+    const std::size_t moved = round_points(*current, options.grid, out.mesh, moved_flags, change);
+    if (r.rounds == 0) r.moved_vertices = moved;
+    r.max_displacement += change;
+    if (moved == 0) break;  // on the grid already: the valid solid itself
+    const detail::RoundingDamage damage = detail::find_rounding_damage(*current, out.mesh, moved_flags);
+    if (damage.none()) break;
+    // Only a valid solid has a solid to keep: anything else (an open surface written from
+    // Python, say) is rounded as it is.
+    if (r.rounds == 0 && !check_mesh(mesh, kValidityOnly).valid_solid()) {
+      r.not_a_solid = true;
+      break;
+    }
+    if (r.rounds == options.max_rounds)
+      throw std::runtime_error(std::string("rounding to ") + grid_name(options.grid) +
+                               " did not settle in " + std::to_string(options.max_rounds) +
+                               " rounds");
+    ++r.rounds;
+    r.broken_pairs += damage.pairs.size();
+    r.flattened_faces += damage.flattened_faces;
+    // The rounded mesh is a closed chain (rounding merges vertices, never opens an edge): the
+    // solid it winds around, with only the broken pairs intersected.
+    WindingOptions winding;
+    winding.pairs = &damage.pairs;
+    resolved = winding_solid(from_double(out.mesh), {}, winding);
+    make_exact(resolved);
+    current = &resolved;
+  }
+  r.collapsed = out.mesh.triangles.empty() && !mesh.triangles.empty();
+  if (options.measure_volume) {
+    const FT before = signed_volume(mesh);
+    const FT after = signed_volume(from_double(out.mesh));
+    r.volume_change = to_double_volume(after - before);
+    r.relative_volume_change = CGAL::is_zero(before) ? 0 : to_double_volume((after - before) / before);
+    r.volume_measured = true;
+  }
+  return out;
+}
+
+}  // namespace morphex
