@@ -7,7 +7,7 @@
 // against the exact result's).
 //
 //   bench_rounding [--cases DIR] [--ops union,intersection,difference] [--morph MESH...]
-//                  [--se cube,octahedron,ball] [--radii 1/400,1/100,1/20] [--runs N]
+//                  [--se 'cube;octahedron;ball'] [--radii 1/400,1/100,1/20] [--runs N]
 //                  [--json FILE]
 // --cases: the placed pairs that `bench_bool --set real --write-cases DIR` writes (NAME.a.off,
 // NAME.b.off, exact). --morph: meshes scaled by a power of two to a bounding-box diagonal in
@@ -48,6 +48,7 @@ struct Options {
 struct Written {
   int files = 0, valid = 0;
   double worst_relative_volume = 0;
+  std::map<std::string, double> relative_volume;  // by format
   std::vector<std::string> failures;
 };
 
@@ -70,14 +71,21 @@ Written write_everywhere(const Mesh& result, const fs::path& dir) {
         continue;
       }
       ++w.valid;
-      if (!CGAL::is_zero(exact))
-        w.worst_relative_volume = std::max(
-            w.worst_relative_volume, std::fabs(CGAL::to_double((r.volume - exact) / exact)));
+      const double change =
+          CGAL::is_zero(exact) ? 0 : std::fabs(CGAL::to_double((r.volume - exact) / exact));
+      w.relative_volume[ext] = change;
+      w.worst_relative_volume = std::max(w.worst_relative_volume, change);
     } catch (const std::exception& e) {
       w.failures.push_back(std::string(ext) + ": " + e.what());
     }
   }
   return w;
+}
+
+// Where the exact results that failed are kept for a closer look (MORPHEX_ROUNDING_FAILURES).
+std::string failures_dir() {
+  const char* dir = std::getenv("MORPHEX_ROUNDING_FAILURES");
+  return dir ? dir : "";
 }
 
 struct Row {
@@ -95,13 +103,27 @@ Row measure(const std::string& name, const std::string& op, int runs,
   row.op_seconds = bench::median_of_runs(runs, [&] { result = operation(); });
   row.facets = result.num_triangles();
   make_exact(result);  // as the library's results are: no construction history left to evaluate
-  row.float_seconds = bench::median_of_runs(
-      runs, [&] { row.report = round_mesh(result, {RoundingGrid::Float, false}).report; });
-  row.double_seconds =
-      bench::median_of_runs(runs, [&] { round_mesh(result, {RoundingGrid::Double, false}); });
-  row.report.relative_volume_change =
-      round_mesh(result, {RoundingGrid::Float, true}).report.relative_volume_change;
-  row.written = write_everywhere(result, dir);
+  try {
+    row.float_seconds = bench::median_of_runs(
+        runs, [&] { row.report = round_mesh(result, {RoundingGrid::Float, false}).report; });
+    row.double_seconds =
+        bench::median_of_runs(runs, [&] { round_mesh(result, {RoundingGrid::Double, false}); });
+    row.report.relative_volume_change =
+        round_mesh(result, {RoundingGrid::Float, true}).report.relative_volume_change;
+  } catch (const std::exception& e) {
+    row.float_seconds = row.double_seconds = NAN;
+    row.written.failures.push_back(std::string("rounding: ") + e.what());
+  }
+  const Written written = write_everywhere(result, dir);
+  row.written.files = written.files;
+  row.written.valid = written.valid;
+  row.written.worst_relative_volume = written.worst_relative_volume;
+  row.written.relative_volume = written.relative_volume;
+  for (const std::string& f : written.failures) row.written.failures.push_back(f);
+  if (!row.written.failures.empty() && !failures_dir().empty()) {
+    static int count = 0;
+    write_mesh(result, failures_dir() + "/failure-" + std::to_string(++count) + ".off", {true});
+  }
   return row;
 }
 
@@ -135,6 +157,7 @@ nlohmann::json to_json(const Row& r) {
           {"files_written", r.written.files},
           {"files_valid", r.written.valid},
           {"worst_relative_volume_error", r.written.worst_relative_volume},
+          {"relative_volume_error_by_format", r.written.relative_volume},
           {"failures", r.written.failures}};
 }
 
@@ -171,7 +194,10 @@ std::vector<Row> morphology_rows(const Options& o, const fs::path& dir) {
     for (Point& p : m.points) p = Point(p.x() * scale, p.y() * scale, p.z() * scale);
     for (const std::string& shape : o.shapes)
       for (const std::string& radius : o.radii) {
-        const std::string spec = shape + ":r=" + radius;
+        // "ball:level=1" takes its extra parameters after the radius.
+        const std::size_t colon = shape.find(':');
+        const std::string spec = shape.substr(0, colon) + ":r=" + radius +
+                                 (colon == std::string::npos ? "" : "," + shape.substr(colon + 1));
         const StructuringElement se = parse_structuring_element(spec);
         const Row row = measure(fs::path(path).stem().string(), "dilate " + spec, 1, [&] {
           return apply_morphology(MorphologyOp::Dilate, m, se);
@@ -191,7 +217,9 @@ int main(int argc, char** argv) {
   app.add_option("--cases", o.cases, "Folder of placed pairs written by bench_bool --write-cases");
   app.add_option("--ops", o.ops, "Boolean operations")->delimiter(',');
   app.add_option("--morph", o.morph, "Meshes to dilate");
-  app.add_option("--se", o.shapes, "Structuring element shapes")->delimiter(',');
+  app.add_option("--se", o.shapes,
+                 "Structuring element shapes, extra parameters after a colon (ball:level=1)")
+      ->delimiter(';');
   app.add_option("--radii", o.radii, "Radii, fractions of the bounding-box diagonal")
       ->delimiter(',');
   app.add_option("--runs", o.runs, "Timed runs per Boolean (median)")->check(CLI::PositiveNumber);
@@ -212,8 +240,11 @@ int main(int argc, char** argv) {
   std::vector<double> ratios;
   int files = 0, valid = 0, resolved = 0;
   double worst = 0;
+  std::map<std::string, double> worst_by_format;
   for (const Row& r : rows) {
-    ratios.push_back(r.float_seconds / r.op_seconds);
+    for (const auto& [format, change] : r.written.relative_volume)
+      worst_by_format[format] = std::max(worst_by_format[format], change);
+    if (std::isfinite(r.float_seconds)) ratios.push_back(r.float_seconds / r.op_seconds);
     files += r.written.files;
     valid += r.written.valid;
     resolved += r.report.rounds > 0;
@@ -227,7 +258,8 @@ int main(int argc, char** argv) {
       {"files_valid", valid},
       {"median_float_cost_ratio", ratios.empty() ? 0 : ratios[ratios.size() / 2]},
       {"max_float_cost_ratio", ratios.empty() ? 0 : ratios.back()},
-      {"worst_relative_volume_error", worst}};
+      {"worst_relative_volume_error", worst},
+      {"worst_relative_volume_error_by_format", worst_by_format}};
   std::cout << "\n" << summary.dump(2) << '\n';
   if (!o.json.empty()) {
     nlohmann::json all = nlohmann::json::array();

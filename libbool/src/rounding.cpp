@@ -80,6 +80,23 @@ double round_coordinate(const FT& value, RoundingGrid grid) {
 
 namespace {
 
+// At most 2^6 grid steps for a new point: the bound of the displacement that rounding reports.
+constexpr std::size_t kMaxDrop = 6;
+
+// A new point (off the grid) rounded `drop` bits coarser than the grid: a value of the format
+// still, on a sparser grid, so that points that keep meeting near a contact fall onto one point.
+double round_coarser(const FT& value, RoundingGrid grid, int drop) {
+  if (grid == RoundingGrid::ThreeMf) {  // the decimals' grid, 2^drop steps of 1e-6 apart
+    const double step = std::ldexp(1e-6, drop);
+    return three_mf_value(std::nearbyint(round_coordinate(value, RoundingGrid::Double) / step) * step);
+  }
+  const int bits = (grid == RoundingGrid::Double ? 53 : 24) - drop;
+  const double d = nearest_with_bits(value, std::max(bits, 2));
+  if (grid == RoundingGrid::Double) return d;
+  if (std::fabs(d) > FLT_MAX) return d > 0 ? HUGE_VAL : -HUGE_VAL;
+  return d;
+}
+
 const char* grid_name(RoundingGrid grid) {
   switch (grid) {
     case RoundingGrid::Double:
@@ -92,9 +109,10 @@ const char* grid_name(RoundingGrid grid) {
   return "";
 }
 
-// Every point on the grid, in parallel blocks; returns how many moved and the largest change of
-// a coordinate. Throws LossyOutputError when a coordinate leaves the grid's range.
-std::size_t round_points(const Mesh& mesh, RoundingGrid grid, DoubleMesh& out,
+// Every point on the grid, in parallel blocks, the coordinates that are not on it `drop` bits
+// coarser; returns how many moved and the largest change of a coordinate. Throws
+// LossyOutputError when a coordinate leaves the grid's range.
+std::size_t round_points(const Mesh& mesh, RoundingGrid grid, int drop, DoubleMesh& out,
                          std::vector<std::uint8_t>& moved_flags, double& largest) {
   out.points.resize(mesh.points.size());
   moved_flags.assign(mesh.points.size(), 0);
@@ -108,14 +126,15 @@ std::size_t round_points(const Mesh& mesh, RoundingGrid grid, DoubleMesh& out,
       bool changed = false;
       for (int c = 0; c < 3; ++c) {
         const FT& x = mesh.points[v][c];
-        const double d = round_coordinate(x, grid);
+        double d = round_coordinate(x, grid);
+        const auto& a = CGAL::approx(x);
+        if (drop > 0 && !(a.is_point() && a.inf() == d)) d = round_coarser(x, grid, drop);
         out.points[v][c] = d;
         if (!std::isfinite(d)) {
           std::size_t none = SIZE_MAX;
           overflow.compare_exchange_strong(none, v);
           continue;
         }
-        const auto& a = CGAL::approx(x);
         if (a.is_point() && a.inf() == d) continue;
         changed = true;
         block_change = std::max(block_change, std::max(std::fabs(a.inf() - d), std::fabs(a.sup() - d)));
@@ -150,7 +169,12 @@ RoundedMesh round_mesh(const Mesh& mesh, const RoundingOptions& options) {
   for (;;) {
     double change = 0;
     std::vector<std::uint8_t> moved_flags;
-    const std::size_t moved = round_points(*current, options.grid, out.mesh, moved_flags, change);
+    // Rounds that keep finding something broken round their new points ever coarser (a bit more
+    // each round after the third): snap rounding's hot pixels grown until the points that keep
+    // meeting near a contact land on one point.
+    const int drop = r.rounds > 3 ? int(std::min<std::size_t>(r.rounds - 3, kMaxDrop)) : 0;
+    const std::size_t moved =
+        round_points(*current, options.grid, drop, out.mesh, moved_flags, change);
     if (r.rounds == 0) r.moved_vertices = moved;
     r.max_displacement += change;
     if (moved == 0) break;  // on the grid already: the valid solid itself
@@ -163,9 +187,12 @@ RoundedMesh round_mesh(const Mesh& mesh, const RoundingOptions& options) {
       break;
     }
     if (r.rounds == options.max_rounds)
-      throw std::runtime_error(std::string("rounding to ") + grid_name(options.grid) +
-                               " did not settle in " + std::to_string(options.max_rounds) +
-                               " rounds");
+      throw LossyOutputError(std::string("the result cannot be written as ") +
+                             grid_name(options.grid) + ": rounding did not settle in " +
+                             std::to_string(options.max_rounds) +
+                             " rounds (a contact finer than the format's spacing keeps coming "
+                             "back); write a finer format (STL or glb floats, OFF, OBJ or PLY "
+                             "doubles) or the exact OFF");
     ++r.rounds;
     r.broken_pairs += damage.pairs.size();
     r.flattened_faces += damage.flattened_faces;

@@ -223,8 +223,15 @@ void add_io_stages(StageRegistry& r) {
            WriteOptions options;
            options.exact = c.option("exact").get<bool>();
            options.provenance = "pipeline stage " + c.stage.tag;
-           write_mesh(*c.inputs[0], path, options);
+           const RoundingReport r = write_mesh(*c.inputs[0], path, options);
            c.extra["path"] = path;
+           // What rounding to the format did (plain formats: the file is a valid solid).
+           if (!options.exact)
+             c.extra["rounding"] = {{"moved_vertices", r.moved_vertices},
+                                    {"rounds", r.rounds},
+                                    {"resolved_pairs", r.broken_pairs},
+                                    {"max_displacement", r.max_displacement},
+                                    {"collapsed", r.collapsed}};
            return *c.inputs[0];
          }});
 }

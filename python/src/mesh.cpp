@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // morphex.Mesh (numpy and exact coordinates, files, checks) and morphex.CheckReport.
-#include <mpfr.h>
 
 #include <cmath>
 #include <sstream>
@@ -9,6 +8,7 @@
 #include "morphex/check.h"
 #include "morphex/generators.h"
 #include "morphex/io.h"
+#include "morphex/rounding.h"
 
 namespace morphex::python {
 namespace {
@@ -69,19 +69,10 @@ PyMesh mesh_from_exact(const py::iterable& vertices, const py::object& faces) {
   return out;
 }
 
-// The double nearest to an exact coordinate (ties to even). morphex::to_double is not used: it
-// takes the midpoint of CGAL's interval approximation, which for a constructed coordinate such as
-// 1/3 can be a neighbour of the nearest double. MPFR rounds the exact rational once, correctly.
+// The double nearest to an exact coordinate (ties to even), rounded once from the exact value
+// (morphex::to_double takes the midpoint of CGAL's interval, which for 1/3 can be a neighbour).
 double nearest_double(const FT& value) {
-  const auto& approx = CGAL::approx(value);
-  if (approx.is_point()) return approx.inf();  // a double already (every coordinate read)
-  const auto& exact = CGAL::exact(value);
-  mpfr_t x;
-  mpfr_init2(x, 53);
-  mpfr_set_q(x, exact.get_mpq_t(), MPFR_RNDN);
-  const double d = mpfr_get_d(x, MPFR_RNDN);  // exact: x has 53 bits
-  mpfr_clear(x);
-  return d;
+  return round_coordinate(value, RoundingGrid::Double);
 }
 
 py::array_t<double> vertices_to_numpy(const PyMesh& m) {
@@ -188,12 +179,46 @@ PyMesh read(const py::object& path) {
   return {read_mesh(p), p};  // InputError names the file (ValueError)
 }
 
-void write(const PyMesh& m, const py::object& path, bool exact) {
+py::dict rounding_dict(const RoundingReport& r) {
+  py::dict d;
+  d["moved_vertices"] = r.moved_vertices;
+  d["rounds"] = r.rounds;
+  d["resolved_pairs"] = r.broken_pairs;
+  d["flattened_faces"] = r.flattened_faces;
+  d["max_displacement"] = r.max_displacement;
+  d["collapsed"] = r.collapsed;
+  d["not_a_solid"] = r.not_a_solid;
+  if (r.volume_measured) {
+    d["volume_change"] = r.volume_change;
+    d["relative_volume_change"] = r.relative_volume_change;
+  }
+  return d;
+}
+
+py::object write(const PyMesh& m, const py::object& path, bool exact) {
   const std::string p = to_path(path);
-  py::gil_scoped_release release;
   WriteOptions options;
   options.exact = exact;
-  write_mesh(m.mesh, p, options);
+  options.measure_rounding = !exact;
+  RoundingReport report;
+  {
+    py::gil_scoped_release release;
+    report = write_mesh(m.mesh, p, options);
+  }
+  if (exact) return py::none();
+  return rounding_dict(report);
+}
+
+RoundingGrid grid_named(const std::string& precision) {
+  if (precision == "double") return RoundingGrid::Double;
+  if (precision == "float") return RoundingGrid::Float;
+  throw InputError("precision", "expected 'double' or 'float', got '" + precision + "'");
+}
+
+PyMesh rounded(const PyMesh& m, const std::string& precision) {
+  const RoundingGrid grid = grid_named(precision);
+  py::gil_scoped_release release;
+  return {from_double(round_mesh(m.mesh, {grid}).mesh), m.source};
 }
 
 }  // namespace
@@ -216,10 +241,19 @@ Operators: a | b (union), a & b (intersection), a - b (difference).)doc")
                   "problem and the line.")
       .def("write", &write, py::arg("path"), py::arg("exact") = false,
            "Writes the format of the extension, atomically; exact=True writes rational "
-           "coordinates (.off only), losslessly.")
+           "coordinates (.off only), losslessly. Plain formats round to doubles (OFF, OBJ, PLY) "
+           "or floats (STL, glb, 3MF) so that the file reads back as a valid solid; returns what "
+           "rounding did (a dict: moved_vertices, rounds, max_displacement, volume_change, ...), "
+           "None for exact=True.")
+      .def("rounded", &rounded, py::arg("precision") = "double",
+           "The mesh with every coordinate a double ('double') or a 32-bit float ('float'), "
+           "still a valid solid: where rounding would flatten faces or make them cross, the "
+           "solid is resolved exactly and rounded again (what the plain writers do). "
+           "mesh.rounded().vertices is then exact.")
       .def_property_readonly(
           "vertices", &vertices_to_numpy,
-          "(N, 3) float64 array, each exact coordinate rounded to the nearest double.")
+          "(N, 3) float64 array, each exact coordinate rounded to the nearest double (vertex by "
+          "vertex: see rounded() for arrays that stay a valid solid).")
       .def_property_readonly("faces", &faces_to_numpy, "(M, 3) int64 array of vertex indices.")
       .def("exact_vertices", &exact_vertices,
            "Exact coordinates: a list of (x, y, z) strings such as '1/3', each accepted by "

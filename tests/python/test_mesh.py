@@ -72,6 +72,27 @@ def test_files_exact_and_plain(tmp_path, unit_cube):
     assert rounded.check().valid
 
 
+def test_rounded_stays_a_valid_solid(tmp_path, unit_cube):
+    # Two unit cubes 1e-10 apart: in doubles the gap stays, in floats their walls coincide and
+    # rounding vertex by vertex would make the faces overlap; rounded() resolves them into one box.
+    right = unit_cube.translated(("10000000001/10000000000", 0, 0))
+    both = morphex.Mesh.from_exact(unit_cube.exact_vertices() + right.exact_vertices(),
+                                   np.vstack([unit_cube.faces, right.faces + 8]))
+    assert both.check().valid
+    floats = both.rounded("float")
+    assert floats.check().valid and floats.volume() == 2
+    assert np.array_equal(floats.vertices, floats.vertices.astype(np.float32))
+    doubles = both.rounded()
+    assert doubles.check().valid and doubles.volume() == both.volume()
+    with pytest.raises(ValueError, match="precision"):
+        both.rounded("half")
+    report = both.write(tmp_path / "both.stl")
+    assert report["rounds"] >= 1 and report["moved_vertices"] > 0
+    assert abs(report["relative_volume_change"]) < 1e-9
+    assert morphex.Mesh.read(tmp_path / "both.stl").check().valid
+    assert both.write(tmp_path / "both.off", exact=True) is None
+
+
 def test_pickle_is_exact(unit_cube):
     mesh = unit_cube.translated(("1/3", "1/7", 0))
     copy = pickle.loads(pickle.dumps(mesh))

@@ -21,7 +21,8 @@
 // magnitude per coordinate), so the result lies within `rounds` such roundings of the exact
 // solid; RoundingReport measures the displacement and the volume change. Features thinner than
 // the grid's spacing may collapse; the result is still a valid solid, possibly empty (reported).
-// The only refusal is a coordinate outside the format's range (LossyOutputError, io.h).
+// The refusals (LossyOutputError, io.h): a coordinate outside the format's range, and rounds that
+// do not settle (below).
 #pragma once
 
 #include <cstddef>
@@ -68,9 +69,11 @@ struct RoundedMesh {
 };
 
 // `mesh` is meant to be a valid solid (a morphex result, or a checked input); any other mesh is
-// rounded vertex by vertex and reported (RoundingReport::not_a_solid) when that changed it. Throws LossyOutputError
-// when a coordinate does not fit the grid's range, std::runtime_error when the rounds do not
-// settle within options.max_rounds.
+// rounded vertex by vertex and reported (RoundingReport::not_a_solid) when that changed it.
+// Throws LossyOutputError (io.h) when a coordinate does not fit the grid's range, or when the
+// rounds do not settle within options.max_rounds: seen once, on 3MF's coarse grid, where the
+// assembly separates a contact along an edge at the edge's midpoint and the midpoint rounds back
+// onto an end of the edge.
 RoundedMesh round_mesh(const Mesh& mesh, const RoundingOptions& options = {});
 
 // The grid value a coordinate rounds to (nearest double, then nearest float, then lib3mf's
