@@ -93,6 +93,7 @@ struct Row {
   std::size_t facets = 0;
   double op_seconds = 0, float_seconds = 0, double_seconds = 0;
   RoundingReport report;  // of the float rounding
+  RoundingReport double_report;
   Written written;
 };
 
@@ -107,7 +108,9 @@ Row measure(const std::string& name, const std::string& op, int runs,
     row.float_seconds = bench::median_of_runs(
         runs, [&] { row.report = round_mesh(result, {RoundingGrid::Float, false}).report; });
     row.double_seconds =
-        bench::median_of_runs(runs, [&] { round_mesh(result, {RoundingGrid::Double, false}); });
+        bench::median_of_runs(runs, [&] {
+          row.double_report = round_mesh(result, {RoundingGrid::Double, false}).report;
+        });
     row.report.relative_volume_change =
         round_mesh(result, {RoundingGrid::Float, true}).report.relative_volume_change;
   } catch (const std::exception& e) {
@@ -152,6 +155,15 @@ nlohmann::json to_json(const Row& r) {
           {"rounds", r.report.rounds},
           {"resolved_pairs", r.report.broken_pairs},
           {"flattened_faces", r.report.flattened_faces},
+          {"float_phases",
+           {{"round", r.report.seconds_round},
+            {"check", r.report.seconds_check},
+            {"resolve", r.report.seconds_resolve}}},
+          {"double_phases",
+           {{"round", r.double_report.seconds_round},
+            {"check", r.double_report.seconds_check},
+            {"resolve", r.double_report.seconds_resolve}}},
+          {"double_rounds", r.double_report.rounds},
           {"max_displacement", r.report.max_displacement},
           {"float_relative_volume_change", r.report.relative_volume_change},
           {"files_written", r.written.files},

@@ -17,15 +17,30 @@
 
 #include "morphex/check.h"
 #include "morphex/io.h"
+#include "morphex/stopwatch.h"
 #include "morphex/winding.h"
 #include "rounding_check.h"
 
 namespace morphex {
 namespace {
 
+using Exact = Kernel::Exact_kernel::FT;
+
+// One coordinate as rounding sees it: its interval, and where its exact value is when the interval
+// does not decide. Read from the point itself: a coordinate taken as an FT (p.x()) is a new lazy
+// number, and its exact value a copy of the rational (most of the cost of rounding a mesh).
+struct Coordinate {
+  CGAL::Interval_nt<false> approx;
+  const Point* point = nullptr;
+  int axis = 0;
+  const FT* value = nullptr;
+  const Exact& exact() const {
+    return value ? CGAL::exact(*value) : CGAL::exact(*point).cartesian(axis);
+  }
+};
+
 // The exact rational rounded once to `bits` of precision, to nearest (ties to even).
-double nearest_with_bits(const FT& value, int bits) {
-  const auto& exact = CGAL::exact(value);
+double nearest_with_bits(const Exact& exact, int bits) {
   mpfr_t x;
   mpfr_init2(x, bits);
   mpfr_set_q(x, exact.get_mpq_t(), MPFR_RNDN);
@@ -51,31 +66,83 @@ float three_mf_reread(float f) {
 double three_mf_value(double x) {
   const double k0 = std::nearbyint(x * 1e6);
   double best = HUGE_VAL;
-  for (int dk = -12; dk <= 12; ++dk) {
-    char text[64];
-    std::snprintf(text, sizeof text, "%.6f", (k0 + dk) / 1e6);
-    const float nearest = std::strtof(text, nullptr);
-    // When the float nearest the decimal is below it (in magnitude), the next one away from zero
-    // is above it and still cuts to it (floats below 16 are finer than the decimals).
-    for (const float f : {nearest, std::nextafter(nearest, nearest < 0 ? -HUGE_VALF : HUGE_VALF)})
-      if (three_mf_reread(f) == f && std::fabs(double(f) - x) < std::fabs(best - x)) best = f;
-  }
+  // Outward from the nearest decimal, until no farther one can be nearer than the best.
+  for (int ring = 0; ring <= 12 && (ring - 1) * 1e-6 <= std::fabs(best - x); ++ring)
+    for (const int dk : {-ring, ring}) {
+      if (ring == 0 && dk < 0) continue;
+      char text[64];
+      std::snprintf(text, sizeof text, "%.6f", (k0 + dk) / 1e6);
+      const float nearest = std::strtof(text, nullptr);
+      // When the float nearest the decimal is below it (in magnitude), the next one away from
+      // zero is above it and still cuts to it (floats below 16 are finer than the decimals).
+      for (const float f : {nearest, std::nextafter(nearest, nearest < 0 ? -HUGE_VALF : HUGE_VALF)})
+        if (three_mf_reread(f) == f && std::fabs(double(f) - x) < std::fabs(best - x)) best = f;
+    }
   return best;
 }
 
 }  // namespace
 
-double round_coordinate(const FT& value, RoundingGrid grid) {
-  const auto& approx = CGAL::approx(value);
-  // A double already (every coordinate read from a plain file) needs no exact evaluation.
-  double d = approx.is_point() ? approx.inf() : nearest_with_bits(value, 53);
-  if (grid == RoundingGrid::Double) return d;
-  // Rounded once from the exact value where it is not a double: a double rounding to floats
-  // could land an ulp away at a tie.
-  if (!approx.is_point()) d = nearest_with_bits(value, 24);
+namespace {
+
+// The nearest double. A coordinate's interval is (after make_exact) two neighbouring doubles:
+// the exact value against their midpoint decides, a comparison of rationals whose second one is
+// a sum of doubles, much cheaper than dividing the exact numerator by its denominator.
+double nearest_double(const Coordinate& value) {
+  const auto& a = value.approx;
+  if (a.is_point()) return a.inf();  // a double already (every coordinate read from a file)
+  const double lo = a.inf(), hi = a.sup();
+  if (!std::isfinite(lo) || !std::isfinite(hi) || std::nextafter(lo, HUGE_VAL) != hi)
+    return nearest_with_bits(value.exact(), 53);
+  // Scratch rationals of each thread: their limbs are allocated once, not per coordinate.
+  thread_local struct Scratch {
+    mpq_t lo, hi;
+    Scratch() {
+      mpq_init(lo);
+      mpq_init(hi);
+    }
+    ~Scratch() {
+      mpq_clear(lo);
+      mpq_clear(hi);
+    }
+  } q;
+  mpq_set_d(q.lo, lo);
+  mpq_set_d(q.hi, hi);
+  mpq_add(q.lo, q.lo, q.hi);
+  mpq_div_2exp(q.lo, q.lo, 1);  // the midpoint
+  const int side = mpq_cmp(value.exact().get_mpq_t(), q.lo);
+  if (side != 0) return side < 0 ? lo : hi;
+  std::uint64_t bits;  // a tie: to the even one
+  std::memcpy(&bits, &lo, sizeof bits);
+  return (bits & 1) == 0 ? lo : hi;
+}
+
+// The nearest float: rounding is monotone, so when both ends of the interval round to one float
+// every value between them does; otherwise once from the exact value (rounding its nearest double
+// again could land a float away at a tie).
+double nearest_float(const Coordinate& value) {
+  const auto& a = value.approx;
+  if (std::fabs(a.inf()) <= FLT_MAX && std::fabs(a.sup()) <= FLT_MAX &&
+      float(a.inf()) == float(a.sup()))
+    return float(a.inf());
+  return nearest_with_bits(value.exact(), 24);
+}
+
+double on_grid(const Coordinate& value, RoundingGrid grid) {
+  if (grid == RoundingGrid::Double) return nearest_double(value);
+  const double d = nearest_float(value);
   if (std::fabs(d) > FLT_MAX) return d > 0 ? HUGE_VAL : -HUGE_VAL;
   const float f = float(d);  // exact unless subnormal
   return grid == RoundingGrid::Float ? double(f) : three_mf_value(d);
+}
+
+}  // namespace
+
+double round_coordinate(const FT& value, RoundingGrid grid) {
+  Coordinate c;
+  c.approx = CGAL::approx(value);
+  c.value = &value;
+  return on_grid(c, grid);
 }
 
 namespace {
@@ -85,13 +152,13 @@ constexpr std::size_t kMaxDrop = 6;
 
 // A new point (off the grid) rounded `drop` bits coarser than the grid: a value of the format
 // still, on a sparser grid, so that points that keep meeting near a contact fall onto one point.
-double round_coarser(const FT& value, RoundingGrid grid, int drop) {
+double round_coarser(const Coordinate& value, RoundingGrid grid, int drop) {
   if (grid == RoundingGrid::ThreeMf) {  // the decimals' grid, 2^drop steps of 1e-6 apart
     const double step = std::ldexp(1e-6, drop);
-    return three_mf_value(std::nearbyint(round_coordinate(value, RoundingGrid::Double) / step) * step);
+    return three_mf_value(std::nearbyint(nearest_double(value) / step) * step);
   }
   const int bits = (grid == RoundingGrid::Double ? 53 : 24) - drop;
-  const double d = nearest_with_bits(value, std::max(bits, 2));
+  const double d = nearest_with_bits(value.exact(), std::max(bits, 2));
   if (grid == RoundingGrid::Double) return d;
   if (std::fabs(d) > FLT_MAX) return d > 0 ? HUGE_VAL : -HUGE_VAL;
   return d;
@@ -124,10 +191,11 @@ std::size_t round_points(const Mesh& mesh, RoundingGrid grid, int drop, DoubleMe
     double block_change = 0;
     for (std::size_t v = r.begin(); v != r.end(); ++v) {
       bool changed = false;
+      const auto& approx = CGAL::approx(mesh.points[v]);
       for (int c = 0; c < 3; ++c) {
-        const FT& x = mesh.points[v][c];
-        double d = round_coordinate(x, grid);
-        const auto& a = CGAL::approx(x);
+        const Coordinate x{approx.cartesian(c), &mesh.points[v], c};
+        const auto& a = x.approx;
+        double d = on_grid(x, grid);
         if (drop > 0 && !(a.is_point() && a.inf() == d)) d = round_coarser(x, grid, drop);
         out.points[v][c] = d;
         if (!std::isfinite(d)) {
@@ -166,6 +234,7 @@ RoundedMesh round_mesh(const Mesh& mesh, const RoundingOptions& options) {
   RoundingReport& r = out.report;
   Mesh resolved;  // the exact solid of the latest round, once one had to be resolved
   const Mesh* current = &mesh;
+  Stopwatch clock;
   for (;;) {
     double change = 0;
     std::vector<std::uint8_t> moved_flags;
@@ -177,8 +246,11 @@ RoundedMesh round_mesh(const Mesh& mesh, const RoundingOptions& options) {
         round_points(*current, options.grid, drop, out.mesh, moved_flags, change);
     if (r.rounds == 0) r.moved_vertices = moved;
     r.max_displacement += change;
+    r.seconds_round += clock.lap();
     if (moved == 0) break;  // on the grid already: the valid solid itself
-    const detail::RoundingDamage damage = detail::find_rounding_damage(*current, out.mesh, moved_flags);
+    const detail::RoundingDamage damage =
+        detail::find_rounding_damage(*current, out.mesh, moved_flags);
+    r.seconds_check += clock.lap();
     if (damage.none()) break;
     // Only a valid solid has a solid to keep: anything else (an open surface written from
     // Python, say) is rounded as it is.
@@ -203,6 +275,7 @@ RoundedMesh round_mesh(const Mesh& mesh, const RoundingOptions& options) {
     resolved = winding_solid(from_double(out.mesh), {}, winding);
     make_exact(resolved);
     current = &resolved;
+    r.seconds_resolve += clock.lap();
   }
   r.collapsed = out.mesh.triangles.empty() && !mesh.triangles.empty();
   if (options.measure_volume) {

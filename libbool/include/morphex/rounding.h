@@ -60,6 +60,8 @@ struct RoundingReport {
   bool collapsed = false;  // the rounded solid is empty: the input was thinner than the grid
   // The input was not a valid solid and rounding broke something: rounded as it is, unresolved.
   bool not_a_solid = false;
+  // Where the time went, over all rounds: rounding the points, finding what broke, resolving it.
+  double seconds_round = 0, seconds_check = 0, seconds_resolve = 0;
   bool changed_topology() const { return rounds > 0; }
 };
 
