@@ -43,10 +43,24 @@ bool lookup_format(std::string name, MeshFormat& format) {
 
 }  // namespace
 
+namespace {
+
+bool is_gzip_path(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  return ext == ".gz";
+}
+
+}  // namespace
+
 MeshFormat format_from_path(const std::string& path) {
   if (path == kStandardStream)
     throw InputError("-", "a standard stream has no extension to give its format");
-  std::string ext = fs::path(path).extension().string();
+  // "x.off.gz": the format of the file inside.
+  std::string ext = fs::path(is_gzip_path(path) ? fs::path(path).stem() : fs::path(path))
+                        .extension()
+                        .string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return std::tolower(c); });
   MeshFormat format;
@@ -120,7 +134,7 @@ std::string read_stream(std::istream& in, const std::string& name) {
   return content;
 }
 
-std::string read_file(const std::string& path) {
+std::string read_file_bytes(const std::string& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw InputError(path, "cannot open file: no such file");
   if (fs::is_directory(path, ec)) throw InputError(path, "cannot open file: is a directory");
@@ -134,10 +148,19 @@ std::string read_file(const std::string& path) {
   return read_stream(in, path);
 }
 
+// A file's content, inflated when it is gzip-compressed (by its first bytes: a ".gz" name is not
+// needed, and a ".gz" file that is not compressed is read as it is).
+std::string read_file(const std::string& path) {
+  std::string content = read_file_bytes(path);
+  if (detail::is_gzip(content)) return detail::gunzip(content, path, max_file_bytes);
+  return content;
+}
+
 // Standard input, whose format has to be read from its content.
 Mesh read_standard_input() {
   const std::string name = name_of(kStandardStream);
-  const std::string content = read_stream(std::cin, name);
+  std::string content = read_stream(std::cin, name);
+  if (detail::is_gzip(content)) content = detail::gunzip(content, name, max_file_bytes);
   if (content.find_first_not_of(" \t\r\n") == std::string::npos)
     throw InputError(name, "empty input: nothing was piped into standard input");
   return read_mesh_from_string(content, detect_format(content, name), name);
@@ -295,8 +318,17 @@ RoundingReport write_mesh(const Mesh& mesh, const std::string& path, const Write
   const MeshFormat format = format_from_path(path);
   check_exact_format(format, options, path);
   RoundingReport report;
-  write_file_atomically(path,
-                        [&](std::ostream& out) { emit(mesh, out, format, options, path, report); });
+  if (!is_gzip_path(path)) {
+    write_file_atomically(
+        path, [&](std::ostream& out) { emit(mesh, out, format, options, path, report); });
+    return report;
+  }
+  std::ostringstream text;  // "x.stl.gz": the format's bytes, compressed whole
+  emit(mesh, text, format, options, path, report);
+  const std::string bytes = detail::gzip(std::move(text).str());
+  write_file_atomically(path, [&](std::ostream& out) {
+    out.write(bytes.data(), std::streamsize(bytes.size()));
+  });
   return report;
 }
 

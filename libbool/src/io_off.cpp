@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // OFF, plain (coordinates as decimals) and exact (integers and fractions num/den, read and
 // written without loss).
+#include <algorithm>
 #include <charconv>
 #include <ostream>
 
@@ -8,16 +9,58 @@
 
 namespace morphex::detail {
 
+namespace {
+
+// Geomview's "appearance { ... }" blocks before the header (braces balanced, any number of
+// lines): skipped. Returns the first line after them, false at the end.
+bool skip_appearance(TextReader& reader, Line& line, const std::string& name) {
+  while (line.tokens[0] == "appearance") {
+    int depth = 0;
+    bool opened = false;
+    do {
+      for (const std::string_view t : line.tokens)
+        for (const char c : t) {
+          depth += c == '{';
+          depth -= c == '}';
+          opened = opened || c == '{';
+        }
+      if (opened && depth <= 0) break;
+    } while (reader.next(line));
+    if (!opened || depth > 0)
+      throw InputError(name, "unterminated appearance block" + at_line(line.number));
+    if (!reader.next(line)) return false;
+  }
+  return true;
+}
+
+bool is_count(std::string_view t) {
+  return !t.empty() && std::all_of(t.begin(), t.end(), [](char c) { return is_digit(c); });
+}
+
+}  // namespace
+
+// The OFF family: OFF with the optional prefixes ST (texture coordinates), C (colours), N
+// (normals) in any combination (COFF, NOFF, CNOFF, STOFF, ...), whose extra numbers after x y z
+// are ignored; the header keyword may be left out (Geomview reads a file that starts with its
+// counts as OFF); Geomview's appearance blocks before it are skipped. Four-dimensional (4OFF) and
+// n-dimensional (nOFF) files are refused by name.
 Mesh read_off(const std::string& content, const std::string& name) {
   TextReader reader(content);
   Line line;
-  if (!reader.next(line)) throw InputError(name, "empty file");
+  if (!reader.next(line) || !skip_appearance(reader, line, name))
+    throw InputError(name, "empty file");
   std::vector<std::string_view> header = line.tokens;
   const std::string_view magic = header[0];
-  if (magic.size() < 3 || magic.compare(magic.size() - 3, 3, "OFF") != 0 ||
-      magic.find('4') != std::string_view::npos)
+  if (magic.size() >= 4 && magic.compare(magic.size() - 4, 4, "4OFF") == 0)
+    throw InputError(name, "4OFF: four-dimensional vertices; morphex reads 3D meshes" +
+                               at_line(line.number));
+  if (magic.size() >= 4 && magic.compare(magic.size() - 4, 4, "nOFF") == 0)
+    throw InputError(name, "nOFF: vertices of a given dimension are not supported; morphex reads "
+                           "3D meshes (OFF, COFF, NOFF, CNOFF, STOFF)" + at_line(line.number));
+  const bool keyword = magic.size() >= 3 && magic.compare(magic.size() - 3, 3, "OFF") == 0;
+  if (!keyword && !(is_count(magic) && header.size() >= 2 && is_count(header[1])))
     throw InputError(name, "not an OFF file: header is " + shown(magic) + at_line(line.number));
-  header.erase(header.begin());
+  if (keyword) header.erase(header.begin());
   std::size_t counts_line = line.number;
   if (header.empty()) {
     if (!reader.next(line))

@@ -37,6 +37,12 @@ void write_3mf(const DoubleMesh& mesh, std::ostream& out, const std::string& not
                const std::string& name);
 // glTF 2.0 binary, for viewers (io_glb.cpp): float positions and uint32 indices.
 void write_glb(const DoubleMesh& mesh, std::ostream& out, const std::string& note);
+// gzip (io_gzip.cpp): the first two bytes; the whole stream (every member) inflated, refused
+// (InputError naming `name`) past `limit` bytes or when corrupt or truncated; compressed.
+bool is_gzip(const std::string& content);
+std::string gunzip(const std::string& content, const std::string& name, std::uint64_t limit);
+std::string gzip(const std::string& content);
+
 // Lines of a text, '#' comments stripped, split on whitespace; the tokens view the text.
 struct Line {
   std::size_t number = 0;

@@ -23,7 +23,8 @@ enum class MeshFormat { Off, Obj, Stl, Ply, ThreeMf, Glb };
 // "<stdin>" / "<stdout>" in messages.
 inline const std::string kStandardStream = "-";
 
-// From the file extension (case-insensitive); throws InputError for an unknown one, for .3mf when
+// From the file extension (case-insensitive; "x.off.gz" is gzip-compressed OFF, read and written
+// through zlib); throws InputError for an unknown one, for .3mf when
 // morphex was built without lib3mf, and for "-" (a stream has no extension: see
 // format_from_name).
 MeshFormat format_from_path(const std::string& path);
@@ -39,6 +40,8 @@ bool format_readable(MeshFormat format);
 MeshFormat detect_format(const std::string& content, const std::string& name);
 
 // "-" reads standard input (under the input limits), the format detected from the content.
+// gzip-compressed content (a file or standard input) is inflated first, within the input size
+// limit (max_file_bytes applies to the inflated bytes too).
 Mesh read_mesh(const std::string& path);
 
 // Limits that protect a process from inputs it cannot hold: files larger than max_file_bytes are

@@ -1,0 +1,154 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// What mesh files really contain (issue 43, item 1): the OFF family's variants and Geomview's
+// habits, gzip-compressed files, and the limits that keep a compressed file from exhausting memory.
+#include <gtest/gtest.h>
+
+#include <zlib.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "morphex/check.h"
+#include "morphex/generators.h"
+#include "morphex/io.h"
+
+using namespace morphex;
+namespace fs = std::filesystem;
+
+namespace {
+
+class Dir {
+ public:
+  Dir() : path_(fs::temp_directory_path() / ("morphex-variants-" + std::to_string(::getpid()))) {
+    fs::create_directories(path_);
+  }
+  ~Dir() { fs::remove_all(path_); }
+  std::string write(const std::string& name, const std::string& bytes) const {
+    const std::string path = (path_ / name).string();
+    std::ofstream(path, std::ios::binary) << bytes;
+    return path;
+  }
+
+ private:
+  fs::path path_;
+};
+
+std::string gzipped(const std::string& text) {
+  uLongf size = compressBound(uLong(text.size())) + 32;
+  std::string out(size, '\0');
+  z_stream z{};
+  EXPECT_EQ(deflateInit2(&z, 6, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY), Z_OK);
+  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(text.data()));
+  z.avail_in = uInt(text.size());
+  z.next_out = reinterpret_cast<Bytef*>(out.data());
+  z.avail_out = uInt(out.size());
+  EXPECT_EQ(deflate(&z, Z_FINISH), Z_STREAM_END);
+  out.resize(out.size() - z.avail_out);
+  deflateEnd(&z);
+  return out;
+}
+
+// A unit tetrahedron in an OFF variant: `extra` numbers after each vertex's x y z.
+std::string tetrahedron(const std::string& header, const std::string& extra) {
+  return header + "\n4 4 6\n0 0 0 " + extra + "\n1 0 0 " + extra + "\n0 1 0 " + extra +
+         "\n0 0 1 " + extra + "\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n";
+}
+
+std::string error_of(const std::string& path) {
+  try {
+    read_mesh(path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << path << ": no error";
+  return "";
+}
+
+}  // namespace
+
+TEST(OffVariants, ColoursNormalsAndTexturesAreRead) {
+  Dir dir;
+  const std::pair<const char*, const char*> variants[] = {
+      {"OFF", ""},           {"COFF", "1 0 0 1"},          {"NOFF", "0 0 1"},
+      {"CNOFF", "0 0 1 1 0 0 1"}, {"STOFF", "0.5 0.5"},   {"STCNOFF", "0 0 0 0 1 0 0 1"}};
+  for (const auto& [header, extra] : variants) {
+    const Mesh m = read_mesh(dir.write(std::string(header) + ".off", tetrahedron(header, extra)));
+    EXPECT_EQ(m.num_triangles(), 4u) << header;
+    EXPECT_EQ(signed_volume(m), FT(1) / 6) << header;
+  }
+}
+
+TEST(OffVariants, GeomviewHabitsAreRead) {
+  Dir dir;
+  // The header keyword left out (Geomview reads a file that starts with its counts as OFF).
+  EXPECT_EQ(read_mesh(dir.write("bare.off", "# no keyword\n" + tetrahedron("", "").substr(1)))
+                .num_triangles(),
+            4u);
+  // Appearance blocks before the header, over several lines, nested braces.
+  const std::string appearance = "appearance {\n  +edge\n  material { diffuse 1 0 0 }\n}\n";
+  EXPECT_EQ(read_mesh(dir.write("look.off", appearance + tetrahedron("COFF", "1 0 0 1")))
+                .num_triangles(),
+            4u);
+  // Comments and blank lines anywhere.
+  EXPECT_EQ(read_mesh(dir.write("comments.off",
+                                "\n# a\n\nOFF # header\n\n4 4 0\n0 0 0\n# between\n1 0 0\n\n0 1 0\n"
+                                "0 0 1\n3 0 2 1\n3 0 1 3 # face\n3 1 2 3\n\n3 0 3 2\n"))
+                .num_triangles(),
+            4u);
+}
+
+TEST(OffVariants, OtherDimensionsAndKindsAreRefusedByName) {
+  Dir dir;
+  EXPECT_NE(error_of(dir.write("h.off", "4OFF\n16 24 32\n")).find("4OFF: four-dimensional"),
+            std::string::npos);
+  EXPECT_NE(error_of(dir.write("n.off", "nOFF\n4\n16 24 32\n")).find("nOFF"), std::string::npos);
+  EXPECT_NE(error_of(dir.write("u.off", "appearance { +edge }\nUMESH\n2 2\n"))
+                .find("not an OFF file: header is 'UMESH' at line 2"),
+            std::string::npos);
+  EXPECT_NE(error_of(dir.write("a.off", "appearance { +edge\n")).find("unterminated appearance"),
+            std::string::npos);
+}
+
+TEST(Gzip, CompressedFilesAreReadAndWritten) {
+  Dir dir;
+  const std::string text = tetrahedron("OFF", "");
+  EXPECT_EQ(signed_volume(read_mesh(dir.write("t.off.gz", gzipped(text)))), FT(1) / 6);
+  // Two gzip members one after the other are one file (as gzip itself reads them).
+  const std::string half = text.substr(0, text.size() / 2), rest = text.substr(text.size() / 2);
+  EXPECT_EQ(read_mesh(dir.write("two.off.gz", gzipped(half) + gzipped(rest))).num_triangles(), 4u);
+  // Written compressed: the format inside is the name's before .gz.
+  const Mesh cube = make_cube(FT(1) / 3);
+  const std::string out = dir.write("cube.stl.gz", "");
+  write_mesh(cube, out);
+  std::ifstream in(out, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GE(bytes.size(), 2u);
+  EXPECT_EQ(static_cast<unsigned char>(bytes[0]), 0x1f);
+  const MeshReport back = check_mesh(read_mesh(out));
+  EXPECT_TRUE(back.valid_solid());
+  EXPECT_EQ(back.triangles, 12u);
+  // The inflated content's format is told by the name inside.
+  EXPECT_EQ(format_from_path("x.PLY.gz"), MeshFormat::Ply);
+}
+
+TEST(Gzip, DamagedAndOversizedStreamsAreRefused) {
+  Dir dir;
+  const std::string packed = gzipped(tetrahedron("OFF", ""));
+  EXPECT_NE(error_of(dir.write("cut.off.gz", packed.substr(0, packed.size() / 2)))
+                .find("truncated gzip data"),
+            std::string::npos);
+  std::string corrupt = packed;
+  corrupt[12] = char(corrupt[12] ^ 0x55);
+  corrupt[13] = char(corrupt[13] ^ 0x55);
+  EXPECT_NE(error_of(dir.write("bad.off.gz", corrupt)).find("gzip"), std::string::npos);
+  // A bomb: 64 MB of one repeated line in a few hundred kilobytes, under a 1 MB input limit.
+  const InputLimits before = input_limits();
+  set_input_limits({1 << 20, before.max_faces});
+  std::string big = "OFF\n0 0 0\n";
+  big.append(64u << 20, '\n');
+  const std::string bomb = dir.write("bomb.off.gz", gzipped(big));
+  EXPECT_LT(fs::file_size(bomb), 1u << 20);
+  EXPECT_NE(error_of(bomb).find("file too large once decompressed"), std::string::npos);
+  set_input_limits(before);
+}
