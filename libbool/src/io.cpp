@@ -233,6 +233,17 @@ std::string provenance_line(const std::string& provenance) {
 
 namespace {
 
+Mesh scaled(const Mesh& mesh, int factor) {
+  Mesh out;
+  out.triangles = mesh.triangles;
+  out.points.reserve(mesh.points.size());
+  for (const Point& p : mesh.points) {
+    const auto& e = CGAL::exact(p);
+    out.points.push_back(point_from_exact({e.x() * factor, e.y() * factor, e.z() * factor}));
+  }
+  return out;
+}
+
 void check_exact_format(MeshFormat format, const WriteOptions& options, const std::string& name) {
   if (options.exact && format != MeshFormat::Off)
     throw InputError(name, "the exact format is OFF: use a .off output with --exact");
@@ -253,11 +264,19 @@ void emit(const Mesh& mesh, std::ostream& out, MeshFormat format, const WriteOpt
   rounding.measure_volume = options.measure_rounding;
   RoundedMesh rounded;
   try {
-    rounded = round_mesh(mesh, rounding);
+    // 3MF is written in micrometres: lib3mf keeps six decimals of a float, as fine as the float
+    // itself from 16 units on, where in millimetres a micrometre is a coarse grid for small parts.
+    // Scaling by 1000 is exact and keeps the solid valid; readers convert back exactly.
+    rounded = format == MeshFormat::ThreeMf ? round_mesh(scaled(mesh, 1000), rounding)
+                                            : round_mesh(mesh, rounding);
   } catch (const LossyOutputError& e) {
     throw LossyOutputError(name + ": " + e.what());
   }
   report = rounded.report;
+  if (format == MeshFormat::ThreeMf) {  // the report in the mesh's own units
+    report.max_displacement /= 1000;
+    report.volume_change /= 1e9;
+  }
   const DoubleMesh& d = rounded.mesh;
   switch (format) {
     case MeshFormat::Off:

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // 3MF through Debian's lib3mf 1.8 (its plain C interface, NMR_DLLInterfaces.h). Reading takes the
 // mesh objects of every build item, through components, with each transform and the file's unit
-// applied exactly, in millimetres (3MF's default unit and the one written). lib3mf stores
-// coordinates as floats and writes them with six decimals, so writing rounds: write_3mf refuses a
-// mesh that the rounded file would not represent (check_rounded).
+// applied exactly, in millimetres (3MF's default unit). Written in micrometres (a mesh's unit is
+// the millimetre): lib3mf stores coordinates as floats and writes them with six decimals, which
+// in micrometres is nearly as fine as the float itself (RoundingGrid::ThreeMf,
+// morphex/rounding.h, rounds to exactly what it writes; write_3mf checks that it did).
 #include "io_text.h"
 
 #ifdef MORPHEX_HAVE_3MF
@@ -216,7 +217,8 @@ void write_3mf(const DoubleMesh& d, std::ostream& out, const std::string& note,
     for (int k = 0; k < 3; ++k) triangles[t].m_nIndices[k] = DWORD(d.triangles[t][k]);
   Handle model, object, item, writer;
   call(lib3mf_createmodel(&model.p), nullptr, name, "cannot create a 3MF model");
-  call(lib3mf_model_setunit(model.p, MODELUNIT_MILLIMETER), model.p, name, "unit");
+  // Micrometres: see emit (io.cpp); the mesh's unit is the millimetre, scaled by 1000 there.
+  call(lib3mf_model_setunit(model.p, MODELUNIT_MICROMETER), model.p, name, "unit");
   call(lib3mf_model_addmeshobject(model.p, &object.p), model.p, name, "mesh object");
   call(lib3mf_meshobject_setgeometry(object.p, vertices.data(), DWORD(vertices.size()),
                                      triangles.data(), DWORD(triangles.size())),
@@ -236,8 +238,12 @@ void write_3mf(const DoubleMesh& d, std::ostream& out, const std::string& note,
        name, "cannot write 3MF");
   // The mesh was rounded to what lib3mf prints (RoundingGrid::ThreeMf): read back, it must be
   // the same mesh, or the grid's model of lib3mf's printing is wrong for this build of it.
-  const DoubleMesh reread = to_double(read_3mf(bytes, name));
-  if (reread.points != d.points || reread.triangles != d.triangles)
+  const Mesh reread = read_3mf(bytes, name);  // in millimetres: back to micrometres, exactly
+  bool same = reread.points.size() == d.points.size() && reread.triangles == d.triangles;
+  for (std::size_t v = 0; same && v < d.points.size(); ++v)
+    for (int c = 0; same && c < 3; ++c)
+      same = CGAL::exact(reread.points[v]).cartesian(c) * 1000 == d.points[v][c];
+  if (!same)
     throw LossyOutputError(name + ": lib3mf did not write the rounded mesh as it was given; "
                                   "write another format");
   out.write(bytes.data(), std::streamsize(bytes.size()));

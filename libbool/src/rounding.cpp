@@ -49,35 +49,52 @@ double nearest_with_bits(const Exact& exact, int bits) {
   return d;
 }
 
-// What lib3mf (1.8) reads back from a float it wrote: it writes the float's decimal expansion
-// cut after six decimals (truncated, not rounded: the float nearest 0.063531 is 0.0635309964 and
-// is written 0.063530), which its reader parses as the nearest float.
-float three_mf_reread(float f) {
-  char text[96];
-  std::snprintf(text, sizeof text, "%.24f", double(f));  // exact: a float has at most 24 decimals
-  if (char* point = std::strchr(text, '.')) point[7] = '\0';
-  return std::strtof(text, nullptr);
+// What lib3mf (1.8) reads back from a float it wrote: it multiplies the float by 10^6 in float
+// arithmetic, cuts that to an integer and prints it with six decimals (the float nearest 0.063531,
+// 0.0635309964, is written 0.063530; -180.61083984375 is written -180.610832), and its reader
+// parses the text as the nearest float.
+// The float nearest k / 10^6, as strtof reads the text: the double quotient is correctly rounded,
+// and rounding it to a float is right unless it fell exactly between two floats (then the text).
+float nearest_float_of_micros(long long k) {
+  const double q = double(k) / 1e6;
+  const float f = float(q);
+  const float other = std::nextafter(f, q > double(f) ? HUGE_VALF : -HUGE_VALF);
+  if (double(f) != q && (double(f) + double(other)) / 2 == q) {
+    char text[64];
+    const unsigned long long units = static_cast<unsigned long long>(k < 0 ? -k : k);
+    std::snprintf(text, sizeof text, "%s%llu.%06llu", k < 0 ? "-" : "", units / 1000000,
+                  units % 1000000);
+    return std::strtof(text, nullptr);
+  }
+  return f;
 }
 
-// The value nearest x that survives lib3mf's round trip unchanged: a float f whose cut expansion
-// d reads back as f. Only about half of the six-decimal numbers have one (the float nearest d
-// must not lie between d and zero), so the grid is 1e-6 with gaps: a coordinate moves by a few
-// 1e-6 at most.
+float three_mf_reread(float f) {
+  const volatile float scaled = f * 1e6f;  // in float, as lib3mf does (volatile: no wider math)
+  if (!(std::fabs(scaled) < 9e15f)) return NAN;  // beyond what the quotient above keeps exact
+  return nearest_float_of_micros(static_cast<long long>(scaled));
+}
+
+// The value nearest x that survives lib3mf's round trip unchanged: a float f whose written decimal
+// reads back as f. Not every float and not every six-decimal number has one, so the grid is 1e-6
+// (or the float's spacing, when coarser) with gaps: a coordinate moves by a few grid steps at
+// most. Candidates: the floats nearest the decimals around x, and the floats around x.
 double three_mf_value(double x) {
-  const double k0 = std::nearbyint(x * 1e6);
+  if (!(std::fabs(x) < 9e9)) return HUGE_VAL;
+  constexpr int kReach = 16;
   double best = HUGE_VAL;
-  // Outward from the nearest decimal, until no farther one can be nearer than the best.
-  for (int ring = 0; ring <= 12 && (ring - 1) * 1e-6 <= std::fabs(best - x); ++ring)
-    for (const int dk : {-ring, ring}) {
-      if (ring == 0 && dk < 0) continue;
-      char text[64];
-      std::snprintf(text, sizeof text, "%.6f", (k0 + dk) / 1e6);
-      const float nearest = std::strtof(text, nullptr);
-      // When the float nearest the decimal is below it (in magnitude), the next one away from
-      // zero is above it and still cuts to it (floats below 16 are finer than the decimals).
-      for (const float f : {nearest, std::nextafter(nearest, nearest < 0 ? -HUGE_VALF : HUGE_VALF)})
-        if (three_mf_reread(f) == f && std::fabs(double(f) - x) < std::fabs(best - x)) best = f;
-    }
+  auto consider = [&](float f) {
+    if (three_mf_reread(f) == f && std::fabs(double(f) - x) < std::fabs(best - x)) best = f;
+  };
+  const long long k0 = std::llround(x * 1e6);
+  for (long long k = k0 - kReach; k <= k0 + kReach; ++k) consider(nearest_float_of_micros(k));
+  float up = float(x), down = up;
+  for (int step = 0; step < kReach; ++step) {
+    consider(up);
+    consider(down);
+    up = std::nextafter(up, HUGE_VALF);
+    down = std::nextafter(down, -HUGE_VALF);
+  }
   return best;
 }
 
@@ -149,6 +166,8 @@ namespace {
 
 // At most 2^6 grid steps for a new point: the bound of the displacement that rounding reports.
 constexpr std::size_t kMaxDrop = 6;
+// Rounds without a new low of the damage before the grid of new points grows by a bit.
+constexpr std::size_t kStalledRounds = 3;
 
 // A new point (off the grid) rounded `drop` bits coarser than the grid: a value of the format
 // still, on a sparser grid, so that points that keep meeting near a contact fall onto one point.
@@ -227,6 +246,26 @@ double to_double_volume(const FT& v) {
   return CGAL::to_double(v);
 }
 
+// The solid the rounded chain winds around, intersecting only the broken pairs; if the
+// arrangement of those alone is inconsistent (a contact the pair tests did not list, seen on
+// 3MF's coarse grid), once more with every pair searched, as repair does.
+Mesh resolve(const Mesh& chain, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs,
+             RoundingGrid grid) {
+  WindingOptions winding;
+  winding.pairs = &pairs;
+  try {
+    return winding_solid(chain, {}, winding);
+  } catch (const std::logic_error&) {
+  }
+  try {
+    return winding_solid(chain);
+  } catch (const std::logic_error& e) {
+    throw LossyOutputError(std::string("the result cannot be written as ") + grid_name(grid) +
+                           ": the rounded mesh could not be resolved (" + e.what() +
+                           "); write a finer format or the exact OFF");
+  }
+}
+
 }  // namespace
 
 RoundedMesh round_mesh(const Mesh& mesh, const RoundingOptions& options) {
@@ -235,13 +274,15 @@ RoundedMesh round_mesh(const Mesh& mesh, const RoundingOptions& options) {
   Mesh resolved;  // the exact solid of the latest round, once one had to be resolved
   const Mesh* current = &mesh;
   Stopwatch clock;
+  // When the damage has not reached a new low for a few rounds (points that keep meeting near a
+  // contact finer than the grid, in a cycle), new points are rounded a bit coarser (snap
+  // rounding's hot pixels grown) so that they land on one point. Coarser points reach further
+  // and can break more, so the grid only grows when the rounds stall, one bit at a time.
+  int drop = 0;
+  std::size_t least_damage = SIZE_MAX, stalled = 0;
   for (;;) {
     double change = 0;
     std::vector<std::uint8_t> moved_flags;
-    // Rounds that keep finding something broken round their new points ever coarser (a bit more
-    // each round after the third): snap rounding's hot pixels grown until the points that keep
-    // meeting near a contact land on one point.
-    const int drop = r.rounds > 3 ? int(std::min<std::size_t>(r.rounds - 3, kMaxDrop)) : 0;
     const std::size_t moved =
         round_points(*current, options.grid, drop, out.mesh, moved_flags, change);
     if (r.rounds == 0) r.moved_vertices = moved;
@@ -265,14 +306,19 @@ RoundedMesh round_mesh(const Mesh& mesh, const RoundingOptions& options) {
                              " rounds (a contact finer than the format's spacing keeps coming "
                              "back); write a finer format (STL or glb floats, OFF, OBJ or PLY "
                              "doubles) or the exact OFF");
+    const std::size_t size = damage.pairs.size() + damage.flattened_faces + damage.turned_shells;
+    stalled = size < least_damage ? 0 : stalled + 1;
+    least_damage = std::min(least_damage, size);
+    if (stalled == kStalledRounds && drop < int(kMaxDrop)) {
+      ++drop;
+      stalled = 0;
+    }
     ++r.rounds;
     r.broken_pairs += damage.pairs.size();
     r.flattened_faces += damage.flattened_faces;
     // The rounded mesh is a closed chain (rounding merges vertices, never opens an edge): the
     // solid it winds around, with only the broken pairs intersected.
-    WindingOptions winding;
-    winding.pairs = &damage.pairs;
-    resolved = winding_solid(from_double(out.mesh), {}, winding);
+    resolved = resolve(from_double(out.mesh), damage.pairs, options.grid);
     make_exact(resolved);
     current = &resolved;
     r.seconds_resolve += clock.lap();

@@ -45,7 +45,7 @@ struct RoundingOptions {
   bool measure_volume = false;
   // Rounds of round-check-resolve before giving up (never reached in practice: every round only
   // touches what the previous one created).
-  std::size_t max_rounds = 16;
+  std::size_t max_rounds = 32;
 };
 
 struct RoundingReport {
