@@ -72,6 +72,7 @@ struct Command {
 Command add_check_command(CLI::App& app);
 Command add_bool_command(CLI::App& app);
 Command add_repair_command(CLI::App& app);
+Command add_solidify_command(CLI::App& app);
 std::vector<Command> add_morphology_commands(CLI::App& app);
 std::vector<Command> add_pipeline_commands(CLI::App& app);
 std::vector<Command> add_retrieval_commands(CLI::App& app);

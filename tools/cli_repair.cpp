@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// `morphex repair IN -o OUT [--exact] [--stats FILE|-]`.
+// `morphex repair IN -o OUT [--exact] [--stats FILE|-]` and
+// `morphex solidify IN -o OUT [--weld-tolerance F] [--no-fill] [--exact] [--stats FILE|-]`.
 #include <chrono>
 
 #include "cli_common.h"
 #include "morphex/io.h"
 #include "morphex/pipeline.h"
 #include "morphex/repair.h"
+#include "morphex/solidify.h"
 #include "morphex/stopwatch.h"
 
 namespace morphex::cli {
@@ -47,6 +49,66 @@ Command add_repair_command(CLI::App& app) {
               stats["operation"] = "repair";
               stats["input_faces"] = result.report.input_faces;
               stats["repair"] = pipeline::to_json(result.report);
+              return stats;
+            });
+            return kSuccess;
+          }};
+}
+
+Command add_solidify_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "solidify",
+      "The valid solid of a mesh as real collections hold them: soups, open surfaces, flipped, "
+      "duplicated or degenerate faces, cracks, overlapping or inward parts (a valid solid "
+      "passes unchanged)");
+  struct Args {
+    std::string in;
+    SolidifyOptions options;
+    bool no_fill = false;
+    OutputArgs output;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("IN", args->in, "Any triangle mesh or soup")->required();
+  cmd->add_option("--weld-tolerance", args->options.weld_tolerance,
+                  "Merge vertices closer than this fraction of the bounding-box diagonal "
+                  "(default 1e-5; 0: equal positions only)")
+      ->check(CLI::Range(0.0, 0.1));
+  cmd->add_flag("--no-fill", args->no_fill, "Leave holes open (the mesh must then close itself)");
+  add_output_options(cmd, args->output);
+  cmd->footer("Example: morphex solidify scan.stl -o solid.off --stats -");
+  return {cmd, [args]() -> int {
+            if (!output_usable(args->output, {args->in})) return kBadInput;
+            Mesh mesh;
+            try {
+              mesh = read_mesh(args->in);
+            } catch (const std::bad_alloc&) {
+              throw;
+            } catch (const std::exception& e) {
+              print_error(e.what());
+              return kBadInput;
+            }
+            args->options.fill_holes = !args->no_fill;
+            const Stopwatch start;
+            SolidifyResult result;
+            try {
+              result = solidify(mesh, args->options);
+            } catch (const InputError& e) {
+              print_error(shown_path(args->in) + ": cannot solidify: " + e.what());
+              return kFailed;
+            }
+            const double seconds = start.seconds();
+            write_result(result.mesh, args->output, [&] {
+              nlohmann::json stats = result_stats(result.mesh, seconds);
+              const SolidifyReport& r = result.report;
+              stats["operation"] = "solidify";
+              stats["input_faces"] = r.input_faces;
+              stats["solidify"] = {{"method", r.method},
+                                   {"summary", describe(r)},
+                                   {"welded_vertices", r.welded_vertices},
+                                   {"dropped_faces", r.dropped_faces},
+                                   {"filled_holes", r.filled_holes},
+                                   {"turned_parts", r.turned_parts},
+                                   {"intersecting_pairs", r.intersecting_pairs}};
               return stats;
             });
             return kSuccess;

@@ -12,6 +12,7 @@
 #include "morphex/morphology.h"
 #include "morphex/pipeline.h"
 #include "morphex/simplify.h"
+#include "morphex/solidify.h"
 #include "pipeline_internal.h"
 
 namespace morphex::pipeline {
@@ -208,6 +209,31 @@ void add_io_stages(StageRegistry& r) {
          [](StageContext& c) {
            RepairResult r = repair_mesh(*c.inputs[0]);
            c.extra["repair"] = to_json(r.report);
+           return std::move(r.mesh);
+         }});
+  r.add({"solidify",
+         "the valid solid of a mesh as real collections hold them (soups, open surfaces, flipped, "
+         "duplicated or degenerate faces, cracks, overlapping or inward parts); a valid solid "
+         "passes unchanged",
+         1,
+         {optional("weld_tolerance", OptionType::Number, SolidifyOptions().weld_tolerance,
+                   "vertices closer than this fraction of the bounding-box diagonal are merged "
+                   "(cracks)"),
+          optional("fill_holes", OptionType::Bool, true,
+                   "close open borders by triangulating them")},
+         [](StageContext& c) {
+           SolidifyOptions options;
+           options.weld_tolerance = c.option("weld_tolerance").get<double>();
+           options.fill_holes = c.option("fill_holes").get<bool>();
+           SolidifyResult r = solidify(*c.inputs[0], options);
+           c.extra["solidify"] = {{"method", r.report.method},
+                                  {"changed", r.report.changed},
+                                  {"summary", describe(r.report)},
+                                  {"welded_vertices", r.report.welded_vertices},
+                                  {"dropped_faces", r.report.dropped_faces},
+                                  {"filled_holes", r.report.filled_holes},
+                                  {"turned_parts", r.report.turned_parts},
+                                  {"intersecting_pairs", r.report.intersecting_pairs}};
            return std::move(r.mesh);
          }});
   r.add({"write",

@@ -407,7 +407,7 @@ void order_stages(Pipeline& pipeline, std::vector<Problem>& problems) {
   for (std::size_t s = 0; s < pipeline.stages.size(); ++s) visit(s);
 }
 
-// A read feeding only repair stages passes its mesh on unchecked.
+// A read feeding only repair or solidify stages passes its mesh on unchecked.
 void mark_unchecked_reads(Pipeline& pipeline) {
   for (Stage& r : pipeline.stages) {
     if (r.type != "read") continue;
@@ -415,7 +415,7 @@ void mark_unchecked_reads(Pipeline& pipeline) {
     for (const Stage& s : pipeline.stages)
       if (std::find(s.inputs.begin(), s.inputs.end(), r.index) != s.inputs.end()) {
         consumed = true;
-        only_repairs = only_repairs && s.type == "repair";
+        only_repairs = only_repairs && (s.type == "repair" || s.type == "solidify");
       }
     r.unchecked = consumed && only_repairs;
   }

@@ -80,3 +80,16 @@ morphex_cli_test(bool_to_glb 0 "\"faces\":12"
 morphex_cli_test(glb_is_not_read 2 "glb files are written for viewers, not read"
   check ${io_out}/cube.glb)
 set_tests_properties(cli.glb_is_not_read PROPERTIES DEPENDS cli.bool_to_glb)
+
+# Meshes as they come (issue 43): solidify closes, turns and unites; a sheet bounds no volume.
+morphex_sh_test(solidify_open_cube 0 "\"filled_holes\":1.*\"method\":\"soup\".*valid closed solid.*volume 1 "
+  "${mx} solidify ${data}/open_cube.off -o ${io_out}/closed.off --stats - && ${mx} check ${io_out}/closed.off")
+morphex_cli_test(solidify_inward 0 "\"turned_parts\":1.*\"valid\":true.*\"volume\":\"1\""
+  solidify ${data}/inward_cube.off -o ${io_out}/turned.off --stats -)
+morphex_cli_test(solidify_valid_unchanged 0 "\"method\":\"unchanged\""
+  solidify ${data}/unit_cube.off -o ${io_out}/same.off --stats -)
+morphex_sh_test(solidify_sheet 0 "cannot solidify: mesh bounds no .*exit 1"
+  "printf 'OFF\\n4 2 0\\n0 0 0\\n1 0 0\\n1 1 0\\n0 1 0\\n3 0 1 2\\n3 0 2 3\\n' | ${mx} solidify - -o ${io_out}/sheet.off 2>&1
+   echo \"exit $?\"")
+morphex_sh_test(gzip_stdin_check 0 "<stdin>: valid closed solid"
+  "gzip -c ${data}/unit_cube.off | ${mx} check -")
