@@ -145,8 +145,9 @@ Command add_index_command(CLI::App& app) {
   auto args = std::make_shared<IndexArgs>();
   cmd->add_option("INPUT", args->inputs, "Meshes or quoted globs")->required();
   cmd->add_flag("--repair,!--no-repair", args->repair,
-                "Repair meshes that are not valid solids (self-intersecting, touching, repeated or "
-                "degenerate faces) before describing them; on by default, recorded per mesh");
+                "Make meshes that are not valid solids into one before describing them (morphex "
+                "solidify: soups, open surfaces, flipped, repeated or degenerate faces, cracks, "
+                "overlapping parts); on by default, what was done recorded per mesh");
   cmd->add_option("--db", args->db, "Index file (SQLite), created if missing")->required();
   cmd->add_option("--pipeline", args->pipeline,
                   "Descriptor pipeline run on each ${input}; its last describe stage is stored "

@@ -16,6 +16,7 @@
 #include "morphex/io.h"
 #include "morphex/pipeline.h"
 #include "morphex/retrieval.h"
+#include "morphex/solidify.h"
 #include "morphex/stopwatch.h"
 
 namespace morphex::cli {
@@ -45,18 +46,20 @@ nlohmann::json descriptors_json(const Descriptors& d) {
 }
 
 Command add_describe_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("describe", "Morphological descriptors and D2 of a closed mesh");
+  auto* cmd = app.add_subcommand("describe", "Morphological descriptors and D2 of a mesh");
   struct Args {
     std::string mesh;
-    bool json = false, repair = false;
+    bool json = false, repair = true;
     DescriptorSettings settings;
   };
   auto args = std::make_shared<Args>();
   auto& s = args->settings;
-  cmd->add_option("MESH", args->mesh, "Closed mesh")->required();
+  cmd->add_option("MESH", args->mesh, "Mesh (a valid solid, or anything solidify takes)")
+      ->required();
   cmd->add_flag("--json", args->json, "One JSON object on stdout");
-  cmd->add_flag("--repair", args->repair,
-                "Repair the mesh first when it is not a valid solid (morphex repair)");
+  cmd->add_flag("--repair,!--no-repair", args->repair,
+                "Make a mesh that is not a valid solid into one first (morphex solidify; on by "
+                "default, what was done reported); --no-repair refuses it instead");
   cmd->add_option("--scales", s.scales, "Number of opening and closing radii")
       ->capture_default_str()
       ->check(CLI::Range(1, 64));
@@ -94,15 +97,15 @@ Command add_describe_command(CLI::App& app) {
               return kBadInput;
             }
             std::optional<Mesh> mesh;
-            std::optional<RepairReport> repaired;
+            std::optional<SolidifyReport> repaired;
             if (args->repair) {
               try {
-                RepairResult r = repair_mesh(read_mesh(args->mesh));
+                SolidifyResult r = solidify(read_mesh(args->mesh));
                 mesh = std::move(r.mesh);
                 repaired = r.report;
               } catch (const InputError& e) {
-                // A reader's error names the file; the repair's says what it cannot repair.
-                print_error(e.where().empty() ? args->mesh + ": cannot repair: " + e.what()
+                // A reader's error names the file; solidify's says why there is no solid.
+                print_error(e.where().empty() ? args->mesh + ": cannot solidify: " + e.what()
                                               : std::string(e.what()));
                 return kBadInput;
               }
@@ -113,7 +116,8 @@ Command add_describe_command(CLI::App& app) {
             const Stopwatch start;
             const Descriptors d = describe_valid(*mesh, s);  // read_solid or repair checked it
             nlohmann::json j = descriptors_json(d);
-            if (repaired) j["repair"] = mp::to_json(*repaired);
+            if (repaired && repaired->changed)
+              j["solidify"] = {{"method", repaired->method}, {"summary", describe(*repaired)}};
             j["name"] = fs::path(args->mesh).stem().string();
             j["path"] = args->mesh;
             j["settings"] = s.to_string();

@@ -20,8 +20,9 @@ const char* const kDefaultIndexPipeline =
 
 namespace {
 
-// The document with a repair stage after every read: the repair takes the read's tag (the read
-// gets "<tag>.as-read"), so that every stage that took the read's mesh takes the repaired one.
+// The document with a solidify stage after every read (morphex/solidify.h: a valid solid passes
+// unchanged, anything else becomes one): it takes the read's tag (the read gets
+// "<tag>.as-read"), so that every stage that took the read's mesh takes the solid.
 nlohmann::json with_repairs(const nlohmann::json& document) {
   nlohmann::json out = document;
   nlohmann::json& stages = out.is_array() ? out : out["pipeline"];
@@ -31,7 +32,7 @@ nlohmann::json with_repairs(const nlohmann::json& document) {
       rewritten.push_back(stage);
       continue;
     }
-    nlohmann::json read = stage, repair = {{"type", "repair"}};
+    nlohmann::json read = stage, repair = {{"type", "solidify"}};
     if (stage.contains("tag") && stage["tag"].is_string()) {
       const std::string tag = stage["tag"].get<std::string>();
       read["tag"] = tag + ".as-read";
@@ -45,12 +46,13 @@ nlohmann::json with_repairs(const nlohmann::json& document) {
   return out;
 }
 
-// What the repair stage of a finished input changed, as JSON text (empty when nothing).
+// What the repair or solidify stage of a finished input changed, as JSON text (empty when
+// nothing): recorded per mesh in the index.
 std::string repair_of(const mp::InputReport& input) {
   for (const mp::StageReport& s : input.stages)
-    if (s.type == "repair" && s.extra.contains("repair") &&
-        s.extra["repair"].value("changed", false))
-      return s.extra["repair"].dump();
+    for (const char* kind : {"repair", "solidify"})
+      if (s.type == kind && s.extra.contains(kind) && s.extra[kind].value("changed", false))
+        return s.extra[kind].dump();
   return "";
 }
 

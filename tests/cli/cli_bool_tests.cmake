@@ -56,10 +56,11 @@ morphex_cli_test(repair_refuses_overwrite 2 "refusing to overwrite"
 morphex_cli_test(repair_reread_valid 0 "\"valid\":true.*\"volume\":\"15/8\""
   check --json ${out}/repaired.off)
 set_tests_properties(cli.repair_reread_valid PROPERTIES DEPENDS cli.repair_crossing_cubes)
-morphex_cli_test(describe_repair 0 "\"repair\":\\{\"cancelled_faces\":0,\"changed\":true"
+# describe makes a valid solid of what it is given (solidify, issue 43) unless --no-repair.
+morphex_cli_test(describe_repair 0 "\"solidify\":\\{\"method\":\"repair\",\"summary\":\"repaired: intersecting pairs"
   describe --repair --json --scales 2 ${data}/crossing_cubes.off)
 morphex_cli_test(describe_without_repair 2 "crossing_cubes.off: mesh self-intersects"
-  describe --json ${data}/crossing_cubes.off)
+  describe --no-repair --json ${data}/crossing_cubes.off)
 # The doorstep (issue 23): global options after the subcommand, clear refusals before any work.
 morphex_cli_test(bool_threads_after_subcommand 0 "\"volume\":\"1\""
   bool union ${data}/unit_cube.off ${data}/unit_cube.off -o ${out}/threads.off --threads 2 --stats -)

@@ -4,7 +4,12 @@ set(rdir ${PROJECT_BINARY_DIR}/cli-retrieval)
 set(quick ${data}/pipelines/quick-descriptors.json)
 morphex_cli_test(describe_cube 0 "\"granulometry\":\\[1.0,1.0,1.0,1.0,1.0,1.0,1.0,1.0\\].*\"name\":\"unit_cube\""
   describe --json ${data}/unit_cube.off)
-morphex_cli_test(describe_open_mesh 2 "open_cube.off: mesh is not closed" describe ${data}/open_cube.off)
+morphex_cli_test(describe_open_mesh 0 "\"solidify\":\\{\"method\":\"soup\",\"summary\":\"soup: filled holes 1\"\\}"
+  describe --json --scales 2 ${data}/open_cube.off)
+morphex_cli_test(describe_open_mesh_refused 2 "open_cube.off: mesh is not closed"
+  describe --no-repair ${data}/open_cube.off)
+morphex_cli_test(describe_sheet 2 "sheet.off: cannot solidify: mesh bounds no"
+  describe ${data}/sheet.off)
 # A fresh, existing directory: the index tests create their databases in it, whether or not a
 # generate test has run before them.
 add_test(NAME cli.retrieval_setup COMMAND ${CMAKE_COMMAND} -E rm -rf ${rdir})
@@ -28,8 +33,9 @@ morphex_cli_test(index_resume 0 "indexed 9 meshes \\(3 already up to date, 0 fai
 set_tests_properties(cli.index_resume PROPERTIES DEPENDS cli.index_first)
 # failure isolation: an open mesh is recorded as failed, the others are indexed, exit 1
 # (meshes are repaired by default: the open one is refused by the repair stage, exit 1)
-morphex_cli_test(index_bad_mesh 1 "indexed 2 meshes \\(0 already up to date, 1 failed\\).*open_cube.off: pipeline\\[1\\] \\(repair\\).*not closed"
-  index ${data}/open_cube.off ${data}/unit_cube.off ${data}/third_cube_exact.off
+# An open mesh is solidified and indexed (issue 43); a sheet bounds no volume and fails alone.
+morphex_cli_test(index_bad_mesh 1 "indexed 3 meshes \\(0 already up to date, 1 failed\\).*sheet.off: pipeline\\[1\\] \\(solidify\\).*bounds no"
+  index ${data}/open_cube.off ${data}/sheet.off ${data}/unit_cube.off ${data}/third_cube_exact.off
   --db ${rdir}/other.sqlite --pipeline ${quick})
 set_tests_properties(cli.index_bad_mesh PROPERTIES FIXTURES_REQUIRED retrieval)
 morphex_cli_test(index_no_repair 1 "indexed 1 meshes \\(0 already up to date, 1 failed\\).*crossing_cubes.off: pipeline\\[0\\] \\(read\\).*self-intersects"

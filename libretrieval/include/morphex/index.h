@@ -29,7 +29,7 @@ extern const char* const kDefaultIndexPipeline;
 
 // A validated descriptor pipeline with its variables, as an index runs it.
 struct IndexPipeline {
-  nlohmann::json document;        // repair stages inserted when asked
+  nlohmann::json document;        // solidify stages inserted when asked
   std::string name;               // the file name (or "default"), for messages
   pipeline::Variables variables;  // bound on every run (--set)
   // What a mesh's stored descriptors are valid for: this pipeline, these variables and this
@@ -38,8 +38,9 @@ struct IndexPipeline {
 };
 
 // `document` (nullptr: kDefaultIndexPipeline) validated with ${input} and ${stem} deferred; it
-// must have a describe stage. With `repair`, a repair stage follows every read and takes the
-// read's tag, so that what read the mesh reads the repaired one. Throws pipeline::PipelineError.
+// must have a describe stage. With `repair`, a solidify stage (morphex/solidify.h) follows every
+// read and takes the read's tag, so that what read the mesh reads the solid: valid solids pass
+// unchanged, soups, open, flipped or self-intersecting meshes become one (recorded per mesh). Throws pipeline::PipelineError.
 IndexPipeline make_index_pipeline(const nlohmann::json* document, const std::string& name,
                                   pipeline::Variables variables, bool repair);
 
