@@ -51,8 +51,8 @@ std::string gzipped(const std::string& text) {
 
 // A unit tetrahedron in an OFF variant: `extra` numbers after each vertex's x y z.
 std::string tetrahedron(const std::string& header, const std::string& extra) {
-  return header + "\n4 4 6\n0 0 0 " + extra + "\n1 0 0 " + extra + "\n0 1 0 " + extra +
-         "\n0 0 1 " + extra + "\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n";
+  return header + "\n4 4 6\n0 0 0 " + extra + "\n1 0 0 " + extra + "\n0 1 0 " + extra + "\n0 0 1 " +
+         extra + "\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n";
 }
 
 std::string error_of(const std::string& path) {
@@ -70,8 +70,9 @@ std::string error_of(const std::string& path) {
 TEST(OffVariants, ColoursNormalsAndTexturesAreRead) {
   Dir dir;
   const std::pair<const char*, const char*> variants[] = {
-      {"OFF", ""},           {"COFF", "1 0 0 1"},          {"NOFF", "0 0 1"},
-      {"CNOFF", "0 0 1 1 0 0 1"}, {"STOFF", "0.5 0.5"},   {"STCNOFF", "0 0 0 0 1 0 0 1"}};
+      {"OFF", ""},          {"COFF", "1 0 0 1"},
+      {"NOFF", "0 0 1"},    {"CNOFF", "0 0 1 1 0 0 1"},
+      {"STOFF", "0.5 0.5"}, {"STCNOFF", "0 0 0 0 1 0 0 1"}};
   for (const auto& [header, extra] : variants) {
     const Mesh m = read_mesh(dir.write(std::string(header) + ".off", tetrahedron(header, extra)));
     EXPECT_EQ(m.num_triangles(), 4u) << header;
@@ -87,9 +88,9 @@ TEST(OffVariants, GeomviewHabitsAreRead) {
             4u);
   // Appearance blocks before the header, over several lines, nested braces.
   const std::string appearance = "appearance {\n  +edge\n  material { diffuse 1 0 0 }\n}\n";
-  EXPECT_EQ(read_mesh(dir.write("look.off", appearance + tetrahedron("COFF", "1 0 0 1")))
-                .num_triangles(),
-            4u);
+  EXPECT_EQ(
+      read_mesh(dir.write("look.off", appearance + tetrahedron("COFF", "1 0 0 1"))).num_triangles(),
+      4u);
   // Comments and blank lines anywhere.
   EXPECT_EQ(read_mesh(dir.write("comments.off",
                                 "\n# a\n\nOFF # header\n\n4 4 0\n0 0 0\n# between\n1 0 0\n\n0 1 0\n"

@@ -32,7 +32,8 @@ namespace {
 
 class TempDir {
  public:
-  TempDir() : path_(fs::temp_directory_path() / ("morphex_rounding_" + std::to_string(::getpid()))) {
+  TempDir()
+      : path_(fs::temp_directory_path() / ("morphex_rounding_" + std::to_string(::getpid()))) {
     fs::create_directories(path_);
   }
   ~TempDir() { fs::remove_all(path_); }
@@ -72,8 +73,9 @@ void expect_independently_valid(const std::string& path, bool touching_allowed) 
     auto h = sm.halfedge(f);
     const auto &a = sm.point(sm.source(h)), &b = sm.point(sm.target(h)),
                &c = sm.point(sm.target(sm.next(h)));
-    volume += CGAL::scalar_product(a - CGAL::ORIGIN, CGAL::cross_product(b - CGAL::ORIGIN,
-                                                                         c - CGAL::ORIGIN)) / 6;
+    volume += CGAL::scalar_product(a - CGAL::ORIGIN,
+                                   CGAL::cross_product(b - CGAL::ORIGIN, c - CGAL::ORIGIN)) /
+              6;
   }
   EXPECT_GT(volume, 0) << path;
 }
@@ -223,8 +225,7 @@ TEST(Rounding, CoarseGridStress) {
     ASSERT_TRUE(after.valid_solid()) << "trial " << trial << ": " << describe_problems(after);
     // Each vertex moves at most half a grid step per round in each coordinate.
     const double area_bound = 1e-9;  // the boxes' surfaces are below (40/3 + 3)^2 1e-12 * 6
-    EXPECT_LE(std::fabs(r.report.volume_change),
-              area_bound * 0.5e-6 * double(r.report.rounds + 1))
+    EXPECT_LE(std::fabs(r.report.volume_change), area_bound * 0.5e-6 * double(r.report.rounds + 1))
         << "trial " << trial;
   }
   EXPECT_GT(resolved, 5);  // the test exercises the resolution, not only the rounding

@@ -99,14 +99,16 @@ TEST(Solidify, CracksAreWelded) {
   const FT shift = FT(1) / FT(1e7);
   for (const Triangle& t : m.triangles)
     if (m.points[t[0]].z() + m.points[t[1]].z() + m.points[t[2]].z() > 0)
-      for (const VertexIndex v : t) m.points[v] = Point(m.points[v].x() + shift, m.points[v].y(), m.points[v].z());
+      for (const VertexIndex v : t)
+        m.points[v] = Point(m.points[v].x() + shift, m.points[v].y(), m.points[v].z());
   SolidifyReport report;
   EXPECT_NEAR(ratio(solid_volume(m, &report), signed_volume(sphere())), 1.0, 1e-5);
   EXPECT_GT(report.welded_vertices, 0u);
 }
 
 TEST(Solidify, OverlappingPartsAreUnited) {
-  const Mesh box = make_box(Point(FT(1) / 2, FT(-1) / 8, FT(-1) / 8), Point(2, FT(1) / 8, FT(1) / 8));
+  const Mesh box =
+      make_box(Point(FT(1) / 2, FT(-1) / 8, FT(-1) / 8), Point(2, FT(1) / 8, FT(1) / 8));
   const FT united = signed_volume(compute_boolean(sphere(), box, BooleanOp::Union).mesh);
   EXPECT_EQ(solid_volume(concatenate(sphere(), box)), united);
   // The box turned inward as well, and the sphere's faces unwelded: the same union.
@@ -141,7 +143,8 @@ TEST(Solidify, AllDamageTogether) {
     if (f % 11 == 0) kept.push_back(t);  // duplicated
   }
   m.triangles = kept;
-  const Mesh box = make_box(Point(FT(1) / 2, FT(-1) / 8, FT(-1) / 8), Point(2, FT(1) / 8, FT(1) / 8));
+  const Mesh box =
+      make_box(Point(FT(1) / 2, FT(-1) / 8, FT(-1) / 8), Point(2, FT(1) / 8, FT(1) / 8));
   const FT united = signed_volume(compute_boolean(sphere(), box, BooleanOp::Union).mesh);
   EXPECT_EQ(solid_volume(concatenate(m, box)), united);
 }

@@ -105,12 +105,12 @@ Row measure(const std::string& name, const std::string& op, int runs,
   row.facets = result.num_triangles();
   make_exact(result);  // as the library's results are: no construction history left to evaluate
   try {
-    row.float_seconds = bench::median_of_runs(
-        runs, [&] { row.report = round_mesh(result, {RoundingGrid::Float, false}).report; });
-    row.double_seconds =
-        bench::median_of_runs(runs, [&] {
-          row.double_report = round_mesh(result, {RoundingGrid::Double, false}).report;
-        });
+    row.float_seconds = bench::median_of_runs(runs, [&] {
+      row.report = round_mesh(result, {RoundingGrid::Float, false}).report;
+    });
+    row.double_seconds = bench::median_of_runs(runs, [&] {
+      row.double_report = round_mesh(result, {RoundingGrid::Double, false}).report;
+    });
     row.report.relative_volume_change =
         round_mesh(result, {RoundingGrid::Float, true}).report.relative_volume_change;
   } catch (const std::exception& e) {
@@ -188,9 +188,9 @@ std::vector<Row> boolean_rows(const Options& o, const fs::path& dir) {
     for (const std::string& op : o.ops) {
       BooleanOptions options;
       options.validate_inputs = false;  // the operation alone, as bench_bool's "m" column
-      const Row row = measure(fs::path(stem).filename().string(), op, o.runs, [&] {
-        return compute_boolean(a, b, parse_boolean_op(op), options).mesh;
-      }, dir);
+      const Row row = measure(
+          fs::path(stem).filename().string(), op, o.runs,
+          [&] { return compute_boolean(a, b, parse_boolean_op(op), options).mesh; }, dir);
       print(row);
       rows.push_back(row);
     }
@@ -211,9 +211,9 @@ std::vector<Row> morphology_rows(const Options& o, const fs::path& dir) {
         const std::string spec = shape.substr(0, colon) + ":r=" + radius +
                                  (colon == std::string::npos ? "" : "," + shape.substr(colon + 1));
         const StructuringElement se = parse_structuring_element(spec);
-        const Row row = measure(fs::path(path).stem().string(), "dilate " + spec, 1, [&] {
-          return apply_morphology(MorphologyOp::Dilate, m, se);
-        }, dir);
+        const Row row = measure(
+            fs::path(path).stem().string(), "dilate " + spec, 1,
+            [&] { return apply_morphology(MorphologyOp::Dilate, m, se); }, dir);
         print(row);
         rows.push_back(row);
       }
@@ -238,7 +238,8 @@ int main(int argc, char** argv) {
   app.add_option("--json", o.json, "Write the rows and the summary as JSON");
   CLI11_PARSE(app, argc, argv);
   tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
-  const fs::path dir = fs::temp_directory_path() / ("morphex-bench-rounding-" + std::to_string(getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("morphex-bench-rounding-" + std::to_string(getpid()));
   fs::create_directories(dir);
   std::cout << "one thread; seconds are medians; cost: rounding time over the operation's\n"
             << std::left << std::setw(44) << "case" << std::right << std::setw(8) << "facets"

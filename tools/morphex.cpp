@@ -61,8 +61,8 @@ int main(int argc, char** argv) {
                  "Fail cleanly (exit 1, 'out of memory') instead of being killed when the process "
                  "would use more address space than this (MiB; default: no limit)");
 
-  std::vector<Command> commands = {add_check_command(app), add_repair_command(app), add_solidify_command(app),
-                                   add_bool_command(app)};
+  std::vector<Command> commands = {add_check_command(app), add_repair_command(app),
+                                   add_solidify_command(app), add_bool_command(app)};
   for (Command& c : add_morphology_commands(app)) commands.push_back(std::move(c));
   for (Command& c : add_pipeline_commands(app)) commands.push_back(std::move(c));
   for (Command& c : add_retrieval_commands(app)) commands.push_back(std::move(c));

@@ -58,9 +58,8 @@ MeshFormat format_from_path(const std::string& path) {
   if (path == kStandardStream)
     throw InputError("-", "a standard stream has no extension to give its format");
   // "x.off.gz": the format of the file inside.
-  std::string ext = fs::path(is_gzip_path(path) ? fs::path(path).stem() : fs::path(path))
-                        .extension()
-                        .string();
+  std::string ext =
+      fs::path(is_gzip_path(path) ? fs::path(path).stem() : fs::path(path)).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return std::tolower(c); });
   MeshFormat format;
@@ -345,9 +344,8 @@ RoundingReport write_mesh(const Mesh& mesh, const std::string& path, const Write
   std::ostringstream text;  // "x.stl.gz": the format's bytes, compressed whole
   emit(mesh, text, format, options, path, report);
   const std::string bytes = detail::gzip(std::move(text).str());
-  write_file_atomically(path, [&](std::ostream& out) {
-    out.write(bytes.data(), std::streamsize(bytes.size()));
-  });
+  write_file_atomically(
+      path, [&](std::ostream& out) { out.write(bytes.data(), std::streamsize(bytes.size())); });
   return report;
 }
 

@@ -244,8 +244,9 @@ void write_3mf(const DoubleMesh& d, std::ostream& out, const std::string& note,
     for (int c = 0; same && c < 3; ++c)
       same = CGAL::exact(reread.points[v]).cartesian(c) * 1000 == d.points[v][c];
   if (!same)
-    throw LossyOutputError(name + ": lib3mf did not write the rounded mesh as it was given; "
-                                  "write another format");
+    throw LossyOutputError(name +
+                           ": lib3mf did not write the rounded mesh as it was given; "
+                           "write another format");
   out.write(bytes.data(), std::streamsize(bytes.size()));
 }
 

@@ -30,12 +30,14 @@ std::string gunzip(const std::string& content, const std::string& name, std::uin
     z.avail_out = sizeof chunk;
     const int status = inflate(&z, Z_NO_FLUSH);
     if (status != Z_OK && status != Z_STREAM_END && !(status == Z_BUF_ERROR && z.avail_in == 0))
-      throw InputError(name, std::string("corrupt gzip data: ") + (z.msg ? z.msg : "inflate failed") +
-                                 " after " + std::to_string(out.size()) + " bytes");
+      throw InputError(name, std::string("corrupt gzip data: ") +
+                                 (z.msg ? z.msg : "inflate failed") + " after " +
+                                 std::to_string(out.size()) + " bytes");
     out.append(chunk, sizeof chunk - z.avail_out);
     if (out.size() > limit)
       throw InputError(name, "file too large once decompressed: more than " +
-                                 std::to_string(limit) + " bytes (raise the limit with --max-input-mb)");
+                                 std::to_string(limit) +
+                                 " bytes (raise the limit with --max-input-mb)");
     if (status == Z_STREAM_END) {
       if (z.avail_in == 0) return out;
       if (inflateReset(&z) != Z_OK) throw std::bad_alloc();  // another gzip member follows

@@ -52,11 +52,13 @@ Mesh read_off(const std::string& content, const std::string& name) {
   std::vector<std::string_view> header = line.tokens;
   const std::string_view magic = header[0];
   if (magic.size() >= 4 && magic.compare(magic.size() - 4, 4, "4OFF") == 0)
-    throw InputError(name, "4OFF: four-dimensional vertices; morphex reads 3D meshes" +
-                               at_line(line.number));
+    throw InputError(
+        name, "4OFF: four-dimensional vertices; morphex reads 3D meshes" + at_line(line.number));
   if (magic.size() >= 4 && magic.compare(magic.size() - 4, 4, "nOFF") == 0)
-    throw InputError(name, "nOFF: vertices of a given dimension are not supported; morphex reads "
-                           "3D meshes (OFF, COFF, NOFF, CNOFF, STOFF)" + at_line(line.number));
+    throw InputError(name,
+                     "nOFF: vertices of a given dimension are not supported; morphex reads "
+                     "3D meshes (OFF, COFF, NOFF, CNOFF, STOFF)" +
+                         at_line(line.number));
   const bool keyword = magic.size() >= 3 && magic.compare(magic.size() - 3, 3, "OFF") == 0;
   if (!keyword && !(is_count(magic) && header.size() >= 2 && is_count(header[1])))
     throw InputError(name, "not an OFF file: header is " + shown(magic) + at_line(line.number));

@@ -224,7 +224,8 @@ std::size_t round_points(const Mesh& mesh, RoundingGrid grid, int drop, DoubleMe
         }
         if (a.is_point() && a.inf() == d) continue;
         changed = true;
-        block_change = std::max(block_change, std::max(std::fabs(a.inf() - d), std::fabs(a.sup() - d)));
+        block_change =
+            std::max(block_change, std::max(std::fabs(a.inf() - d), std::fabs(a.sup() - d)));
       }
       block_moved += changed;
       moved_flags[v] = changed;
@@ -328,7 +329,8 @@ RoundedMesh round_mesh(const Mesh& mesh, const RoundingOptions& options) {
     const FT before = signed_volume(mesh);
     const FT after = signed_volume(from_double(out.mesh));
     r.volume_change = to_double_volume(after - before);
-    r.relative_volume_change = CGAL::is_zero(before) ? 0 : to_double_volume((after - before) / before);
+    r.relative_volume_change =
+        CGAL::is_zero(before) ? 0 : to_double_volume((after - before) / before);
     r.volume_measured = true;
   }
   return out;

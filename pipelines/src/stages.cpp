@@ -186,21 +186,22 @@ std::vector<OptionInfo> describe_options() {
 
 // Reading, repairing and writing meshes.
 void add_io_stages(StageRegistry& r) {
-  r.add({"read",
-         "read a closed mesh (OFF, OBJ, STL, PLY, 3MF) and check that it is a valid solid (unless it "
-         "goes only to repair stages)",
-         0,
-         {required("path", OptionType::Path, "mesh file")},
-         [](StageContext& c) {
-           const std::string path = c.option("path").get<std::string>();
-           Mesh mesh = read_mesh(path);
-           if (c.stage.unchecked) return mesh;
-           const MeshReport report = check_mesh(mesh, kValidityOnly);
-           if (!report.valid_solid())
-             throw InputError(
-                 path, describe_problems(report) + " (a repair stage after the read repairs it)");
-           return mesh;
-         }});
+  r.add(
+      {"read",
+       "read a closed mesh (OFF, OBJ, STL, PLY, 3MF) and check that it is a valid solid (unless it "
+       "goes only to repair stages)",
+       0,
+       {required("path", OptionType::Path, "mesh file")},
+       [](StageContext& c) {
+         const std::string path = c.option("path").get<std::string>();
+         Mesh mesh = read_mesh(path);
+         if (c.stage.unchecked) return mesh;
+         const MeshReport report = check_mesh(mesh, kValidityOnly);
+         if (!report.valid_solid())
+           throw InputError(
+               path, describe_problems(report) + " (a repair stage after the read repairs it)");
+         return mesh;
+       }});
   r.add({"repair",
          "exact repair: the valid solid a closed mesh bounds where it crosses or touches itself, "
          "repeats vertices or faces, or has faces without area (a valid solid passes unchanged)",
@@ -211,31 +212,31 @@ void add_io_stages(StageRegistry& r) {
            c.extra["repair"] = to_json(r.report);
            return std::move(r.mesh);
          }});
-  r.add({"solidify",
-         "the valid solid of a mesh as real collections hold them (soups, open surfaces, flipped, "
-         "duplicated or degenerate faces, cracks, overlapping or inward parts); a valid solid "
-         "passes unchanged",
-         1,
-         {optional("weld_tolerance", OptionType::Number, SolidifyOptions().weld_tolerance,
-                   "vertices closer than this fraction of the bounding-box diagonal are merged "
-                   "(cracks)"),
-          optional("fill_holes", OptionType::Bool, true,
-                   "close open borders by triangulating them")},
-         [](StageContext& c) {
-           SolidifyOptions options;
-           options.weld_tolerance = c.option("weld_tolerance").get<double>();
-           options.fill_holes = c.option("fill_holes").get<bool>();
-           SolidifyResult r = solidify(*c.inputs[0], options);
-           c.extra["solidify"] = {{"method", r.report.method},
-                                  {"changed", r.report.changed},
-                                  {"summary", describe(r.report)},
-                                  {"welded_vertices", r.report.welded_vertices},
-                                  {"dropped_faces", r.report.dropped_faces},
-                                  {"filled_holes", r.report.filled_holes},
-                                  {"turned_parts", r.report.turned_parts},
-                                  {"intersecting_pairs", r.report.intersecting_pairs}};
-           return std::move(r.mesh);
-         }});
+  r.add(
+      {"solidify",
+       "the valid solid of a mesh as real collections hold them (soups, open surfaces, flipped, "
+       "duplicated or degenerate faces, cracks, overlapping or inward parts); a valid solid "
+       "passes unchanged",
+       1,
+       {optional("weld_tolerance", OptionType::Number, SolidifyOptions().weld_tolerance,
+                 "vertices closer than this fraction of the bounding-box diagonal are merged "
+                 "(cracks)"),
+        optional("fill_holes", OptionType::Bool, true, "close open borders by triangulating them")},
+       [](StageContext& c) {
+         SolidifyOptions options;
+         options.weld_tolerance = c.option("weld_tolerance").get<double>();
+         options.fill_holes = c.option("fill_holes").get<bool>();
+         SolidifyResult r = solidify(*c.inputs[0], options);
+         c.extra["solidify"] = {{"method", r.report.method},
+                                {"changed", r.report.changed},
+                                {"summary", describe(r.report)},
+                                {"welded_vertices", r.report.welded_vertices},
+                                {"dropped_faces", r.report.dropped_faces},
+                                {"filled_holes", r.report.filled_holes},
+                                {"turned_parts", r.report.turned_parts},
+                                {"intersecting_pairs", r.report.intersecting_pairs}};
+         return std::move(r.mesh);
+       }});
   r.add({"write",
          "write the mesh atomically (format from the extension); passes it on",
          1,

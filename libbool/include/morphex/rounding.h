@@ -33,9 +33,9 @@ namespace morphex {
 
 // What a reader of the written file will see for each coordinate.
 enum class RoundingGrid {
-  Double,      // OFF, OBJ, PLY: the nearest double
-  Float,       // STL, glb: the nearest 32-bit float
-  ThreeMf,     // 3MF: lib3mf prints floats with six decimals, read back as floats
+  Double,   // OFF, OBJ, PLY: the nearest double
+  Float,    // STL, glb: the nearest 32-bit float
+  ThreeMf,  // 3MF: lib3mf prints floats with six decimals, read back as floats
 };
 
 struct RoundingOptions {
@@ -49,11 +49,11 @@ struct RoundingOptions {
 };
 
 struct RoundingReport {
-  std::size_t moved_vertices = 0;  // vertices whose exact coordinates were not on the grid
-  std::size_t rounds = 0;          // rounds that found something broken and resolved it
-  std::size_t broken_pairs = 0;    // improper pairs resolved, over all rounds
-  std::size_t flattened_faces = 0; // faces that rounding left without area, over all rounds
-  double max_displacement = 0;     // largest coordinate change of a rounded vertex, summed over rounds
+  std::size_t moved_vertices = 0;   // vertices whose exact coordinates were not on the grid
+  std::size_t rounds = 0;           // rounds that found something broken and resolved it
+  std::size_t broken_pairs = 0;     // improper pairs resolved, over all rounds
+  std::size_t flattened_faces = 0;  // faces that rounding left without area, over all rounds
+  double max_displacement = 0;  // largest coordinate change of a rounded vertex, summed over rounds
   // Volume change, when measured: rounded minus exact, and relative to the exact volume.
   double volume_change = 0, relative_volume_change = 0;
   bool volume_measured = false;

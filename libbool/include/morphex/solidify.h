@@ -42,11 +42,11 @@ struct SolidifyOptions {
 struct SolidifyReport {
   std::string method;  // "unchanged", "repair" (a closed chain) or "soup" (the soup tools first)
   std::size_t input_faces = 0, output_faces = 0;
-  std::size_t welded_vertices = 0;    // merged into a vertex within the tolerance
-  std::size_t dropped_faces = 0;      // repeated or without area
-  std::size_t filled_holes = 0;       // borders closed by a triangulation
-  std::size_t turned_parts = 0;       // closed parts oriented inward, turned
-  std::size_t intersecting_pairs = 0; // resolved by the exact repair
+  std::size_t welded_vertices = 0;     // merged into a vertex within the tolerance
+  std::size_t dropped_faces = 0;       // repeated or without area
+  std::size_t filled_holes = 0;        // borders closed by a triangulation
+  std::size_t turned_parts = 0;        // closed parts oriented inward, turned
+  std::size_t intersecting_pairs = 0;  // resolved by the exact repair
   bool changed = false;
 };
 

@@ -40,7 +40,8 @@ struct IndexPipeline {
 // `document` (nullptr: kDefaultIndexPipeline) validated with ${input} and ${stem} deferred; it
 // must have a describe stage. With `repair`, a solidify stage (morphex/solidify.h) follows every
 // read and takes the read's tag, so that what read the mesh reads the solid: valid solids pass
-// unchanged, soups, open, flipped or self-intersecting meshes become one (recorded per mesh). Throws pipeline::PipelineError.
+// unchanged, soups, open, flipped or self-intersecting meshes become one (recorded per mesh).
+// Throws pipeline::PipelineError.
 IndexPipeline make_index_pipeline(const nlohmann::json* document, const std::string& name,
                                   pipeline::Variables variables, bool repair);
 
