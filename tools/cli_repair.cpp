@@ -11,6 +11,23 @@
 #include "morphex/stopwatch.h"
 
 namespace morphex::cli {
+namespace {
+
+// The mesh of `path` as it is (no validity check: these commands take broken meshes), or the
+// reader's located message and false.
+bool read_input(const std::string& path, Mesh& mesh) {
+  try {
+    mesh = read_mesh(path);
+    return true;
+  } catch (const std::bad_alloc&) {
+    throw;  // reported once, by main, as out of memory
+  } catch (const std::exception& e) {
+    print_error(e.what());
+    return false;
+  }
+}
+
+}  // namespace
 
 Command add_repair_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
@@ -27,14 +44,7 @@ Command add_repair_command(CLI::App& app) {
   return {cmd, [args]() -> int {
             if (!output_usable(args->output, {args->in})) return kBadInput;
             Mesh mesh;
-            try {
-              mesh = read_mesh(args->in);
-            } catch (const std::bad_alloc&) {
-              throw;
-            } catch (const std::exception& e) {
-              print_error(e.what());
-              return kBadInput;
-            }
+            if (!read_input(args->in, mesh)) return kBadInput;
             const Stopwatch start;
             RepairResult result;
             try {
@@ -79,14 +89,7 @@ Command add_solidify_command(CLI::App& app) {
   return {cmd, [args]() -> int {
             if (!output_usable(args->output, {args->in})) return kBadInput;
             Mesh mesh;
-            try {
-              mesh = read_mesh(args->in);
-            } catch (const std::bad_alloc&) {
-              throw;
-            } catch (const std::exception& e) {
-              print_error(e.what());
-              return kBadInput;
-            }
+            if (!read_input(args->in, mesh)) return kBadInput;
             args->options.fill_holes = !args->no_fill;
             const Stopwatch start;
             SolidifyResult result;
@@ -102,13 +105,7 @@ Command add_solidify_command(CLI::App& app) {
               const SolidifyReport& r = result.report;
               stats["operation"] = "solidify";
               stats["input_faces"] = r.input_faces;
-              stats["solidify"] = {{"method", r.method},
-                                   {"summary", describe(r)},
-                                   {"welded_vertices", r.welded_vertices},
-                                   {"dropped_faces", r.dropped_faces},
-                                   {"filled_holes", r.filled_holes},
-                                   {"turned_parts", r.turned_parts},
-                                   {"intersecting_pairs", r.intersecting_pairs}};
+              stats["solidify"] = pipeline::to_json(r);
               return stats;
             });
             return kSuccess;

@@ -116,8 +116,7 @@ Command add_describe_command(CLI::App& app) {
             const Stopwatch start;
             const Descriptors d = describe_valid(*mesh, s);  // read_solid or repair checked it
             nlohmann::json j = descriptors_json(d);
-            if (repaired && repaired->changed)
-              j["solidify"] = {{"method", repaired->method}, {"summary", describe(*repaired)}};
+            if (repaired && repaired->changed) j["solidify"] = mp::to_json(*repaired);
             j["name"] = fs::path(args->mesh).stem().string();
             j["path"] = args->mesh;
             j["settings"] = s.to_string();

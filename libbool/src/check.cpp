@@ -440,6 +440,19 @@ void slab_pairs(const Mesh& mesh, const PointTable& table, const std::vector<Poi
     });
 }
 
+// Vertices by position: coincident ones (separated features) are one position. From the
+// table's contiguous copy of the coordinates when they are all doubles.
+std::vector<PointId> positions(const Mesh& mesh, const PointTable& table) {
+  std::vector<PointId> position(mesh.num_vertices());
+  detail::PositionIndex index;
+  index.reserve(mesh.num_vertices());
+  const auto& doubles = table.input_doubles();
+  for (VertexIndex v = 0; v < mesh.num_vertices(); ++v)
+    position[v] = doubles.empty() ? index.find_or_insert(mesh.points[v], v)
+                                  : index.find_or_insert(doubles[v], v);
+  return position;
+}
+
 // Self-intersections: flat patches proved embedded, the other triangles by their tree against
 // itself, and each patch against the triangles that reach its plane; each pair is tested
 // exactly, once (i < j).
@@ -450,17 +463,7 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
                              const ManifoldEdges& manifold, const std::vector<std::uint8_t>& proved,
                              const CheckOptions& options, MeshReport& r,
                              std::optional<TriangleTree>* kept) {
-  // Vertices by position: coincident ones (separated features) are one position. From the
-  // table's contiguous copy of the coordinates when they are all doubles.
-  std::vector<PointId> position(mesh.num_vertices());
-  {
-    detail::PositionIndex index;
-    index.reserve(mesh.num_vertices());
-    const auto& doubles = table.input_doubles();
-    for (VertexIndex v = 0; v < mesh.num_vertices(); ++v)
-      position[v] = doubles.empty() ? index.find_or_insert(mesh.points[v], v)
-                                    : index.find_or_insert(doubles[v], v);
-  }
+  const std::vector<PointId> position = positions(mesh, table);
   detail::PlanarPatches planar = detail::verified_planar_patches(
       mesh, table, planes, position, degenerate, manifold, kMinPlanarPatch);
   detail::add_near_flat_patches(mesh, table, planes, position, degenerate, manifold,
@@ -644,13 +647,7 @@ MeshReport check_mesh(const Mesh& mesh, const CheckOptions& options) {
 std::vector<std::pair<std::uint32_t, std::uint32_t>> detail::improper_pairs(
     const Mesh& mesh, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& candidates) {
   const PointTable table(mesh, mesh, true);
-  std::vector<PointId> position(mesh.num_vertices());
-  detail::PositionIndex index;
-  index.reserve(mesh.num_vertices());
-  const auto& doubles = table.input_doubles();
-  for (VertexIndex v = 0; v < mesh.num_vertices(); ++v)
-    position[v] = doubles.empty() ? index.find_or_insert(mesh.points[v], v)
-                                  : index.find_or_insert(doubles[v], v);
+  const std::vector<PointId> position = positions(mesh, table);
   const TrianglePairs test(table, position);
   std::vector<std::uint8_t> improper(candidates.size(), 0);
   tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t k) {

@@ -29,6 +29,17 @@ nlohmann::json to_json(const RepairReport& r) {
           {"components_out", r.components_out}};
 }
 
+nlohmann::json to_json(const SolidifyReport& r) {
+  return {{"method", r.method},
+          {"changed", r.changed},
+          {"summary", describe(r)},
+          {"welded_vertices", r.welded_vertices},
+          {"dropped_faces", r.dropped_faces},
+          {"filled_holes", r.filled_holes},
+          {"turned_parts", r.turned_parts},
+          {"intersecting_pairs", r.intersecting_pairs}};
+}
+
 const char* to_string(OptionType type) {
   switch (type) {
     case OptionType::String:
@@ -227,14 +238,7 @@ void add_io_stages(StageRegistry& r) {
          options.weld_tolerance = c.option("weld_tolerance").get<double>();
          options.fill_holes = c.option("fill_holes").get<bool>();
          SolidifyResult r = solidify(*c.inputs[0], options);
-         c.extra["solidify"] = {{"method", r.report.method},
-                                {"changed", r.report.changed},
-                                {"summary", describe(r.report)},
-                                {"welded_vertices", r.report.welded_vertices},
-                                {"dropped_faces", r.report.dropped_faces},
-                                {"filled_holes", r.report.filled_holes},
-                                {"turned_parts", r.report.turned_parts},
-                                {"intersecting_pairs", r.report.intersecting_pairs}};
+         c.extra["solidify"] = to_json(r.report);
          return std::move(r.mesh);
        }});
   r.add({"write",

@@ -25,6 +25,7 @@
 
 #include "morphex/mesh.h"
 #include "morphex/repair.h"
+#include "morphex/solidify.h"
 #include "morphex/structuring_element.h"
 
 namespace morphex::pipeline {
@@ -186,9 +187,13 @@ struct RunReport {
 RunReport run(const nlohmann::json& document, const std::string& name, const RunOptions& options,
               const StageRegistry& registry = StageRegistry::builtin());
 
-// What a stage sees while it runs.
 // The repair report as JSON (the `repair` object of reports, --stats and index entries).
 nlohmann::json to_json(const RepairReport& report);
+// The solidify report as JSON (the `solidify` object of reports, --stats, describe and index
+// entries): method, changed, summary (describe()) and the counts.
+nlohmann::json to_json(const SolidifyReport& report);
+
+// What a stage sees while it runs.
 
 struct StageContext {
   const Stage& stage;
