@@ -217,7 +217,7 @@ Command add_ls_command(CLI::App& app) {
   cmd->add_flag("--json", args->json, "One JSON object per mesh, one per line");
   cmd->add_flag("--descriptors", args->descriptors, "With --json: the descriptor vectors too");
   return {cmd, [args]() -> int {
-            IndexDb db(args->db);
+            IndexDb db(args->db, IndexAccess::ReadOnly);
             std::vector<IndexedMesh> entries =
                 db.load(false, args->json && args->descriptors ? std::vector<std::string>{"*"}
                                                                : std::vector<std::string>{});
