@@ -23,7 +23,7 @@ namespace {
 
 // The document with a repair stage after every read: the repair takes the read's tag (the read
 // gets "<tag>.as-read"), so that every stage that took the read's mesh takes the repaired one.
-nlohmann::json with_repairs(const nlohmann::json& document) {
+nlohmann::json with_repairs(const nlohmann::json& document, std::optional<double> budget) {
   nlohmann::json out = document;
   nlohmann::json& stages = out.is_array() ? out : out["pipeline"];
   nlohmann::json rewritten = nlohmann::json::array();
@@ -33,6 +33,7 @@ nlohmann::json with_repairs(const nlohmann::json& document) {
       continue;
     }
     nlohmann::json read = stage, repair = {{"type", "repair"}};
+    if (budget) repair["budget"] = *budget;
     if (stage.contains("tag") && stage["tag"].is_string()) {
       const std::string tag = stage["tag"].get<std::string>();
       read["tag"] = tag + ".as-read";
@@ -128,12 +129,13 @@ std::string IndexPipeline::settings() const {
 }
 
 IndexPipeline make_index_pipeline(const nlohmann::json* document, const std::string& name,
-                                  mp::Variables variables, bool repair) {
+                                  mp::Variables variables, bool repair,
+                                  std::optional<double> repair_budget) {
   IndexPipeline out;
   out.name = document ? name : "default";
   out.document = document ? *document : mp::parse_document(kDefaultIndexPipeline, "default");
   require_descriptor_pipeline(out.document);
-  if (repair) out.document = with_repairs(out.document);
+  if (repair) out.document = with_repairs(out.document, repair_budget);
   mp::check_assignments_used(out.document, variables);
   out.variables = std::move(variables);
   const mp::Pipeline p = mp::validate(out.document, out.name, out.variables, {"input", "stem"});

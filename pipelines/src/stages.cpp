@@ -183,6 +183,15 @@ std::vector<OptionInfo> describe_options() {
           integer("seed", double(d.seed), 0, 4294967295.0, "D2 random seed")};
 }
 
+OptionInfo repair_budget() {
+  OptionInfo budget = optional("budget", OptionType::Number, RepairOptions().budget,
+                               "work budget of the exact arrangement per input face (the sum "
+                               "over faces of the squared number of faces each meets; 0: no "
+                               "bound), so that a hostile soup fails instead of exhausting memory");
+  budget.min = 0;
+  return budget;
+}
+
 // Reading, repairing and writing meshes.
 void add_io_stages(StageRegistry& r) {
   r.add({"read",
@@ -204,9 +213,11 @@ void add_io_stages(StageRegistry& r) {
          "exact repair: the valid solid a closed mesh bounds where it crosses or touches itself, "
          "repeats vertices or faces, or has faces without area (a valid solid passes unchanged)",
          1,
-         {},
+         {repair_budget()},
          [](StageContext& c) {
-           RepairResult r = repair_mesh(*c.inputs[0]);
+           RepairOptions options;
+           options.budget = c.option("budget").get<double>();
+           RepairResult r = repair_mesh(*c.inputs[0], options);
            c.extra["repair"] = to_json(r.report);
            return std::move(r.mesh);
          }});

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -39,9 +40,11 @@ struct IndexPipeline {
 
 // `document` (nullptr: kDefaultIndexPipeline) validated with ${input} and ${stem} deferred; it
 // must have a describe stage. With `repair`, a repair stage follows every read and takes the
-// read's tag, so that what read the mesh reads the repaired one. Throws pipeline::PipelineError.
+// read's tag, so that what read the mesh reads the repaired one; `repair_budget` is their work
+// budget (RepairOptions::budget; default: the repair's). Throws pipeline::PipelineError.
 IndexPipeline make_index_pipeline(const nlohmann::json* document, const std::string& name,
-                                  pipeline::Variables variables, bool repair);
+                                  pipeline::Variables variables, bool repair,
+                                  std::optional<double> repair_budget = std::nullopt);
 
 // Throws pipeline::PipelineError unless every stage of `document` only computes from the mesh
 // being described: its stages are of the descriptor types (no `write`), every read reads
