@@ -130,3 +130,18 @@ def test_index_add_names_a_list_of_meshes(tmp_path):
             index.add(meshes[:1], name="a", names=["a"])
         with pytest.raises(ValueError, match="needs a name"):
             index.add(meshes[:2])
+
+
+def test_index_refuses_files_that_are_not_indexes(tmp_path):
+    import sqlite3
+    foreign = tmp_path / "foreign.sqlite"
+    with sqlite3.connect(foreign) as db:
+        db.execute("CREATE TABLE meshes(id INTEGER PRIMARY KEY, name TEXT)")
+    before = foreign.read_bytes()
+    with pytest.raises(ValueError, match="not a morphex index"):
+        morphex.Index(foreign)
+    assert foreign.read_bytes() == before
+    text = tmp_path / "text.sqlite"
+    text.write_text("not a database, just text long enough to be read as a header " * 4)
+    with pytest.raises(ValueError, match="not a morphex index"):
+        morphex.Index(text)
