@@ -90,20 +90,22 @@ def test_close_while_add_runs(tmp_path):
     out = run_script(f"""
         import time
         index = morphex.Index({str(tmp_path / "closed.sqlite")!r})
+        runs = []  # 20 adds of 40 meshes each, written first: close() comes during one
+        for run in range(20):
+            runs.append([])
+            for k in range(run * 40 + 1, run * 40 + 41):
+                runs[-1].append({str(tmp_path)!r} + f"/box-{{k}}.off")
+                morphex.box((0, 0, 0), (1, 2, k)).write(runs[-1][-1], exact=True)
         done, errors = [], []
         def add():
             try:
-                for run in range(100):  # 40 meshes an add: close() comes during one
-                    paths = []
-                    for k in range(run * 40 + 1, run * 40 + 41):
-                        paths.append({str(tmp_path)!r} + f"/box-{{k}}.off")
-                        morphex.box((0, 0, 0), (1, 2, k)).write(paths[-1], exact=True)
+                for paths in runs:
                     done.append(index.add(paths, pipeline=fast_pipeline(), threads=1))
             except ValueError as e:
                 errors.append(str(e))
         worker = threading.Thread(target=add)
         worker.start()
-        time.sleep(0.5)
+        time.sleep(0.2)
         index.close()
         worker.join()
         assert done and all(s["indexed"] == 40 for s in done), done
