@@ -70,6 +70,18 @@ expect 0 "cube +ok" "$morphex" ls --db copy.sqlite
 expect 0 "third" "$morphex" query --db copy.sqlite cube -k 1
 unchanged copy.sqlite "$hash"
 
+# 9: on read-only storage (a folder another user cannot write, when run as root) an index in WAL
+# mode can still be listed, queried and evaluated.
+if [ "$(id -u)" -eq 0 ] && command -v setpriv > /dev/null; then
+  mkdir -p readonly && cp good.sqlite readonly/ && chmod 755 readonly && chmod 644 readonly/good.sqlite
+  chmod o+x "$dir"
+  as_nobody() { (cd readonly && setpriv --reuid=65534 --regid=65534 --clear-groups "$@"); }
+  expect 0 "cube +ok" as_nobody "$morphex" ls --db good.sqlite
+  expect 0 "third" as_nobody "$morphex" query --db good.sqlite cube -k 1
+  expect 2 "none of its 2 models is in the index" \
+    as_nobody "$morphex" evaluate --db good.sqlite --labels "$data/unindexed-labels.cla"
+fi
+
 # 9: a damaged index (garbage pages, a damaged header, a truncated file): exit 2, unchanged.
 cp good.sqlite damaged.sqlite && sql damaged.sqlite "PRAGMA journal_mode = DELETE" > /dev/null
 size=$(stat -c %s damaged.sqlite)
