@@ -36,6 +36,7 @@ int launched_processes() {
 struct IndexArgs {
   std::vector<std::string> inputs, sets;
   std::string db, pipeline;
+  std::optional<double> repair_budget;
   bool repair = true, retry_failed = false, quiet = false, json = false;
 };
 
@@ -44,7 +45,7 @@ std::optional<IndexPipeline> index_pipeline(const IndexArgs& args) {
     std::optional<nlohmann::json> document;
     if (!args.pipeline.empty()) document = mp::load_document(args.pipeline);
     return make_index_pipeline(document ? &*document : nullptr, args.pipeline,
-                               mp::parse_assignments(args.sets), args.repair);
+                               mp::parse_assignments(args.sets), args.repair, args.repair_budget);
   } catch (const mp::PipelineError& e) {
     for (const auto& p : e.problems())
       print_error(p.location.rfind("--set", 0) == 0 || args.pipeline.empty()
@@ -148,6 +149,10 @@ Command add_index_command(CLI::App& app) {
                 "Make meshes that are not valid solids into one before describing them (morphex "
                 "solidify: soups, open surfaces, flipped, repeated or degenerate faces, cracks, "
                 "overlapping parts); on by default, what was done recorded per mesh");
+  cmd->add_option("--repair-budget", args->repair_budget,
+                  "The repair's work budget per input face (morphex repair --budget; default "
+                  "1000, 0: no bound): a mesh that would exceed it is recorded as failed")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--db", args->db, "Index file (SQLite), created if missing")->required();
   cmd->add_option("--pipeline", args->pipeline,
                   "Descriptor pipeline run on each ${input}; its last describe stage is stored "
@@ -218,7 +223,7 @@ Command add_ls_command(CLI::App& app) {
   cmd->add_flag("--json", args->json, "One JSON object per mesh, one per line");
   cmd->add_flag("--descriptors", args->descriptors, "With --json: the descriptor vectors too");
   return {cmd, [args]() -> int {
-            IndexDb db(args->db);
+            IndexDb db(args->db, IndexAccess::ReadOnly);
             std::vector<IndexedMesh> entries =
                 db.load(false, args->json && args->descriptors ? std::vector<std::string>{"*"}
                                                                : std::vector<std::string>{});

@@ -37,10 +37,16 @@ Command add_repair_command(CLI::App& app) {
   struct Args {
     std::string in;
     OutputArgs output;
+    RepairOptions repair;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("IN", args->in, "Closed, consistently oriented mesh")->required();
   add_output_options(cmd, args->output);
+  cmd->add_option("--budget", args->repair.budget,
+                  "Work budget of the exact arrangement per input face (0: no bound): a mesh "
+                  "whose faces cross so often that it would exceed it is refused (exit 2)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   return {cmd, [args]() -> int {
             if (!output_usable(args->output, {args->in})) return kBadInput;
             Mesh mesh;
@@ -48,7 +54,7 @@ Command add_repair_command(CLI::App& app) {
             const Stopwatch start;
             RepairResult result;
             try {
-              result = repair_mesh(mesh);
+              result = repair_mesh(mesh, args->repair);
             } catch (const InputError& e) {
               print_error(shown_path(args->in) + ": cannot repair: " + e.what());
               return kBadInput;
@@ -84,6 +90,9 @@ Command add_solidify_command(CLI::App& app) {
                   "(default 1e-5; 0: equal positions only)")
       ->check(CLI::Range(0.0, 0.1));
   cmd->add_flag("--no-fill", args->no_fill, "Leave holes open (the mesh must then close itself)");
+  cmd->add_option("--budget", args->options.repair.budget,
+                  "Work budget of the exact repair per input face (as morphex repair --budget)")
+      ->check(CLI::NonNegativeNumber);
   add_output_options(cmd, args->output);
   cmd->footer("Example: morphex solidify scan.stl -o solid.off --stats -");
   return {cmd, [args]() -> int {

@@ -187,7 +187,7 @@ Command add_query_command(CLI::App& app) {
   cmd->add_flag("--json", args->json, "One JSON object on stdout");
   return {
       cmd, [args]() -> int {
-        IndexDb db(args->db);
+        IndexDb db(args->db, IndexAccess::ReadOnly);
         std::vector<Neighbour> ranked;
         try {
           ranked =
@@ -236,7 +236,7 @@ Command add_evaluate_command(CLI::App& app) {
               print_error(e.what());
               return kBadInput;
             }
-            IndexDb db(args->db);
+            IndexDb db(args->db, IndexAccess::ReadOnly);
             const IndexEvaluation e = evaluate_index(db, labels, parse_metric(args->metric));
             if (e.models == 0) {  // a table of zeros would hide a wrong --labels or --db
               print_error(args->labels + ": none of its " + std::to_string(labels.size()) +

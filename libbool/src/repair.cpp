@@ -6,6 +6,7 @@
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <iomanip>
 #include <sstream>
 
 #include "morphex/check.h"
@@ -118,6 +119,28 @@ void require_closed_chain(const Mesh& m) {
   }
 }
 
+// Refuses, before the arrangement is built, a mesh whose arrangement would exceed the budget
+// (RepairOptions::budget).
+void require_budget(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs,
+                    std::size_t faces, std::size_t input_faces, double budget) {
+  if (budget <= 0) return;
+  std::vector<std::uint32_t> degree(faces, 0);
+  for (const auto& [i, j] : pairs) ++degree[i], ++degree[j];
+  double work = 0;
+  for (const std::uint32_t d : degree) work += double(d) * double(d);
+  const double limit = std::max(budget * double(input_faces), kRepairMinimumWork);
+  if (work <= limit) return;
+  std::ostringstream message;
+  message << "repair would exceed its budget: " << pairs.size() << " pairs of its " << input_faces
+          << " faces cross or touch, an arrangement of work " << std::scientific
+          << std::setprecision(2) << work << " (the sum over faces of the squared number of "
+          << "faces each meets) above the budget " << limit << " (" << std::defaultfloat
+          << std::setprecision(6) << budget
+          << " per input face): raise it with `morphex repair --budget`, `morphex index "
+          << "--repair-budget` or the repair stage's \"budget\" (0: no bound)";
+  throw InputError("", message.str());
+}
+
 }  // namespace
 
 RepairResult repair_mesh(const Mesh& mesh, const RepairOptions& options) {
@@ -145,6 +168,7 @@ RepairResult repair_mesh(const Mesh& mesh, const RepairOptions& options) {
   for (const auto& [i, j] : report.self_intersecting_pairs)
     if (face_of[i] != face_of[j])
       pairs.emplace_back(std::min(face_of[i], face_of[j]), std::max(face_of[i], face_of[j]));
+  require_budget(pairs, chain.num_triangles(), mesh.num_triangles(), options.budget);
   switch (signed_volume_sign(chain)) {
     case CGAL::ZERO:
       throw InputError("", "mesh bounds no volume (its signed volume is zero)");

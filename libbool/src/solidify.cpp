@@ -191,10 +191,10 @@ SolidifyResult solidify(const Mesh& mesh, const SolidifyOptions& options) {
     r.method = "repair";
     Mesh chain = merged_positions(mesh);
     r.turned_parts = turn_inward_parts(chain);
-    repaired = repair_mesh(chain);
+    repaired = repair_mesh(chain, options.repair);
   } catch (const InputError&) {  // not a closed chain: the soup tools make one
     r.method = "soup";
-    repaired = repair_mesh(closed_chain(mesh, options, r));
+    repaired = repair_mesh(closed_chain(mesh, options, r), options.repair);
   }
   r.intersecting_pairs = repaired.report.intersecting_pairs;
   out.mesh = std::move(repaired.mesh);

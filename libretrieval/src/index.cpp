@@ -3,6 +3,7 @@
 #include "morphex/index.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <set>
 
@@ -23,7 +24,7 @@ namespace {
 // The document with a solidify stage after every read (morphex/solidify.h: a valid solid passes
 // unchanged, anything else becomes one): it takes the read's tag (the read gets
 // "<tag>.as-read"), so that every stage that took the read's mesh takes the solid.
-nlohmann::json with_repairs(const nlohmann::json& document) {
+nlohmann::json with_repairs(const nlohmann::json& document, std::optional<double> budget) {
   nlohmann::json out = document;
   nlohmann::json& stages = out.is_array() ? out : out["pipeline"];
   nlohmann::json rewritten = nlohmann::json::array();
@@ -33,6 +34,7 @@ nlohmann::json with_repairs(const nlohmann::json& document) {
       continue;
     }
     nlohmann::json read = stage, repair = {{"type", "solidify"}};
+    if (budget) repair["budget"] = *budget;
     if (stage.contains("tag") && stage["tag"].is_string()) {
       const std::string tag = stage["tag"].get<std::string>();
       read["tag"] = tag + ".as-read";
@@ -66,7 +68,61 @@ std::map<std::string, std::vector<double>> descriptors_of(const mp::InputReport&
   return out;
 }
 
+// The stage types an index pipeline may hold: they read the mesh being described and compute
+// from it. `write` is not one (a crafted index would write wherever its pipeline says, on every
+// query), nor is a read of another file or a structuring element read from a file.
+const std::set<std::string>& descriptor_stage_types() {
+  static const std::set<std::string> types = {
+      "read",  "repair",       "solidify",   "describe", "check",    "simplify", "translate",
+      "scale", "rotate",       "dilate",     "erode",    "open",     "close",
+      "union", "intersection", "difference", "minkowski"};
+  return types;
+}
+
+// Whether a structuring element option (text "shape:..." or {"shape": ...}) names a literal
+// shape other than "mesh" (which reads a file).
+bool computed_element(const nlohmann::json& se) {
+  std::string shape;
+  if (se.is_string())
+    shape = se.get<std::string>().substr(0, se.get<std::string>().find(':'));
+  else if (se.is_object() && se.contains("shape") && se["shape"].is_string())
+    shape = se["shape"].get<std::string>();
+  return !shape.empty() && shape != "mesh" && shape.find('$') == std::string::npos;
+}
+
 }  // namespace
+
+void require_descriptor_pipeline(const nlohmann::json& document) {
+  const nlohmann::json& stages =
+      document.is_object() && document.contains("pipeline") ? document["pipeline"] : document;
+  std::vector<mp::Problem> problems;
+  if (!stages.is_array())
+    problems.push_back({"pipeline", "expected an array of stages"});
+  else
+    for (std::size_t i = 0; i < stages.size(); ++i) {
+      const nlohmann::json& stage = stages[i];
+      const std::string at = "pipeline[" + std::to_string(i) + "]";
+      const std::string type =
+          stage.is_object() && stage.contains("type") && stage["type"].is_string()
+              ? stage["type"].get<std::string>()
+              : "";
+      if (!descriptor_stage_types().count(type)) {
+        problems.push_back({at,
+                            "an index pipeline may hold only stages that compute from the "
+                            "mesh being described (read of ${input}, repair, solidify, describe, "
+                            "check, operations); '" +
+                                type + "' is not one"});
+        continue;
+      }
+      if (type == "read" && stage.value("path", nlohmann::json()) != "${input}")
+        problems.push_back({at + ".path", "an index pipeline reads only \"${input}\""});
+      if (stage.contains("se") && !computed_element(stage["se"]))
+        problems.push_back({at + ".se",
+                            "an index pipeline takes only structuring elements of "
+                            "a literal shape other than mesh (no file is read)"});
+    }
+  if (!problems.empty()) throw mp::PipelineError(problems);
+}
 
 std::string IndexPipeline::settings() const {
   std::string sets;
@@ -75,11 +131,13 @@ std::string IndexPipeline::settings() const {
 }
 
 IndexPipeline make_index_pipeline(const nlohmann::json* document, const std::string& name,
-                                  mp::Variables variables, bool repair) {
+                                  mp::Variables variables, bool repair,
+                                  std::optional<double> repair_budget) {
   IndexPipeline out;
   out.name = document ? name : "default";
   out.document = document ? *document : mp::parse_document(kDefaultIndexPipeline, "default");
-  if (repair) out.document = with_repairs(out.document);
+  require_descriptor_pipeline(out.document);
+  if (repair) out.document = with_repairs(out.document, repair_budget);
   mp::check_assignments_used(out.document, variables);
   out.variables = std::move(variables);
   const mp::Pipeline p = mp::validate(out.document, out.name, out.variables, {"input", "stem"});
@@ -98,9 +156,31 @@ namespace detail {
 
 IndexRun::IndexRun(IndexDb& db, const IndexPipeline& pipeline, const IndexOptions& options,
                    const IndexCallback& on_mesh)
-    : db_(db), options_(options), on_mesh_(on_mesh), settings_(pipeline.settings()) {
-  db.set_meta("pipeline", pipeline.document.dump());
-  db.set_meta("sets", nlohmann::json(pipeline.variables).dump());
+    : db_(db),
+      options_(options),
+      on_mesh_(on_mesh),
+      settings_(pipeline.settings()),
+      document_(pipeline.document.dump()),
+      sets_(nlohmann::json(pipeline.variables).dump()) {}
+
+// Descriptors made under other settings do not compare (a mesh's distance to its own copy would
+// not be 0): a run may change the index's settings only when it describes again every mesh
+// described under others. Checked before anything is written.
+void IndexRun::require_one_setting(const std::vector<IndexItem>& items) {
+  std::set<std::string> described;
+  for (const IndexItem& item : items) described.insert(item.path);
+  std::size_t others = 0;
+  std::string first;
+  for (const IndexedMesh& m : db_.load(true, {}))
+    if (m.settings != settings_ && !described.count(m.path) && others++ == 0) first = m.path;
+  if (others > 0)
+    throw InputError(db_.path(),
+                     std::to_string(others) + " indexed meshes (first " + first +
+                         ") were described under other settings (another pipeline, --set or "
+                         "descriptor version); their descriptors would not compare with this "
+                         "run's: index them too, remove them (morphex rm), or use another index");
+  db_.set_meta("pipeline", document_);
+  db_.set_meta("sets", sets_);
 }
 
 void IndexRun::report(const IndexItem& item, const std::string& error) {
@@ -112,6 +192,7 @@ void IndexRun::report(const IndexItem& item, const std::string& error) {
 }
 
 std::vector<PendingMesh> IndexRun::plan(const std::vector<IndexItem>& items) {
+  require_one_setting(items);
   std::vector<PendingMesh> pending;
   std::set<std::string> seen;
   for (const IndexItem& item : items) {
@@ -176,6 +257,14 @@ IndexedMesh described_from_report(const mp::InputReport& r, const PendingMesh& p
   d.status = r.ok ? "ok" : "failed";
   d.error = r.error;
   if (r.ok) d.descriptors = descriptors_of(r);
+  for (const auto& [kind, v] : d.descriptors)
+    if (!std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); })) {
+      // Stored, it would make the index refuse every query (NaN ranks first).
+      d.status = "failed";
+      d.error = "the '" + kind + "' descriptor is not finite";
+      d.descriptors.clear();
+      break;
+    }
   d.repair = repair_of(r);
   d.faces = r.stages.empty() ? 0 : r.stages.front().faces;
   d.volume = r.stages.empty() ? "" : r.stages.front().volume;
@@ -243,6 +332,37 @@ std::vector<std::string> resolve_entry(const std::vector<IndexedMesh>& entries,
   return {};
 }
 
+// The one setting every mesh of `meshes` was described under ("" when there is none); meshes
+// described under several are refused rather than compared.
+std::string one_setting(const IndexDb& db, const std::vector<IndexedMesh>& meshes) {
+  std::set<std::string> settings;
+  for (const IndexedMesh& m : meshes) settings.insert(m.settings);
+  if (settings.size() > 1)
+    throw InputError(db.path(), "its meshes were described under " +
+                                    std::to_string(settings.size()) +
+                                    " different settings, whose descriptors do not compare: "
+                                    "index them again under one (morphex ls shows the settings)");
+  return settings.empty() ? "" : *settings.begin();
+}
+
+// The pipeline stored in the index, checked like any untrusted document: only descriptor
+// stages may run from it.
+IndexPipeline stored_pipeline(IndexDb& db) {
+  IndexPipeline p;
+  p.name = db.path();
+  try {
+    p.document = nlohmann::json::parse(db.meta("pipeline").value_or(kDefaultIndexPipeline));
+    if (const auto sets = db.meta("sets"))
+      p.variables = nlohmann::json::parse(*sets).get<mp::Variables>();
+    require_descriptor_pipeline(p.document);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(db.path(), std::string("the index's stored pipeline is damaged: ") + e.what());
+  } catch (const mp::PipelineError& e) {
+    throw InputError(db.path(), std::string("the index's stored pipeline is refused: ") + e.what());
+  }
+  return p;
+}
+
 }  // namespace
 
 std::size_t remove_indexed(IndexDb& db, const std::vector<std::string>& keys) {
@@ -262,6 +382,7 @@ std::size_t remove_indexed(IndexDb& db, const std::vector<std::string>& keys) {
 std::vector<Neighbour> query_index(IndexDb& db, const std::string& target, std::size_t k,
                                    const std::string& kind, Metric metric, bool by_name) {
   const std::vector<IndexedMesh> meshes = db.load(true, {kind});
+  const std::string setting = one_setting(db, meshes);
   std::vector<double> query;
   long long exclude = -1;
   const auto stored = std::find_if(meshes.begin(), meshes.end(), [&](const IndexedMesh& m) {
@@ -279,12 +400,16 @@ std::vector<Neighbour> query_index(IndexDb& db, const std::string& target, std::
       throw InputError(target, by_name ? "neither a mesh file nor the name of an indexed mesh"
                                        : "cannot open file: no such file");
     // Described as the index's meshes were: its pipeline and variables.
+    const IndexPipeline stored = stored_pipeline(db);
+    if (!setting.empty() && setting != stored.settings())
+      throw InputError(db.path(),
+                       "its meshes were described under other settings than its "
+                       "stored pipeline gives today (another descriptor version): "
+                       "index them again");
     mp::RunOptions options;
     options.inputs = {target};
-    if (const auto sets = db.meta("sets"))
-      options.variables = nlohmann::json::parse(*sets).get<mp::Variables>();
-    const std::string pipeline = db.meta("pipeline").value_or(kDefaultIndexPipeline);
-    const mp::RunReport r = mp::run(nlohmann::json::parse(pipeline), db.path(), options);
+    options.variables = stored.variables;
+    const mp::RunReport r = mp::run(stored.document, db.path(), options);
     if (!r.ok()) throw InputError(target, r.inputs.front().error);
     const auto descriptors = descriptors_of(r.inputs.front());
     if (!descriptors.count(kind))
@@ -319,6 +444,7 @@ IndexEvaluation evaluate_index(IndexDb& db, const std::map<std::string, std::str
     else
       ++out.unlabelled;
   out.models = meshes.size();
+  one_setting(db, meshes);
   std::vector<std::string> names, classes;
   for (const IndexedMesh& m : meshes) {
     names.push_back(m.name);

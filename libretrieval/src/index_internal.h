@@ -25,9 +25,11 @@ class IndexRun {
  public:
   IndexRun(IndexDb& db, const IndexPipeline& pipeline, const IndexOptions& options,
            const IndexCallback& on_mesh);
-  // Unreadable files are recorded as failed at once, meshes up to date (or failed before with
-  // this content and these settings, unless retry_failed) are skipped; the rest is returned,
-  // largest file first, and sets the progress total.
+  // Refuses (InputError, nothing written) items that would leave the index with meshes described
+  // under other settings, then stores the pipeline. Unreadable files are recorded as failed at
+  // once, meshes up to date (or failed before with this content and these settings, unless
+  // retry_failed) are skipped; the rest is returned, largest file first, and sets the progress
+  // total.
   std::vector<PendingMesh> plan(const std::vector<IndexItem>& items);
   // Stores one described mesh in its own transaction and reports it.
   void commit(const IndexedMesh& mesh);
@@ -38,10 +40,11 @@ class IndexRun {
 
  private:
   void report(const IndexItem& item, const std::string& error);
+  void require_one_setting(const std::vector<IndexItem>& items);
   IndexDb& db_;
   IndexOptions options_;
   const IndexCallback& on_mesh_;
-  std::string settings_;
+  std::string settings_, document_, sets_;
   IndexSummary summary_;
   IndexProgress progress_;
   std::mutex mutex_;  // commits and stage reports come from different worker threads

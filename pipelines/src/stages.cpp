@@ -195,6 +195,15 @@ std::vector<OptionInfo> describe_options() {
           integer("seed", double(d.seed), 0, 4294967295.0, "D2 random seed")};
 }
 
+OptionInfo repair_budget() {
+  OptionInfo budget = optional("budget", OptionType::Number, RepairOptions().budget,
+                               "work budget of the exact arrangement per input face (the sum "
+                               "over faces of the squared number of faces each meets; 0: no "
+                               "bound), so that a hostile soup fails instead of exhausting memory");
+  budget.min = 0;
+  return budget;
+}
+
 // Reading, repairing and writing meshes.
 void add_io_stages(StageRegistry& r) {
   r.add(
@@ -217,9 +226,11 @@ void add_io_stages(StageRegistry& r) {
          "exact repair: the valid solid a closed mesh bounds where it crosses or touches itself, "
          "repeats vertices or faces, or has faces without area (a valid solid passes unchanged)",
          1,
-         {},
+         {repair_budget()},
          [](StageContext& c) {
-           RepairResult r = repair_mesh(*c.inputs[0]);
+           RepairOptions options;
+           options.budget = c.option("budget").get<double>();
+           RepairResult r = repair_mesh(*c.inputs[0], options);
            c.extra["repair"] = to_json(r.report);
            return std::move(r.mesh);
          }});
@@ -232,11 +243,13 @@ void add_io_stages(StageRegistry& r) {
        {optional("weld_tolerance", OptionType::Number, SolidifyOptions().weld_tolerance,
                  "vertices closer than this fraction of the bounding-box diagonal are merged "
                  "(cracks)"),
-        optional("fill_holes", OptionType::Bool, true, "close open borders by triangulating them")},
+        optional("fill_holes", OptionType::Bool, true, "close open borders by triangulating them"),
+        repair_budget()},
        [](StageContext& c) {
          SolidifyOptions options;
          options.weld_tolerance = c.option("weld_tolerance").get<double>();
          options.fill_holes = c.option("fill_holes").get<bool>();
+         options.repair.budget = c.option("budget").get<double>();
          SolidifyResult r = solidify(*c.inputs[0], options);
          c.extra["solidify"] = to_json(r.report);
          return std::move(r.mesh);

@@ -14,7 +14,24 @@ py::handle imported(const char* module, const char* name) {
   return py::object(py::module_::import(module).attr(name)).release();
 }
 
+// What the conversions call, imported once when the module is imported (import_python_helpers).
+// Not function-local statics: an import may let another thread run Python, and a second thread
+// entering the same static's initialisation would wait for it while holding the GIL, which the
+// first needs to finish: two threads making their first calls at once deadlocked.
+struct Helpers {
+  py::handle rational, real, fraction, fspath, dumps, loads;
+};
+Helpers helpers;
+
 }  // namespace
+
+void import_python_helpers() {
+  helpers = {imported("numbers", "Rational"),   imported("numbers", "Real"),
+             imported("fractions", "Fraction"), imported("os", "fspath"),
+             imported("json", "dumps"),         imported("json", "loads")};
+  // pybind11 looks numpy's C API up in a function-local static on the first array: done here.
+  (void)py::array_t<double>(0);
+}
 
 std::string mesh_prefix(const PyMesh& m, const std::string& role) {
   if (!m.source.empty()) return m.source + ": ";
@@ -32,8 +49,7 @@ FT to_exact(const py::handle& value) {
   if (py::isinstance<py::bool_>(value))
     throw py::type_error("expected a number, got " + std::string(py::repr(value)));
   if (py::isinstance<py::str>(value)) return parse_exact_number(value.cast<std::string>());
-  static const py::handle rational = imported("numbers", "Rational");
-  static const py::handle real = imported("numbers", "Real");
+  const py::handle rational = helpers.rational, real = helpers.real;
   if (py::isinstance(value, rational)) {
     // int, Fraction, numpy integers: numerator and denominator through their decimal text, so
     // that integers of any size stay exact.
@@ -60,13 +76,11 @@ Point to_exact_point(const py::handle& xyz, const char* what) {
 }
 
 py::object to_fraction(const FT& value) {
-  static const py::handle fraction = imported("fractions", "Fraction");
-  return fraction(to_rational_string(value));
+  return helpers.fraction(to_rational_string(value));
 }
 
 std::string to_path(const py::handle& path) {
-  static const py::handle fspath = imported("os", "fspath");
-  const py::object p = fspath(path);
+  const py::object p = helpers.fspath(path);
   if (!py::isinstance<py::str>(p))
     throw py::type_error("expected a path as str or os.PathLike, got " + std::string(py::repr(p)));
   return p.cast<std::string>();
@@ -87,13 +101,11 @@ py::array_t<double> to_numpy(const std::vector<double>& values) {
 }
 
 nlohmann::json to_json(const py::handle& value) {
-  static const py::handle dumps = imported("json", "dumps");
-  return nlohmann::json::parse(dumps(value).cast<std::string>());
+  return nlohmann::json::parse(helpers.dumps(value).cast<std::string>());
 }
 
 py::object from_json(const nlohmann::json& value) {
-  static const py::handle loads = imported("json", "loads");
-  return loads(value.dump());
+  return helpers.loads(value.dump());
 }
 
 }  // namespace morphex::python

@@ -62,6 +62,10 @@ py::array_t<double> to_numpy(const std::vector<double>& values);
 nlohmann::json to_json(const py::handle& value);
 py::object from_json(const nlohmann::json& value);
 
+// Imports what the conversions below call (numbers, fractions, os, json); the module's
+// initialisation calls it first, under the import lock, so that no call imports later.
+void import_python_helpers();
+
 // Registration of each part of the module (one file each).
 void register_mesh(py::module_& m);
 void register_operations(py::module_& m);

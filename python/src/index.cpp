@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 
 #include "common.h"
 #include "morphex/descriptors.h"
@@ -58,37 +59,62 @@ std::string pipeline_problems(const std::string& name, const mp::PipelineError& 
   return message;
 }
 
+// Safe to share between Python threads: every use of the database holds `mutex_` (SQLite's
+// transactions are per connection, so two threads adding at once would nest them), and close()
+// waits for a running call. The GIL is released while waiting for the mutex, since the holder may
+// need the GIL to finish.
 class Index {
  public:
   explicit Index(const py::object& path) : path_(to_path(path)) {
     db_ = std::make_unique<IndexDb>(path_);
   }
+  ~Index() {
+    std::optional<py::gil_scoped_release> release;
+    if (PyGILState_Check()) release.emplace();
+    std::lock_guard<std::mutex> held(mutex_);
+    db_.reset();
+  }
 
-  py::dict add(const py::object& items, const std::optional<std::string>& name,
-               const py::object& pipeline, const std::map<std::string, std::string>& variables,
-               bool repair, bool retry_failed, const std::optional<int>& threads);
+  py::dict add(const py::object& items, const py::object& name,
+               const std::optional<std::vector<std::string>>& names, const py::object& pipeline,
+               const std::map<std::string, std::string>& variables, bool repair, bool retry_failed,
+               const std::optional<int>& threads);
   py::list query(const py::object& target, std::size_t k, const std::string& descriptor,
                  const std::string& metric, const std::optional<int>& threads);
   py::dict evaluate(const py::object& labels, const std::string& metric);
 
   std::vector<IndexedMesh> load(bool only_ok = true,
                                 const std::vector<std::string>& kinds = {"*"}) {
+    const auto held = lock();
+    py::gil_scoped_release release;
     return db().load(only_ok, kinds);
   }
-  std::size_t remove(const std::vector<std::string>& keys) { return remove_indexed(db(), keys); }
+  std::size_t remove(const std::vector<std::string>& keys) {
+    const auto held = lock();
+    py::gil_scoped_release release;
+    return remove_indexed(db(), keys);
+  }
   const std::string& path() const { return path_; }
-  void close() { db_.reset(); }
+  void close() {
+    const auto held = lock();
+    db_.reset();
+  }
 
  private:
+  std::unique_lock<std::mutex> lock() {
+    py::gil_scoped_release release;
+    return std::unique_lock<std::mutex>(mutex_);
+  }
   IndexDb& db() {
     if (!db_) throw std::invalid_argument(path_ + ": the index is closed");
     return *db_;
   }
   IndexPipeline pipeline(const py::object& pipeline, const mp::Variables& variables, bool repair);
-  std::vector<IndexItem> items(const py::object& items, const std::optional<std::string>& name,
+  std::vector<IndexItem> items(const py::object& items, std::vector<std::string> names, bool named,
                                const TemporaryDirectory& temp);
 
   std::string path_;
+  std::mutex mutex_;
   std::unique_ptr<IndexDb> db_;
 };
 
@@ -116,42 +142,59 @@ IndexPipeline Index::pipeline(const py::object& pipeline, const mp::Variables& v
 }
 
 // Paths and Mesh objects (one, or an iterable of them). A Mesh is written to `temp` and recorded
-// as "mesh:<name>": its name is `name`, else the stem of the file it was read from.
-std::vector<IndexItem> Index::items(const py::object& objects,
-                                    const std::optional<std::string>& name,
-                                    const TemporaryDirectory& temp) {
+// as "mesh:<name>": its name is the one given (`names`, one per item, when `named`), else the
+// stem of the file it was read from.
+std::vector<IndexItem> Index::items(const py::object& objects, std::vector<std::string> names,
+                                    bool named, const TemporaryDirectory& temp) {
   const bool single = py::isinstance<PyMesh>(objects) || py::isinstance<py::str>(objects) ||
                       py::hasattr(objects, "__fspath__");
-  if (name && !single) throw std::invalid_argument("name: only for a single mesh or path");
   std::vector<py::handle> list;
   if (single)
     list.push_back(objects);
   else
     for (const py::handle& h : objects) list.push_back(h);
+  if (named && names.size() != list.size())
+    throw std::invalid_argument("names: expected one name per mesh, got " +
+                                std::to_string(names.size()) + " names for " +
+                                std::to_string(list.size()) + " meshes");
   std::vector<IndexItem> out;
-  for (const py::handle& h : list) {
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const py::handle h = list[i];
     if (py::isinstance<PyMesh>(h)) {
       const PyMesh& m = h.cast<const PyMesh&>();
-      const std::string n = name ? *name : fs::path(m.source).stem().string();
-      if (n.empty()) throw std::invalid_argument("a Mesh not read from a file needs a name=");
+      const std::string n = named ? names[i] : fs::path(m.source).stem().string();
+      if (n.empty())
+        throw std::invalid_argument(
+            "a Mesh not read from a file needs a name (name= for one mesh, names= for several)");
       out.push_back({temp.write(m.mesh, n), "mesh:" + n, n});
     } else {
       IndexItem item = index_item(to_path(h));  // recorded by absolute path, as `morphex index`
-      if (name) item.name = *name;
+      if (named) item.name = names[i];
       out.push_back(item);
     }
   }
   return out;
 }
 
-py::dict Index::add(const py::object& objects, const std::optional<std::string>& name,
+py::dict Index::add(const py::object& objects, const py::object& name,
+                    const std::optional<std::vector<std::string>>& names,
                     const py::object& pipeline_arg,
                     const std::map<std::string, std::string>& variables, bool repair,
                     bool retry_failed, const std::optional<int>& threads) {
   const IndexPipeline pipeline = this->pipeline(pipeline_arg, variables, repair);
+  // name= is one name, or (as names=) a list of names for a list of meshes.
+  std::vector<std::string> given;
+  if (!name.is_none() && names) throw std::invalid_argument("give name= or names=, not both");
+  if (names)
+    given = *names;
+  else if (py::isinstance<py::str>(name))
+    given = {name.cast<std::string>()};
+  else if (!name.is_none())
+    given = name.cast<std::vector<std::string>>();
   TemporaryDirectory temp;
-  const std::vector<IndexItem> list = items(objects, name, temp);
+  const std::vector<IndexItem> list = items(objects, given, !name.is_none() || names, temp);
   IndexSummary summary;
+  const auto held = lock();
   {
     py::gil_scoped_release release;
     ThreadLimit limit(threads);
@@ -196,6 +239,7 @@ py::list Index::query(const py::object& target, std::size_t k, const std::string
     file = label = to_path(target);
   }
   std::vector<Neighbour> ranked;
+  const auto held = lock();
   {
     py::gil_scoped_release release;
     ThreadLimit limit(threads);
@@ -221,6 +265,7 @@ py::dict Index::evaluate(const py::object& labels_arg, const std::string& metric
           : read_cla(to_path(labels_arg));  // InputError names the file and line
   py::dict out;
   IndexEvaluation evaluation;
+  const auto held = lock();
   {
     py::gil_scoped_release release;
     evaluation = evaluate_index(db(), labels, metric);
@@ -253,17 +298,19 @@ py::dict stored_descriptors(Index& index, const std::string& name) {
 void register_index(py::module_& m) {
   py::class_<Index>(m, "Index", R"doc(
 The SQLite retrieval index of `morphex index` (same file format: the command line can query an
-index built here and back). Index(path) opens it, creating it if missing. A context manager.)doc")
+index built here and back). Index(path) opens it, creating it if missing; a file that is not a
+morphex index, or is damaged, raises ValueError. A context manager. Safe to share between
+threads: calls are serialised, and close() waits for a running call.)doc")
       .def(py::init<const py::object&>(), py::arg("path"))
       .def("add", &Index::add, py::arg("meshes"), py::kw_only(), py::arg("name") = py::none(),
-           py::arg("pipeline") = py::none(),
+           py::arg("names") = py::none(), py::arg("pipeline") = py::none(),
            py::arg("variables") = std::map<std::string, std::string>{}, py::arg("repair") = true,
            py::arg("retry_failed") = false, py::arg("threads") = py::none(),
            R"doc(Describes meshes into the index, as `morphex index`.
 
 meshes: a path, a Mesh, or an iterable of them. A path is recorded by its absolute path, with its
-file stem as name;
-a Mesh as "mesh:<name>" (name=, else the stem of the file it was read from).
+file stem as name; a Mesh as "mesh:<name>" (its name given, else the stem of the file it was
+read from). name: the name of one mesh; names (or name= as a list): one name per mesh.
 pipeline: the descriptor pipeline (dict, JSON text or file; None: read then describe with the
 default settings); variables: its ${name} values; repair: repair meshes that are not valid solids
 first (recorded per mesh). Meshes already indexed with the same content and settings are

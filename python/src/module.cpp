@@ -31,6 +31,7 @@ Meshes have exact rational coordinates: numpy arrays in and out are rounded only
 bad input (naming the file and the problem), morphex.InvalidSolid (a ValueError) for an operand
 that is not a valid closed solid. Long operations release the GIL and take threads=.)doc";
   m.attr("__version__") = MORPHEX_VERSION;
+  import_python_helpers();
   // Registered first so that it is tried last: InvalidSolid is a morphex::Error.
   py::register_exception_translator(&translate_errors);
   py::register_exception<morphex::InvalidSolid>(m, "InvalidSolid", PyExc_ValueError);

@@ -74,12 +74,14 @@ PyMesh morphology(MorphologyOp op, const PyMesh& a, const SeArg& se_arg,
   throw std::logic_error("unknown morphological operation");
 }
 
-py::object repair(const PyMesh& m, bool merge_coplanar, bool report) {
+py::object repair(const PyMesh& m, bool merge_coplanar, bool report, double budget) {
+  if (!(budget >= 0)) throw std::invalid_argument("budget: expected 0 or a positive number");
   RepairResult r;
   {
     py::gil_scoped_release release;
     RepairOptions options;
     options.merge_coplanar = merge_coplanar;
+    options.budget = budget;
     try {
       r = repair_mesh(m.mesh, options);
     } catch (const InputError& e) {
@@ -165,11 +167,13 @@ void register_operations(py::module_& m) {
        kThreadsDoc + "\nRaises InvalidSolid when an operand is not a valid solid.")
           .c_str());
   m.def("repair", &repair, py::arg("mesh"), py::kw_only(), py::arg("merge_coplanar") = true,
-        py::arg("report") = false,
+        py::arg("report") = false, py::arg("budget") = RepairOptions().budget,
         "Exact repair (as `morphex repair`): the valid solid a closed, consistently oriented mesh "
         "bounds where it crosses or touches itself, repeats vertices or faces, or has faces "
         "without area; a valid solid comes back unchanged. With report=True, returns (mesh, "
-        "dict) with what was changed. ValueError says what cannot be repaired.");
+        "dict) with what was changed. ValueError says what cannot be repaired, or that the "
+        "repair would exceed its work budget (budget per input face, as `morphex repair "
+        "--budget`; 0: no bound; docs/index-files.md).");
   m.def(
       "structuring_element",
       [](const std::string& text) {

@@ -81,3 +81,10 @@ if(MORPHEX_MPI)
   add_test(NAME cli.index_mpi COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/index_mpi.sh
     $<TARGET_FILE:morphex> ${MPIEXEC_EXECUTABLE} ${quick} ${PROJECT_BINARY_DIR}/cli-index-mpi)
 endif()
+# index files are untrusted input: stored pipelines, foreign, empty, damaged and mixed indexes,
+# non-finite descriptors (issue 44, items 7-10)
+add_test(NAME cli.index_untrusted COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/index_untrusted.sh
+  $<TARGET_FILE:morphex> ${quick} ${data} ${PROJECT_BINARY_DIR}/cli-index-untrusted)
+# the repair's work budget: a hostile soup is refused by repair, recorded as failed by index
+add_test(NAME cli.repair_budget COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/repair_budget.sh
+  $<TARGET_FILE:morphex> ${quick} ${data} ${PROJECT_BINARY_DIR}/cli-repair-budget)

@@ -22,3 +22,25 @@ def test_index_folder_example(tmp_path, source_dir):
     assert "nearest neighbours of block-2" in lines[1]
     assert lines[2].split()[:2] == ["1", "block-1"]
     assert len(lines) == 4 and db.exists()
+
+
+def test_readme_python_example(tmp_path, monkeypatch, source_dir):
+    # The README's Python example runs as written (in an empty folder), and every mesh it adds to
+    # the index is indexed.
+    readme = (source_dir / "README.md").read_text()
+    section = readme[readme.index("\n## Python\n"):]
+    code = section[section.index("```python\n") + len("```python\n"):]
+    code = code[:code.index("```")]
+    import morphex
+
+    summaries = []
+
+    class RecordingIndex(morphex.Index):
+        def add(self, *args, **kwargs):
+            summaries.append(super().add(*args, **kwargs))
+            return summaries[-1]
+
+    monkeypatch.setattr(morphex, "Index", RecordingIndex)
+    monkeypatch.chdir(tmp_path)
+    exec(compile(code, "README.md", "exec"), {"__name__": "__main__"})
+    assert summaries and all(s["failed"] == 0 and s["indexed"] > 0 for s in summaries), summaries

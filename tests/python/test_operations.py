@@ -98,3 +98,16 @@ def test_generators_are_exact():
     cube = morphex.cube("1/5", centre=(1, 1, 1))
     assert cube.volume() == Fraction(8, 125)
     assert np.allclose(cube.vertices.min(axis=0), 0.8)
+
+
+def test_repair_has_a_work_budget():
+    # 500 random tetrahedra crossing each other: refused at once instead of gigabytes of work
+    rng = np.random.default_rng(7)
+    corners = rng.random((500, 1, 3)) + (1 + 3 * rng.random((500, 1, 1))) * rng.random((500, 4, 3))
+    tetra = np.array([[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]])
+    faces = (tetra[None, :, :] + 4 * np.arange(500)[:, None, None]).reshape(-1, 3)
+    soup = morphex.Mesh(corners.reshape(-1, 3), faces)
+    with pytest.raises(ValueError, match="repair would exceed its budget"):
+        morphex.repair(soup)
+    with pytest.raises(ValueError, match="budget"):
+        morphex.repair(soup, budget=-1)

@@ -111,3 +111,37 @@ def test_run_pipeline(tmp_path, data_dir):
         morphex.run_pipeline(document, [data_dir / "unit_cube.off"], {"out": str(tmp_path)})
     message = str(info.value)
     assert "pipeline[1].se.r" in message and "did you mean 'dilate'" in message
+
+
+def test_index_add_names_a_list_of_meshes(tmp_path):
+    # in-memory meshes have no file to be named after: names= (or name= as a list) names them
+    meshes = [morphex.box((0, 0, 0), (1, 1, k)) for k in (1, 2, 3)]
+    with morphex.Index(tmp_path / "named.sqlite") as index:
+        summary = index.add(meshes[:2], names=["short", "tall"], pipeline=fast_pipeline())
+        assert summary["indexed"] == 2 and summary["failed"] == 0
+        assert index.add(meshes[2:], name=["tallest"], pipeline=fast_pipeline())["indexed"] == 1
+        assert index.add(meshes[0], name="again", pipeline=fast_pipeline())["indexed"] == 1
+        assert sorted(index.names()) == ["again", "short", "tall", "tallest"]
+        assert {e["path"] for e in index.entries()} == {
+            "mesh:short", "mesh:tall", "mesh:tallest", "mesh:again"}
+        with pytest.raises(ValueError, match="one name per mesh, got 1 names for 2 meshes"):
+            index.add(meshes[:2], names=["one"])
+        with pytest.raises(ValueError, match="not both"):
+            index.add(meshes[:1], name="a", names=["a"])
+        with pytest.raises(ValueError, match="needs a name"):
+            index.add(meshes[:2])
+
+
+def test_index_refuses_files_that_are_not_indexes(tmp_path):
+    import sqlite3
+    foreign = tmp_path / "foreign.sqlite"
+    with sqlite3.connect(foreign) as db:
+        db.execute("CREATE TABLE meshes(id INTEGER PRIMARY KEY, name TEXT)")
+    before = foreign.read_bytes()
+    with pytest.raises(ValueError, match="not a morphex index"):
+        morphex.Index(foreign)
+    assert foreign.read_bytes() == before
+    text = tmp_path / "text.sqlite"
+    text.write_text("not a database, just text long enough to be read as a header " * 4)
+    with pytest.raises(ValueError, match="not a morphex index"):
+        morphex.Index(text)

@@ -29,6 +29,7 @@
 #include <string>
 
 #include "morphex/mesh.h"
+#include "morphex/repair.h"
 
 namespace morphex {
 
@@ -37,6 +38,8 @@ struct SolidifyOptions {
   // is built (cracks left by exporters); 0 merges only equal positions.
   double weld_tolerance = 1e-5;
   bool fill_holes = true;
+  // The exact repair's options, its work budget among them (morphex/repair.h).
+  RepairOptions repair;
 };
 
 struct SolidifyReport {
@@ -55,7 +58,8 @@ struct SolidifyResult {
   SolidifyReport report;
 };
 
-// Throws InputError (without a file name: the caller prefixes it) when no volume is bounded.
+// Throws InputError (without a file name: the caller prefixes it) when no volume is bounded or the
+// repair would exceed its work budget.
 SolidifyResult solidify(const Mesh& mesh, const SolidifyOptions& options = {});
 
 // One line for people and index records: "unchanged", "repaired: 3 intersecting pairs", "soup:

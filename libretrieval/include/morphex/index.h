@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -40,10 +41,18 @@ struct IndexPipeline {
 // `document` (nullptr: kDefaultIndexPipeline) validated with ${input} and ${stem} deferred; it
 // must have a describe stage. With `repair`, a solidify stage (morphex/solidify.h) follows every
 // read and takes the read's tag, so that what read the mesh reads the solid: valid solids pass
-// unchanged, soups, open, flipped or self-intersecting meshes become one (recorded per mesh).
-// Throws pipeline::PipelineError.
+// unchanged, soups, open, flipped or self-intersecting meshes become one (recorded per mesh);
+// `repair_budget` is the work budget of its exact repair (RepairOptions::budget; default: the
+// repair's). Throws pipeline::PipelineError.
 IndexPipeline make_index_pipeline(const nlohmann::json* document, const std::string& name,
-                                  pipeline::Variables variables, bool repair);
+                                  pipeline::Variables variables, bool repair,
+                                  std::optional<double> repair_budget = std::nullopt);
+
+// Throws pipeline::PipelineError unless every stage of `document` only computes from the mesh
+// being described: its stages are of the descriptor types (no `write`), every read reads
+// "${input}" and no structuring element is read from a file. make_index_pipeline requires it,
+// and so does a query that runs the pipeline stored in an index (index files are untrusted).
+void require_descriptor_pipeline(const nlohmann::json& document);
 
 // One mesh to index: the file the pipeline reads, and the path and name the index records (the
 // same for files; bindings that index in-memory meshes record another path).
@@ -81,6 +90,8 @@ struct IndexSummary {
   int processes = 1;  // MPI ranks that described meshes
 };
 
+// Throws InputError, writing nothing, when the index holds meshes described under other settings
+// that `items` does not describe again (their descriptors would not compare with the others).
 // Describes every item not already up to date (same content hash and settings) and commits each
 // as soon as it finishes, so that an interrupted run keeps what it committed and a re-run resumes.
 // Items are described largest file first. The pipeline and its variables are stored in the index
@@ -103,7 +114,8 @@ struct Neighbour {
 // The k indexed meshes nearest to `target` by descriptor `kind` under `metric`, nearest first (ties
 // by name). `target` is a mesh file, described by the index's own pipeline, or (when no such file
 // exists and `by_name`) the name or recorded path of an indexed mesh, whose stored vector is used
-// and which is not ranked. Throws InputError.
+// and which is not ranked. Throws InputError, also when the index's meshes were described under
+// several settings, or its stored pipeline holds other than descriptor stages.
 std::vector<Neighbour> query_index(IndexDb& db, const std::string& target, std::size_t k,
                                    const std::string& kind, Metric metric, bool by_name = true);
 
@@ -113,7 +125,8 @@ struct IndexEvaluation {
   std::vector<std::pair<std::string, RetrievalScores>> scores;
 };
 
-// Every labelled indexed mesh queried against the others (labels: model name -> class).
+// Every labelled indexed mesh queried against the others (labels: model name -> class). Throws
+// InputError when the labelled meshes were described under several settings.
 IndexEvaluation evaluate_index(IndexDb& db, const std::map<std::string, std::string>& labels,
                                Metric metric);
 

@@ -5,11 +5,20 @@
 //          seconds, indexed_at, repair)  repair: what the repair changed (JSON), NULL when the
 //          mesh was a valid solid as read
 //   descriptors(mesh_id, kind, vector)       vector: IEEE doubles, little endian, as a BLOB
-//                                            (indexes written before 0.1 hold JSON arrays: read too)
+//                                            (indexes written before 0.1 hold JSON arrays: read
+//                                            too)
 // Every mesh is committed in its own transaction, so a run killed midway keeps what it committed.
+// The file carries the marker PRAGMA application_id = kIndexApplicationId and user_version = the
+// schema version (indexes made before the marker have 0 and are recognised by their tables).
+//
+// Index files are untrusted input: a file that is not a morphex index (another program's
+// database, an empty or non-SQLite file) or a damaged one (PRAGMA quick_check) is refused with
+// InputError before anything is written, and stored vectors that are not finite are refused when
+// read. Read-only access never writes (not even the journal mode) and works on read-only storage.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -31,9 +40,21 @@ struct IndexedMesh {
   std::string indexed_at;  // UTC, set by the database
 };
 
+// "MPXI": what PRAGMA application_id holds in a morphex index.
+inline constexpr int kIndexApplicationId = 0x4d505849;
+
+enum class IndexAccess {
+  ReadOnly,   // the file must be a morphex index; never written
+  ReadWrite,  // a missing or empty file becomes a new index; another file must be one
+};
+
 class IndexDb {
  public:
-  explicit IndexDb(const std::string& path);  // creates the schema; throws on failure
+  // Opens (ReadWrite: creates) the index. Throws InputError for a file that is not a morphex
+  // index or is damaged (PRAGMA quick_check: always before writing; when reading, for files up to
+  // kQuickCheckBytes, since it reads the whole file), std::runtime_error when SQLite fails.
+  explicit IndexDb(const std::string& path, IndexAccess access = IndexAccess::ReadWrite);
+  static constexpr std::uintmax_t kQuickCheckBytes = std::uintmax_t(256) << 20;
   ~IndexDb();
   IndexDb(const IndexDb&) = delete;
   IndexDb& operator=(const IndexDb&) = delete;
@@ -46,16 +67,21 @@ class IndexDb {
   void store(const IndexedMesh& mesh);
   // Every row (only the successful ones by default), ordered by name then path, with the
   // descriptors of `kinds` ({"*"}: every kind; {}: none).
-  std::vector<IndexedMesh> load(bool only_ok = true,
-                                const std::vector<std::string>& kinds = {"*"});
+  std::vector<IndexedMesh> load(bool only_ok = true, const std::vector<std::string>& kinds = {"*"});
   // Removes the row of this recorded path and its descriptors; false when there is none.
   bool remove(const std::string& path);
   const std::string& path() const { return path_; }
+  IndexAccess access() const { return access_; }
 
  private:
+  void open(int flags, const std::string& uri);
+  void create_or_upgrade();
+  void require_index();
+  void quick_check();
   void exec(const std::string& sql);
   sqlite3* db_ = nullptr;
   std::string path_;
+  IndexAccess access_;
 };
 
 // 64-bit FNV-1a of the file's bytes, as 16 hex digits.
