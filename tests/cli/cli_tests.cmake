@@ -107,3 +107,13 @@ morphex_cli_test(check_many_json 2
   check --json ${data}/unit_cube.off ${data}/does_not_exist.off ${data}/open_cube.off)
 morphex_cli_test(check_many_invalid 1 "unit_cube.off: valid closed solid.*open_cube.off: NOT a valid solid"
   check ${data}/unit_cube.off ${data}/open_cube.off)
+# Issue 44: outputs never replace inputs, every output path checked before work, deep JSON, small
+# memory limits, failed writes to standard output, decimal volumes, typos, folders and help.
+foreach(item side_outputs same_stem deep_json stdout_full volume folders typos inputs help)
+  add_test(NAME cli.outputs_${item} COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/outputs.sh
+    $<TARGET_FILE:morphex> ${data} ${PROJECT_BINARY_DIR}/cli-outputs ${item})
+endforeach()
+if(NOT MORPHEX_SANITIZE MATCHES "address")  # see cli.max_memory
+  add_test(NAME cli.outputs_memory COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/outputs.sh
+    $<TARGET_FILE:morphex> ${data} ${PROJECT_BINARY_DIR}/cli-outputs memory)
+endif()

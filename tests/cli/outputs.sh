@@ -1,0 +1,144 @@
+#!/usr/bin/env bash
+# Issue 44: nothing lost, nothing crashes. Every file a command writes is checked against every
+# file it reads and every output folder before any work; failed writes to standard output, deep
+# JSON, typos, volumes, help. One group of cases per item of the issue.
+# Usage: outputs.sh MORPHEX DATA_DIR DIR ITEM
+set -u
+morphex=$1 data=$2 dir=$3/$4 item=$4
+rm -rf "$dir" && mkdir -p "$dir/sa" "$dir/sb" "$dir/out"
+fail() { echo "FAIL: $*"; exit 1; }
+expect() {  # expect CODE REGEX COMMAND...: exit code and a match in stdout+stderr
+  local code=$1 regex=$2; shift 2
+  out=$("$@" 2>&1); local got=$?
+  [ "$got" -eq "$code" ] || fail "exit $got (expected $code): $*"$'\n'"$out"
+  echo "$out" | grep -Ezq -- "$regex" || fail "no /$regex/ in the output of: $*"$'\n'"$out"
+}
+intact() { cmp -s "$1" "$2" || fail "$1 was changed"; }
+cd "$dir" || exit 1
+cp "$data/unit_cube.off" a.off
+cp "$data/third_cube_exact.off" b.off
+cp "$data/unit_cube.off" se.off
+ln -s a.off link.off
+grow=$data/pipelines/grow.json
+case $item in
+side_outputs)  # item 1
+  expect 2 "morphex: a.off: --stats would overwrite the input a.off" \
+    "$morphex" bool union a.off b.off -o u.off --stats a.off
+  intact a.off "$data/unit_cube.off"
+  expect 2 "morphex: link.off: --stats would overwrite the input a.off" \
+    "$morphex" bool union a.off b.off -o u.off --stats link.off
+  expect 2 "morphex: s.off: --stats and --output name the same file" \
+    "$morphex" bool union a.off b.off -o s.off --stats s.off
+  [ -e s.off ] && fail "s.off written"
+  expect 2 "morphex: se.off: --output would overwrite the structuring element se.off" \
+    "$morphex" dilate a.off --se mesh:path=se.off -o se.off
+  intact se.off "$data/unit_cube.off"
+  expect 2 "pipeline\[2\].path: would overwrite the structuring element of pipeline\[1\].se" \
+    "$morphex" run "$data/pipelines/write_over_se.json" --set se=se.off --input a.off
+  intact se.off "$data/unit_cube.off"
+  expect 2 "morphex: a.off: --report would overwrite the input a.off" \
+    "$morphex" run "$grow" --set out_dir=out --input a.off --report a.off
+  intact a.off "$data/unit_cube.off"
+  # one input's write onto another input
+  cp a.off sa/b-grown.off
+  expect 2 "would overwrite the input sa/b-grown.off" \
+    "$morphex" run "$grow" --set out_dir=sa --input sa/b-grown.off b.off
+  intact sa/b-grown.off "$data/unit_cube.off"
+  ;;
+same_stem)  # item 2
+  cp a.off sa/1.off && cp b.off sb/1.off
+  expect 2 "morphex: .*grow.json: pipeline\[2\].path: sa/1.off and sb/1.off would both write out/1-grown.off" \
+    "$morphex" run "$grow" --set out_dir=out --input sa/1.off sb/1.off
+  [ -e out/1-grown.off ] && fail "ran anyway"
+  ;;
+deep_json)  # item 3
+  awk 'BEGIN{printf "{\"pipeline\":[{\"type\":\"read\",\"path\":"
+    for(i=0;i<20000;i++)printf "["
+    for(i=0;i<20000;i++)printf "]"
+    printf "}]}"}' > deep.json
+  expect 2 "morphex: deep.json:1:[0-9]+: JSON nested deeper than 64 levels" "$morphex" validate deep.json
+  expect 2 "morphex: deep.json:1:[0-9]+: JSON nested deeper than 64 levels" \
+    "$morphex" run deep.json --input a.off
+  expect 2 "deep.json:1:[0-9]+: JSON nested deeper than 64 levels" \
+    "$morphex" index a.off --db i.sqlite --pipeline deep.json
+  ;;
+memory)  # item 4
+  for mb in 40 30 20 10; do
+    expect 1 "morphex: out of memory" \
+      "$morphex" --max-memory-mb $mb dilate a.off --se ball:r=1/10,level=4 -o never.off
+  done
+  ;;
+stdout_full)  # item 11
+  for args in "check a.off" "check --json a.off" "describe --json a.off" \
+      "bool union a.off b.off -o u.off --stats -" \
+      "run $grow --set out_dir=out --input a.off --report -" "stages" "validate $grow --set out_dir=out"; do
+    out=$($morphex $args 2>&1 > /dev/full); got=$?
+    [ "$got" -eq 1 ] || fail "exit $got (expected 1): $args > /dev/full"$'\n'"$out"
+    echo "$out" | grep -q "morphex: standard output: cannot write: No space left on device" ||
+      fail "no message: $args > /dev/full"$'\n'"$out"
+  done
+  ;;
+volume)  # item 12
+  expect 0 "volume 0\.0370370370370370[0-9]*"$'\n' "$morphex" check "$data/third_cube_exact.off"
+  expect 0 "\"volume\":0\.037037037037037" "$morphex" check --json "$data/third_cube_exact.off"
+  expect 0 "volume 1/27 " "$morphex" check --exact "$data/third_cube_exact.off"
+  expect 0 "\"volume\":0\.037.*\"volume_exact\":\"1/27\"" \
+    "$morphex" check --json --exact "$data/third_cube_exact.off"
+  expect 0 "\"volume\":0\.962962962962963" \
+    "$morphex" bool difference a.off b.off -o d.off --stats -
+  expect 0 "\"volume\":0\.96296.*\"volume_exact\":\"26/27\"" \
+    "$morphex" bool difference a.off b.off -o d.off --exact --stats -
+  out=$("$morphex" check --json "$data/third_cube_exact.off")
+  case $out in *volume_exact*) fail "volume_exact without --exact: $out" ;; esac
+  ;;
+folders)  # item 13
+  expect 2 "morphex: nosuch/x.off: cannot write in the folder .*nosuch: it does not exist" \
+    "$morphex" dilate a.off --se ball:r=1/10,level=3 -o nosuch/x.off
+  expect 2 "morphex: nosuch/s.json: cannot write in the folder .*nosuch: it does not exist" \
+    "$morphex" bool union a.off b.off -o u.off --stats nosuch/s.json
+  [ -e u.off ] && fail "the mesh was written"
+  expect 2 "morphex: nosuch/r.json: cannot write in the folder" \
+    "$morphex" run "$grow" --set out_dir=out --input a.off --report nosuch/r.json
+  [ -e out/a-grown.off ] && fail "ran anyway"
+  ;;
+typos)  # item 14
+  expect 2 "^morphex: unknown command 'dilat' \(did you mean 'dilate'\?\)" "$morphex" dilat a.off
+  expect 2 "^morphex: dilate: unknown option '--ouput' \(did you mean '--output'\?\)" \
+    "$morphex" dilate a.off --se cube:r=1 --ouput x.off
+  expect 2 "^morphex: --se sphere:r=1: unknown structuring element shape 'sphere' \(did you mean 'ball'\?" \
+    "$morphex" dilate a.off --se sphere:r=1 -o x.off
+  expect 2 "^morphex: .*--output is required" "$morphex" dilate a.off --se cube:r=1
+  expect 2 "^morphex: -k: expected a positive whole number, got '0'"$'\n' \
+    "$morphex" query --db a.off -k 0 a.off
+  expect 2 "^morphex: unknown command 'stage' \(did you mean 'stages'\?\)" "$morphex" --threads 1 stage
+  ;;
+inputs)  # item 15
+  mkdir -p coll/sub && cp a.off coll/x.off && cp b.off coll/sub/y.off && echo text > coll/notes.txt
+  expect 0 "indexed 2 meshes \(0 already up to date, 0 failed\)" \
+    "$morphex" index coll --db i.sqlite --pipeline "$data/pipelines/quick-descriptors.json" -q
+  expect 2 "morphex: 'nomatch\*.off': no file matches this pattern" \
+    "$morphex" run "$grow" --set out_dir=out --input 'nomatch*.off'
+  expect 2 "morphex: 'nomatch\*.off': no file matches this pattern" \
+    "$morphex" index 'nomatch*.off' --db j.sqlite
+  cp "$data/open_cube.off" open.off
+  out=$("$morphex" index open.off --db k.sqlite --no-repair 2>&1)
+  case $out in *"pipeline[0]"*) fail "internal stage location shown: $out" ;; esac
+  out=$("$morphex" ls --db i.sqlite)
+  case $out in *"||"*) fail "internal settings text shown: $out" ;; esac
+  ;;
+help)  # item 16
+  expect 1 "crossing_cubes.off: .*self-intersect.*morphex repair" \
+    "$morphex" check "$data/crossing_cubes.off"
+  expect 2 "crossing_cubes.off: .*morphex repair" \
+    "$morphex" dilate "$data/crossing_cubes.off" --se cube:r=1 -o x.off
+  out=$("$morphex" check "$data/open_cube.off" 2>&1)
+  case $out in *"genus -1"*|*"volume "[0-9]*) fail "meaningless genus or volume: $out" ;; esac
+  expect 1 "\"genus\":null.*\"volume\":null" "$morphex" check --json "$data/open_cube.off"
+  for sub in check repair bool dilate erode open close minkowski run validate stages describe \
+      generate query evaluate index ls rm; do
+    expect 0 "Example" "$morphex" $sub --help
+  done
+  ;;
+*) fail "unknown item $item" ;;
+esac
+echo "ok $item"
