@@ -151,6 +151,29 @@ std::shared_ptr<const StructuringElement> check_option(const OptionInfo& option,
   return nullptr;
 }
 
+// The 1-based offset of the first bracket nested deeper than kMaxJsonDepth, outside strings;
+// 0 when there is none.
+std::size_t too_deep(const std::string& text) {
+  std::size_t depth = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth) return i + 1;
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return 0;
+}
+
 }  // namespace
 
 PipelineError::PipelineError(std::vector<Problem> problems)
@@ -179,6 +202,13 @@ nlohmann::json parse_document(const std::string& text, const std::string& name) 
     if (what.rfind("parse error at ", 0) == 0) what = what.substr(what.find(": ") + 2);
     return "malformed JSON: " + what;
   };
+  // The parser is iterative, but the document's destructor, dump() and the validation recurse:
+  // thousands of nested brackets (40 KB of them) would overflow the stack. A pipeline needs a
+  // handful of levels.
+  if (const std::size_t byte = too_deep(text); byte > 0)
+    throw PipelineError(std::vector<Problem>{
+        {location(byte), "JSON nested deeper than " + std::to_string(kMaxJsonDepth) +
+                             " levels (a pipeline needs a few)"}});
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {

@@ -126,7 +126,9 @@ struct Pipeline {
   std::vector<std::size_t> order;  // a topological order of the stage graph
 };
 
-// Parses JSON text; malformed JSON is reported with line and column.
+// Parses JSON text; malformed JSON is reported with line and column, and so is nesting deeper than
+// kMaxJsonDepth brackets (refused before parsing: deeper documents would overflow the stack).
+constexpr std::size_t kMaxJsonDepth = 64;
 nlohmann::json parse_document(const std::string& text, const std::string& name);
 // Reads and parses a pipeline file.
 nlohmann::json load_document(const std::string& path);
