@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -65,6 +66,50 @@ bool output_overwrites_input(const std::string& output, const std::vector<std::s
   return false;
 }
 
+std::string output_folder_problem(const std::string& path) {
+  if (path == kStandardStream) return "";
+  namespace fs = std::filesystem;
+  std::error_code error;
+  fs::path folder = fs::path(path).parent_path();
+  if (folder.empty()) folder = ".";
+  if (!fs::exists(folder, error))
+    return "cannot write in the folder " + folder.string() + ": it does not exist";
+  if (!fs::is_directory(folder, error))
+    return "cannot write in the folder " + folder.string() + ": it is not a folder";
+  if (access(folder.c_str(), W_OK | X_OK) != 0)
+    return "cannot write in the folder " + folder.string() + ": no permission";
+  return "";
+}
+
+bool writes_safe(const std::vector<NamedFile>& writes, const std::vector<NamedFile>& reads) {
+  bool safe = true;
+  for (std::size_t i = 0; i < writes.size(); ++i) {
+    const NamedFile& w = writes[i];
+    if (w.path.empty() || w.path == kStandardStream) continue;
+    const auto refuse = [&](const std::string& problem) {
+      print_error(w.path + ": " + problem);
+      safe = false;
+    };
+    if (const std::string problem = output_folder_problem(w.path); !problem.empty())
+      refuse(problem);
+    for (const NamedFile& r : reads)
+      if (!r.path.empty() && r.path != kStandardStream && same_file(r.path, w.path))
+        refuse("refusing to overwrite " + r.role + " " + r.path + " (" + w.role + ")");
+    for (std::size_t j = 0; j < i; ++j)
+      if (writes[j].path != kStandardStream && same_file(writes[j].path, w.path))
+        refuse(w.role + " and " + writes[j].role + " name the same file");
+  }
+  return safe;
+}
+
+std::string se_file(const std::string& spec) {
+  if (spec.rfind("mesh:", 0) != 0) return "";
+  const std::size_t start = spec.find("path=");
+  if (start == std::string::npos) return "";
+  const std::size_t end = spec.find(',', start);
+  return spec.substr(start + 5, end == std::string::npos ? std::string::npos : end - start - 5);
+}
+
 void add_output_options(CLI::App* cmd, OutputArgs& args) {
   // An unknown extension is bad usage, reported before any work (exit 2).
   cmd->add_option("-o,--output", args.out,
@@ -97,7 +142,8 @@ void add_output_options(CLI::App* cmd, OutputArgs& args) {
   cmd->add_option("--stats", args.stats, "Write statistics as JSON to FILE, or '-' for stdout");
 }
 
-bool output_usable(const OutputArgs& args, const std::vector<std::string>& inputs) {
+bool output_usable(const OutputArgs& args, const std::vector<std::string>& inputs,
+                   const std::vector<NamedFile>& other_reads) {
   const bool to_stdout = args.out == kStandardStream;
   if (to_stdout && args.stats == kStandardStream) {
     print_error(
@@ -115,7 +161,10 @@ bool output_usable(const OutputArgs& args, const std::vector<std::string>& input
     print_error(shown_path(args.out) + ": the exact format is OFF: use a .off output with --exact");
     return false;
   }
-  return !output_overwrites_input(args.out, inputs);
+  if (output_overwrites_input(args.out, inputs)) return false;
+  std::vector<NamedFile> reads = other_reads;
+  for (const std::string& input : inputs) reads.push_back({input, "the input"});
+  return writes_safe({{args.out, "--output"}, {args.stats, "--stats"}}, reads);
 }
 
 std::string& command_line() {

@@ -34,6 +34,21 @@ std::optional<Mesh> read_solid(const std::string& path);
 // Refuses an output path that names one of the inputs, and standard input ("-") named twice.
 bool output_overwrites_input(const std::string& output, const std::vector<std::string>& inputs);
 
+// A file a command reads or writes, with what it is to the user ("the input", "the structuring
+// element" for reads; the option, "--stats", for writes).
+struct NamedFile {
+  std::string path, role;
+};
+// Why the folder of `path` cannot take a new file ("" when it can): it must exist, be a folder and
+// be writable. Standard output ("-") always can.
+std::string output_folder_problem(const std::string& path);
+// Every file a command writes checked before any work against every file it reads (through links)
+// and against the other writes, and its folder checked: problems are printed ("morphex: OUT:
+// refusing to overwrite the input IN (--stats)") and false returned. Standard streams are skipped.
+bool writes_safe(const std::vector<NamedFile>& writes, const std::vector<NamedFile>& reads);
+// The file a structuring element's text reads (mesh:path=FILE), or "".
+std::string se_file(const std::string& spec);
+
 // A path as messages show it: "-" is "<stdin>".
 std::string shown_path(const std::string& path);
 
@@ -51,7 +66,8 @@ void add_output_options(CLI::App* cmd, OutputArgs& args);
 // What the output options cannot do together, reported (exit 2) before any work: --stats - with
 // -o -, --format with a file, --exact with a format other than OFF. Also refuses an output that is
 // one of the inputs (output_overwrites_input). False when refused.
-bool output_usable(const OutputArgs& args, const std::vector<std::string>& inputs);
+bool output_usable(const OutputArgs& args, const std::vector<std::string>& inputs,
+                   const std::vector<NamedFile>& other_reads = {});
 // Writes the mesh (atomically, in the format of the extension) and, if asked, the statistics that
 // `stats` builds (only then: they check the result, which costs as much as a check).
 void write_result(const Mesh& mesh, const OutputArgs& args,

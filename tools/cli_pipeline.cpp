@@ -107,6 +107,10 @@ Command add_run_command(CLI::App& app) {
               return kBadInput;
             }
             options.inputs = expand_inputs(args->inputs);
+            if (!report_path->empty()) {
+              if (!writes_safe({{*report_path, "--report"}}, {})) return kBadInput;
+              options.caller_writes.push_back({"--report", *report_path});
+            }
             // The stages of every input, on a terminal only (a log gets the summary line).
             ProgressDisplay display("ran", "stages", false);
             std::atomic<std::size_t> failed_inputs{0};

@@ -113,6 +113,72 @@ std::string stem_of(const std::string& path) {
   return std::filesystem::path(path).stem().string();
 }
 
+// A file as the checks compare it: through links, relative to the working folder.
+std::string file_key(const std::string& path) {
+  std::error_code error;
+  const auto canonical = std::filesystem::weakly_canonical(path, error);
+  return error ? path : canonical.string();
+}
+
+// What validating each input's pipeline alone cannot see: one input's write replacing a file
+// another input reads, two inputs writing one file (results lost), and the caller's own outputs
+// (--report) among the pipeline's files. Keyed by canonical path: linear in the inputs.
+void check_files_across(const std::vector<Pipeline>& pipelines,
+                        const std::vector<std::string>& inputs,
+                        const std::vector<std::pair<std::string, std::string>>& caller_writes,
+                        std::vector<Problem>& problems) {
+  struct Use {
+    std::size_t input;
+    FileUse use;
+  };
+  std::map<std::string, Use> reads, writes;
+  for (std::size_t i = 0; i < pipelines.size(); ++i)
+    for (const FileUse& r : files_read(pipelines[i])) reads.emplace(file_key(r.path), Use{i, r});
+  const bool several = pipelines.size() > 1;
+  std::set<std::string> seen;
+  const auto add = [&](const std::string& location, const std::string& message) {
+    if (seen.insert(location + message).second) problems.push_back({location, message});
+  };
+  // A write whose path every input shares does not depend on the input at all: said once.
+  std::set<std::string> fixed;
+  const bool one_stem = std::all_of(inputs.begin(), inputs.end(), [&](const std::string& input) {
+    return stem_of(input) == stem_of(inputs[0]);
+  });
+  if (several && !one_stem)
+    for (const FileUse& w : files_written(pipelines[0]))
+      if (std::all_of(pipelines.begin() + 1, pipelines.end(), [&](const Pipeline& p) {
+            const std::vector<FileUse> others = files_written(p);
+            return std::any_of(others.begin(), others.end(), [&](const FileUse& o) {
+              return o.location == w.location && o.path == w.path;
+            });
+          })) {
+        fixed.insert(w.location);
+        add(w.location,
+            "every input would write the same file " + w.path + " (put ${stem} in the path)");
+      }
+  for (std::size_t i = 0; i < pipelines.size(); ++i)
+    for (const FileUse& w : files_written(pipelines[i])) {
+      const std::string key = file_key(w.path);
+      if (const auto r = reads.find(key); r != reads.end() && r->second.input != i)
+        add(w.location, inputs[i] + " would overwrite " + r->second.use.what + " for " +
+                            inputs[r->second.input] + " (" + w.path + ")");
+      const auto [first, inserted] = writes.emplace(key, Use{i, w});
+      if (!inserted && first->second.input != i && !fixed.count(w.location))
+        add(w.location, inputs[first->second.input] + " and " + inputs[i] + " would both write " +
+                            w.path +
+                            " (their names are the same: put more of the path in the output, "
+                            "or rename one)");
+    }
+  for (const auto& [location, path] : caller_writes) {
+    const std::string key = file_key(path);
+    if (const auto r = reads.find(key); r != reads.end())
+      add(location, "refusing to overwrite " + r->second.use.what +
+                        (several ? " for " + inputs[r->second.input] : "") + " (" + path + ")");
+    else if (const auto w = writes.find(key); w != writes.end())
+      add(location, "refusing to overwrite " + w->second.use.what + " (" + path + ")");
+  }
+}
+
 }  // namespace
 
 bool RunReport::ok() const {
@@ -162,13 +228,7 @@ RunReport run(const nlohmann::json& document, const std::string& name, const Run
         if (seen.insert(p.text()).second) problems.push_back(p);
     }
   }
-  if (problems.empty() && pipelines.size() > 1)
-    for (const Stage& w : pipelines[0].stages)
-      if (w.type == "write" && w.options["path"] == pipelines[1].stages[w.index].options["path"])
-        problems.push_back({"pipeline[" + std::to_string(w.index) + "].path",
-                            "every input would write the same file " +
-                                w.options["path"].get<std::string>() +
-                                " (put ${stem} in the path)"});
+  if (problems.empty()) check_files_across(pipelines, inputs, options.caller_writes, problems);
   if (!problems.empty()) throw PipelineError(std::move(problems));
 
   const Stopwatch start;

@@ -437,6 +437,47 @@ void order_stages(Pipeline& pipeline, std::vector<Problem>& problems) {
   for (std::size_t s = 0; s < pipeline.stages.size(); ++s) visit(s);
 }
 
+// The file of a mesh structuring element option ({"shape": "mesh", "path": F} or "mesh:path=F").
+std::string element_file(const nlohmann::json& value) {
+  if (value.is_object() && value.value("shape", "") == "mesh" && value.contains("path") &&
+      value["path"].is_string())
+    return value["path"].get<std::string>();
+  if (!value.is_string()) return "";
+  const std::string text = value.get<std::string>();
+  const std::size_t start = text.find("path=");
+  if (text.rfind("mesh:", 0) != 0 || start == std::string::npos) return "";
+  const std::size_t end = text.find(',', start);
+  return text.substr(start + 5, end == std::string::npos ? std::string::npos : end - start - 5);
+}
+
+}  // namespace
+
+std::vector<FileUse> files_read(const Pipeline& pipeline) {
+  std::vector<FileUse> out;
+  for (const Stage& s : pipeline.stages) {
+    if (s.type == "read" && s.options.contains("path") && s.options["path"].is_string())
+      out.push_back({s.options["path"].get<std::string>(), at(at("pipeline", s.index), "path"),
+                     "the input read by " + at("pipeline", s.index)});
+    for (const auto& [name, element] : s.elements)
+      if (const std::string file = element_file(s.options.value(name, nlohmann::json()));
+          !file.empty())
+        out.push_back({file, at(at("pipeline", s.index), name),
+                       "the structuring element of " + at(at("pipeline", s.index), name)});
+  }
+  return out;
+}
+
+std::vector<FileUse> files_written(const Pipeline& pipeline) {
+  std::vector<FileUse> out;
+  for (const Stage& s : pipeline.stages)
+    if (s.type == "write" && s.options.contains("path") && s.options["path"].is_string())
+      out.push_back({s.options["path"].get<std::string>(), at(at("pipeline", s.index), "path"),
+                     "the output of " + at("pipeline", s.index)});
+  return out;
+}
+
+namespace {
+
 // A read feeding only repair stages passes its mesh on unchecked.
 void mark_unchecked_reads(Pipeline& pipeline) {
   for (Stage& r : pipeline.stages) {
@@ -451,18 +492,13 @@ void mark_unchecked_reads(Pipeline& pipeline) {
   }
 }
 
-// No write may replace a file that a read stage takes as input.
+// No write may replace a file that a read stage or a mesh structuring element takes as input.
 void check_overwrites(const Pipeline& pipeline, std::vector<Problem>& problems) {
-  for (const Stage& w : pipeline.stages) {
-    if (w.type != "write" || !w.options.contains("path")) continue;
-    const std::string out = w.options["path"].get<std::string>();
-    for (const Stage& r : pipeline.stages)
-      if (r.type == "read" && r.options.contains("path") &&
-          (r.options["path"] == out || same_file(r.options["path"].get<std::string>(), out)))
-        problems.push_back(
-            {at(at("pipeline", w.index), "path"),
-             "would overwrite the input read by " + at("pipeline", r.index) + " (" + out + ")"});
-  }
+  const std::vector<FileUse> reads = files_read(pipeline);
+  for (const FileUse& w : files_written(pipeline))
+    for (const FileUse& r : reads)
+      if (r.path == w.path || same_file(r.path, w.path))
+        problems.push_back({w.location, "would overwrite " + r.what + " (" + w.path + ")"});
 }
 
 }  // namespace

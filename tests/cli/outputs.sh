@@ -22,26 +22,26 @@ ln -s a.off link.off
 grow=$data/pipelines/grow.json
 case $item in
 side_outputs)  # item 1
-  expect 2 "morphex: a.off: --stats would overwrite the input a.off" \
+  expect 2 "morphex: a.off: refusing to overwrite the input a.off \(--stats\)" \
     "$morphex" bool union a.off b.off -o u.off --stats a.off
   intact a.off "$data/unit_cube.off"
-  expect 2 "morphex: link.off: --stats would overwrite the input a.off" \
+  expect 2 "morphex: link.off: refusing to overwrite the input a.off \(--stats\)" \
     "$morphex" bool union a.off b.off -o u.off --stats link.off
   expect 2 "morphex: s.off: --stats and --output name the same file" \
     "$morphex" bool union a.off b.off -o s.off --stats s.off
   [ -e s.off ] && fail "s.off written"
-  expect 2 "morphex: se.off: --output would overwrite the structuring element se.off" \
+  expect 2 "morphex: se.off: refusing to overwrite the structuring element se.off \(--output\)" \
     "$morphex" dilate a.off --se mesh:path=se.off -o se.off
   intact se.off "$data/unit_cube.off"
   expect 2 "pipeline\[2\].path: would overwrite the structuring element of pipeline\[1\].se" \
     "$morphex" run "$data/pipelines/write_over_se.json" --set se=se.off --input a.off
   intact se.off "$data/unit_cube.off"
-  expect 2 "morphex: a.off: --report would overwrite the input a.off" \
+  expect 2 "morphex: .*grow.json: --report: refusing to overwrite the input read by pipeline\[0\] \(a.off\)" \
     "$morphex" run "$grow" --set out_dir=out --input a.off --report a.off
   intact a.off "$data/unit_cube.off"
   # one input's write onto another input
   cp a.off sa/b-grown.off
-  expect 2 "would overwrite the input sa/b-grown.off" \
+  expect 2 "pipeline\[2\].path: b.off would overwrite the input read by pipeline\[0\] for sa/b-grown.off" \
     "$morphex" run "$grow" --set out_dir=sa --input sa/b-grown.off b.off
   intact sa/b-grown.off "$data/unit_cube.off"
   ;;

@@ -140,6 +140,14 @@ Pipeline validate(const nlohmann::json& document, const std::string& name,
                   const Variables& variables, const std::vector<std::string>& deferred = {},
                   const StageRegistry& registry = StageRegistry::builtin());
 
+// The files a validated pipeline reads (read stages, mesh structuring elements) and writes, with
+// their JSON location and what they are to the user ("the input read by pipeline[0]").
+struct FileUse {
+  std::string path, location, what;
+};
+std::vector<FileUse> files_read(const Pipeline& pipeline);
+std::vector<FileUse> files_written(const Pipeline& pipeline);
+
 // ---- execution ---------------------------------------------------------------------------------
 
 struct StageReport {
@@ -173,6 +181,9 @@ struct RunOptions {
   // Called once per input as soon as it finishes (from a worker thread, one call at a time), so a
   // caller can commit results before the whole run ends.
   std::function<void(const InputReport&)> on_input_done;
+  // Files the caller will write besides the pipeline's own (the CLI's --report), as {location,
+  // path}: refused before anything runs when one is a file the pipeline reads or writes.
+  std::vector<std::pair<std::string, std::string>> caller_writes;
 };
 
 struct RunReport {
@@ -182,7 +193,9 @@ struct RunReport {
   nlohmann::json to_json() const;
 };
 
-// Validates the pipeline for every input first (throws PipelineError before anything runs), then
+// Validates the pipeline for every input first (throws PipelineError before anything runs: also
+// when a write of one input would replace a file another input reads, two inputs would write one
+// file, or a caller_writes file is read or written by the pipeline), then
 // runs the inputs in parallel, independent branches in parallel; a failing input is reported in
 // its InputReport and the others go on.
 RunReport run(const nlohmann::json& document, const std::string& name, const RunOptions& options,
