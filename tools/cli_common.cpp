@@ -167,6 +167,18 @@ bool output_usable(const OutputArgs& args, const std::vector<std::string>& input
   return writes_safe({{args.out, "--output"}, {args.stats, "--stats"}}, reads);
 }
 
+CLI::Validator positive_integer() {
+  return CLI::Validator(
+      [](std::string& value) -> std::string {
+        return !value.empty() && value.size() < 19 &&
+                       value.find_first_not_of("0123456789") == std::string::npos &&
+                       value.find_first_not_of('0') != std::string::npos
+                   ? ""
+                   : "expected a positive whole number, got '" + value + "'";
+      },
+      "POSITIVE");
+}
+
 std::string& command_line() {
   static std::string line;
   return line;

@@ -73,6 +73,10 @@ bool output_usable(const OutputArgs& args, const std::vector<std::string>& input
 void write_result(const Mesh& mesh, const OutputArgs& args,
                   const std::function<nlohmann::json()>& stats);
 
+// A whole number > 0, refused as "expected a positive whole number, got '0'" (CLI11's
+// PositiveNumber would print the range up to the largest double, 300 digits).
+CLI::Validator positive_integer();
+
 // Each subcommand registers itself on the app and returns the function that runs it.
 using Runner = std::function<int()>;
 struct Command {

@@ -174,7 +174,7 @@ Command add_query_command(CLI::App& app) {
   cmd->add_option("--db", args->db, "Index file")->required()->check(CLI::ExistingFile);
   cmd->add_option("MESH", args->mesh, "A mesh file, or the name (stem) or path of an indexed mesh")
       ->required();
-  cmd->add_option("-k", args->k, "Number of neighbours")->check(CLI::PositiveNumber);
+  cmd->add_option("-k", args->k, "Number of neighbours")->check(positive_integer());
   cmd->add_option("--descriptor", args->descriptor, "Descriptor kind")
       ->capture_default_str()
       ->check(CLI::IsMember(descriptor_kinds()));
