@@ -23,8 +23,11 @@ nlohmann::json result_stats(const Mesh& mesh, double seconds) {
   nlohmann::json j;
   j["faces"] = mesh.num_triangles();
   j["vertices"] = mesh.num_vertices();
-  j["volume"] = to_rational_string(report.volume);
-  j["volume_approx"] = CGAL::to_double(report.volume);
+  // A decimal by default: the exact rational can run to thousands of digits (volume_exact, kept
+  // by write_result under --exact only).
+  j["volume"] = CGAL::to_double(report.volume);
+  j["volume_approx"] = CGAL::to_double(report.volume);  // the name scripts used before "volume"
+  j["volume_exact"] = to_rational_string(report.volume);
   j["closed"] = report.closed();
   j["self_intersecting"] = report.self_intersections > 0;
   j["valid"] = report.valid_solid();
@@ -138,7 +141,9 @@ void add_output_options(CLI::App* cmd, OutputArgs& args) {
             }
           },
           "FORMAT"));
-  cmd->add_flag("--exact", args.exact, "Write the lossless exact OFF format");
+  cmd->add_flag(
+      "--exact", args.exact,
+      "Write the lossless exact OFF format, and the exact volume (volume_exact) in --stats");
   cmd->add_option("--stats", args.stats, "Write statistics as JSON to FILE, or '-' for stdout");
 }
 
@@ -191,7 +196,10 @@ void write_result(const Mesh& mesh, const OutputArgs& args,
   options.provenance = command_line();
   if (!args.format.empty()) options.stream_format = format_from_name(args.format);
   write_mesh(mesh, args.out, options);
-  if (!args.stats.empty()) emit_json(stats(), args.stats);
+  if (args.stats.empty()) return;
+  nlohmann::json j = stats();
+  if (!args.exact) j.erase("volume_exact");
+  emit_json(j, args.stats);
 }
 
 void emit_json(const nlohmann::json& value, const std::string& target) {
