@@ -97,7 +97,7 @@ int check_one(const std::string& file, bool json, bool exact) {
   else
     print_text(path, report, exact);
   if (!report.valid_solid()) {
-    std::cerr << "morphex: " << path << ": " << describe_problems(report) << '\n';
+    print_error(solid_problem(file, describe_problems(report)));
     return kFailed;
   }
   return kSuccess;

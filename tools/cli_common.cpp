@@ -39,12 +39,22 @@ std::string shown_path(const std::string& path) {
   return path == kStandardStream ? "<stdin>" : path;
 }
 
+std::string solid_problem(const std::string& file, const std::string& problem) {
+  std::string text = shown_path(file) + ": " + problem;
+  for (const char* repairable : {"self-intersects", "non-manifold", "degenerate", "inward"})
+    if (problem.find(repairable) != std::string::npos &&
+        problem.find("not closed") == std::string::npos)
+      return text + " (`morphex repair " + (file == kStandardStream ? "-" : file) +
+             " -o repaired.off` makes the valid solid it bounds)";
+  return text;
+}
+
 std::optional<Mesh> read_solid(const std::string& path) {
   try {
     Mesh mesh = read_mesh(path);
     const MeshReport report = check_mesh(mesh, kValidityOnly);
     if (!report.valid_solid()) {
-      print_error(shown_path(path) + ": " + describe_problems(report));
+      print_error(solid_problem(path, describe_problems(report)));
       return std::nullopt;
     }
     return mesh;

@@ -49,6 +49,10 @@ bool writes_safe(const std::vector<NamedFile>& writes, const std::vector<NamedFi
 // The file a structuring element's text reads (mesh:path=FILE), or "".
 std::string se_file(const std::string& spec);
 
+// "FILE: PROBLEM", with the advice to run `morphex repair` when the repair fixes that problem
+// (self-intersections, touching parts, degenerate faces, inward orientation; not holes).
+std::string solid_problem(const std::string& file, const std::string& problem);
+
 // A path as messages show it: "-" is "<stdin>".
 std::string shown_path(const std::string& path);
 

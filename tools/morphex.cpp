@@ -18,6 +18,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <system_error>
 #include <thread>
@@ -81,6 +82,33 @@ void cap_memory(std::uint64_t mb, unsigned threads) {
   });
   const rlimit cap{rlim_t(mb) << 20, rlim_t(mb) << 20};
   setrlimit(RLIMIT_AS, &cap);
+}
+
+// One example per subcommand, shown at the end of its --help.
+const std::map<std::string, std::string>& examples() {
+  static const std::map<std::string, std::string> text = {
+      {"check", "morphex check part.off\n  morphex check --json --exact *.off"},
+      {"repair", "morphex repair soup.stl -o solid.off --stats -"},
+      {"bool", "morphex bool difference block.off hole.off -o result.off --stats stats.json"},
+      {"dilate", "morphex dilate part.off --se ball:r=0.5,level=2 -o grown.off"},
+      {"erode", "morphex erode part.off --se cube:r=1/4 -o shrunk.off"},
+      {"open", "morphex open part.off --se octahedron:r=0.1 -o opened.off"},
+      {"close", "morphex close part.off --se cylinder:r=0.2,h=1 -o closed.off"},
+      {"minkowski", "morphex minkowski part.off tool.off -o swept.off"},
+      {"run",
+       "morphex run pipelines/examples/top-hat.json --input 'meshes/*.off' --set "
+       "out_dir=out"},
+      {"validate", "morphex validate pipeline.json --set out_dir=out"},
+      {"stages", "morphex stages\n  morphex stages dilate"},
+      {"describe", "morphex describe part.off --json"},
+      {"generate", "morphex generate collection --per-class 4"},
+      {"index", "morphex index meshes/ --db index.sqlite"},
+      {"query", "morphex query --db index.sqlite part.off -k 5"},
+      {"evaluate", "morphex evaluate --db index.sqlite --labels labels.cla"},
+      {"ls", "morphex ls --db index.sqlite --failed"},
+      {"rm", "morphex rm --db index.sqlite part old/other.off"},
+  };
+  return text;
 }
 
 // Every option name of `app` ("--output", "-o"), for hints.
@@ -198,6 +226,9 @@ int main(int argc, char** argv) {
   for (Command& c : add_retrieval_commands(app)) commands.push_back(std::move(c));
   for (Command& c : add_index_commands(app)) commands.push_back(std::move(c));
 
+  for (const Command& c : commands)
+    if (const auto e = examples().find(c.app->get_name()); e != examples().end())
+      c.app->footer("\nExample:\n  " + e->second);
   for (int i = 0; i < argc; ++i)
     command_line() += (i ? " " : "") + std::string(i ? argv[i] : "morphex");
   if (report_unknown_words(app, argc, argv)) return kBadInput;
