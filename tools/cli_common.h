@@ -95,7 +95,9 @@ std::vector<Command> add_pipeline_commands(CLI::App& app);
 std::vector<Command> add_retrieval_commands(CLI::App& app);
 std::vector<Command> add_index_commands(CLI::App& app);  // index, ls, rm
 
-// Expands glob patterns; plain paths are kept even if missing (reading reports them).
+// Expands glob patterns and folders (their mesh files, all levels down, in name order); plain
+// paths are kept even if missing (reading reports them). Throws InputError for a pattern that
+// matches nothing and a folder without meshes.
 std::vector<std::string> expand_inputs(const std::vector<std::string>& patterns);
 
 // Progress on stderr, drawn from the libraries' progress callbacks: a bar redrawn in place on a

@@ -4,7 +4,9 @@
 #include <glob.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -29,8 +31,8 @@ void add_pipeline_options(CLI::App* cmd, PipelineArgs& args) {
   cmd->add_option("PIPELINE", args.file, "Pipeline JSON file")->required();
   cmd->add_option("--set", args.sets, "Variable for ${name}, as name=value (repeatable)");
   cmd->add_option("--input", args.inputs,
-                  "Meshes (or quoted globs) to run the pipeline over, each bound to ${input} and "
-                  "${stem}");
+                  "Meshes, folders (their meshes, all levels down) or quoted globs to run the "
+                  "pipeline over, each bound to ${input} and ${stem}");
 }
 
 namespace fs = std::filesystem;
@@ -245,19 +247,49 @@ Command add_stages_command(CLI::App& app) {
 
 }  // namespace
 
+namespace {
+
+bool is_mesh_file(const fs::path& path) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  for (const char* known : {".off", ".obj", ".stl", ".ply", ".3mf"})
+    if (extension == known) return true;
+  return false;
+}
+
+// The mesh files under a folder, all levels down, in name order.
+std::vector<std::string> folder_meshes(const std::string& folder) {
+  std::vector<std::string> out;
+  for (const auto& entry :
+       fs::recursive_directory_iterator(folder, fs::directory_options::skip_permission_denied))
+    if (entry.is_regular_file() && is_mesh_file(entry.path())) out.push_back(entry.path().string());
+  std::sort(out.begin(), out.end());
+  if (out.empty())
+    throw InputError(folder, "no mesh file (OFF, OBJ, STL, PLY, 3MF) in this folder");
+  return out;
+}
+
+}  // namespace
+
 std::vector<std::string> expand_inputs(const std::vector<std::string>& patterns) {
   std::vector<std::string> out;
   for (const std::string& p : patterns) {
+    std::error_code error;
+    if (fs::is_directory(p, error)) {
+      for (std::string& file : folder_meshes(p)) out.push_back(std::move(file));
+      continue;
+    }
     if (p.find_first_of("*?[") == std::string::npos) {
       out.push_back(p);
       continue;
     }
     glob_t matches{};
-    if (glob(p.c_str(), 0, nullptr, &matches) == 0)
+    const int found = glob(p.c_str(), 0, nullptr, &matches);
+    if (found == 0)
       for (std::size_t i = 0; i < matches.gl_pathc; ++i) out.emplace_back(matches.gl_pathv[i]);
-    else
-      out.push_back(p);  // no match: reported as a missing file by the read stage
     globfree(&matches);
+    // A quoted pattern that matches nothing is a mistake to say, not a file name to try.
+    if (found != 0) throw InputError("'" + p + "'", "no file matches this pattern");
   }
   return out;
 }

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <set>
 #include <sstream>
 
 #include "cli_common.h"
@@ -240,9 +241,16 @@ Command add_evaluate_command(CLI::App& app) {
                           " models is in the index " + args->db);
               return kBadInput;
             }
+            // Label names the index does not hold are left out of the scores: say how many, as a
+            // misspelt or stale label file would otherwise only lower the scores silently.
+            std::set<std::string> indexed;
+            for (const IndexedMesh& m : db.load(false, {})) indexed.insert(m.name);
+            std::size_t not_indexed = 0;
+            for (const auto& [name, label] : labels) not_indexed += !indexed.count(name);
             nlohmann::json j = {{"models", e.models},
                                 {"metric", args->metric},
                                 {"unlabelled", e.unlabelled},
+                                {"labels_not_indexed", not_indexed},
                                 {"descriptors", nlohmann::json::object()}};
             if (!args->json)
               std::cout << std::left << std::setw(18) << "descriptor" << std::right << std::setw(18)
@@ -270,6 +278,9 @@ Command add_evaluate_command(CLI::App& app) {
                         << (e.unlabelled ? ", " + std::to_string(e.unlabelled) +
                                                " indexed models without a label skipped"
                                          : "")
+                        << (not_indexed ? ", " + std::to_string(not_indexed) +
+                                              " labelled names not in the index skipped"
+                                        : "")
                         << '\n';
             return kSuccess;
           }};

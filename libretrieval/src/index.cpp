@@ -262,10 +262,14 @@ std::vector<Neighbour> query_index(IndexDb& db, const std::string& target, std::
   const std::vector<IndexedMesh> meshes = db.load(true, {kind});
   std::vector<double> query;
   long long exclude = -1;
+  // A file the index recorded (by the absolute path index_item gives it) is an indexed mesh, as
+  // its name is: both use the stored vector and leave the mesh out of its own neighbours.
+  const bool file = fs::exists(target);
+  const std::string absolute = fs::absolute(target).lexically_normal().string();
   const auto stored = std::find_if(meshes.begin(), meshes.end(), [&](const IndexedMesh& m) {
-    return m.name == target || m.path == target;
+    return (!file && m.name == target) || m.path == target || m.path == absolute;
   });
-  if (by_name && !fs::exists(target) && stored != meshes.end()) {
+  if (by_name && stored != meshes.end()) {
     if (!stored->descriptors.count(kind))
       throw InputError(db.path(), stored->name + " has no '" + kind +
                                       "' descriptor (indexed by another version of morphex: "

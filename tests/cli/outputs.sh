@@ -131,6 +131,16 @@ inputs)  # item 15
   case $out in *"pipeline[0]"*) fail "internal stage location shown: $out" ;; esac
   out=$("$morphex" ls --db i.sqlite)
   case $out in *"||"*) fail "internal settings text shown: $out" ;; esac
+  expect 0 "settings [0-9a-f]+: a fast descriptor pipeline .*\(read, repair, describe\); descriptors version" \
+    "$morphex" ls --db i.sqlite
+  # an indexed mesh by name or by path: the same neighbours, itself left out
+  by_name=$("$morphex" query --db i.sqlite x --json | sed 's/"query":"[^"]*"//')
+  by_path=$("$morphex" query --db i.sqlite coll/x.off --json | sed 's/"query":"[^"]*"//')
+  [ "$by_name" = "$by_path" ] || fail "by name $by_name, by path $by_path"
+  case $by_path in *'"name":"x"'*) fail "the mesh is its own neighbour: $by_path" ;; esac
+  printf 'PSB 1\n1 3\n\nshapes 0 3\nx\ny\nnosuch\n' > labels.cla
+  expect 0 "1 labelled names not in the index skipped" \
+    "$morphex" evaluate --db i.sqlite --labels labels.cla
   ;;
 help)  # item 16
   expect 1 "crossing_cubes.off: .*self-intersect.*morphex repair" \
