@@ -111,3 +111,12 @@ def test_run_pipeline(tmp_path, data_dir):
         morphex.run_pipeline(document, [data_dir / "unit_cube.off"], {"out": str(tmp_path)})
     message = str(info.value)
     assert "pipeline[1].se.r" in message and "did you mean 'dilate'" in message
+
+
+def test_run_pipeline_refuses_deep_nesting(tmp_path, data_dir):
+    # issue 44: 20,000 nested brackets (40 KB) crashed the process with SIGSEGV
+    deep = tmp_path / "deep.json"
+    deep.write_text('{"pipeline": [{"type": "read", "path": ' + "[" * 20000 + "]" * 20000 + "}]}")
+    for document in (deep, deep.read_text()):
+        with pytest.raises(ValueError, match="nested deeper than 64 levels"):
+            morphex.run_pipeline(document, [data_dir / "unit_cube.off"])
