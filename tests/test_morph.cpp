@@ -85,14 +85,14 @@ TEST(StructuringElement, MeshFromFileKeepsItsCoordinatesAndConvexity) {
 
 TEST(StructuringElement, BadSpecificationsAreClearErrors) {
   EXPECT_EQ(error_of("sphere:r=1"),
-            "unknown structuring element shape 'sphere' (did you mean 'ball'? shapes: cube, box, "
-            "octahedron, ball, cylinder, mesh)");
+            "unknown structuring element shape 'sphere' (did you mean 'ball'? expected cube, "
+            "box, octahedron, ball, cylinder or mesh)");
   EXPECT_EQ(error_of("cub:r=1"),
-            "unknown structuring element shape 'cub' (did you mean 'cube'? shapes: cube, box, "
-            "octahedron, ball, cylinder, mesh)");
+            "unknown structuring element shape 'cub' (did you mean 'cube'? expected cube, "
+            "box, octahedron, ball, cylinder or mesh)");
   EXPECT_EQ(error_of("xyzzy:r=1"),
-            "unknown structuring element shape 'xyzzy' (shapes: cube, box, octahedron, ball, "
-            "cylinder, mesh)");
+            "unknown structuring element shape 'xyzzy' (expected cube, box, octahedron, ball, "
+            "cylinder or mesh)");
   EXPECT_EQ(error_of("ball:radius=1"),
             "ball: radius: unknown parameter (ball takes r, level, ox, oy, oz)");
   EXPECT_EQ(error_of("cube"), "cube: r: missing (required)");

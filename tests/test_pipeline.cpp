@@ -219,7 +219,7 @@ INSTANTIATE_TEST_SUITE_P(
         InvalidCase{"bad_shape",
                     "[" + kRead + R"(, {"type": "dilate", "se": {"shape": "sphere"}}])",
                     {"pipeline[1].se.shape: unknown structuring element shape 'sphere' (did you "
-                     "mean 'ball'? shapes: cube, box, octahedron, ball, cylinder, mesh)"}},
+                     "mean 'ball'? expected cube, box, octahedron, ball, cylinder or mesh)"}},
         InvalidCase{"tags",
                     "[" + kRead + R"(, {"type": "read", "path": "b.off", "tag": "in"},
                              {"type": "union", "inputs": ["in", "nope"]},

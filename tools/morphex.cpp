@@ -179,7 +179,7 @@ int check_stdout(int code) {
   const int error = errno;
   morphex::cli::print_error(std::string("standard output: cannot write: ") +
                             (error ? std::strerror(error) : "write error"));
-  return morphex::cli::kFailed;
+  return std::max(code, int(morphex::cli::kFailed));  // bad input (2) stays the worse
 }
 
 }  // namespace

@@ -195,7 +195,7 @@ StructuringElement make_structuring_element(const std::string& shape, const SePa
   if (info == shapes.end()) {
     // Names users reach for first, then the nearest by spelling.
     static const std::vector<std::pair<std::string, std::string>> synonyms = {
-        {"sphere", "ball"}, {"icosphere", "ball"}, {"cuboid", "box"},
+        {"sphere", "ball"},    {"icosphere", "ball"},     {"cuboid", "box"},
         {"prism", "cylinder"}, {"diamond", "octahedron"}, {"file", "mesh"}};
     std::string hint;
     for (const auto& [name, meant] : synonyms)
@@ -205,11 +205,10 @@ StructuringElement make_structuring_element(const std::string& shape, const SePa
       for (const SeShapeInfo& s : shapes) names.push_back(s.shape);
       hint = nearest_name(shape, names);
     }
-    throw StructuringElementError(
-        "", "shape",
-        "unknown structuring element shape '" + shape + "' (" +
-            (hint.empty() ? "" : "did you mean '" + hint + "'? ") +
-            "shapes: cube, box, octahedron, ball, cylinder, mesh)");
+    throw StructuringElementError("", "shape",
+                                  "unknown structuring element shape '" + shape + "' (" +
+                                      (hint.empty() ? "" : "did you mean '" + hint + "'? ") +
+                                      "expected cube, box, octahedron, ball, cylinder or mesh)");
   }
   const ParameterReader read(*info, params);
   StructuringElement se;

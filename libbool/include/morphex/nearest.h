@@ -26,7 +26,8 @@ inline std::size_t edit_distance(const std::string& a, const std::string& b) {
 
 // The candidate nearest to `word`, or "" when even the nearest differs in more than half of
 // `word` (a hint that far off would mislead).
-inline std::string nearest_name(const std::string& word, const std::vector<std::string>& candidates) {
+inline std::string nearest_name(const std::string& word,
+                                const std::vector<std::string>& candidates) {
   std::string best;
   std::size_t best_distance = std::max<std::size_t>(2, (word.size() + 1) / 2) + 1;
   for (const std::string& c : candidates)
