@@ -37,23 +37,6 @@ void add_pipeline_options(CLI::App* cmd, PipelineArgs& args) {
 
 namespace fs = std::filesystem;
 
-// Why the folders of `path` cannot be created or written in ("" when they can): the nearest
-// ancestor that exists must be a folder this process may write in.
-std::string folder_problem(const std::string& path) {
-  std::error_code error;
-  const fs::path parent = fs::absolute(path, error).parent_path();
-  fs::path existing = parent;
-  while (!existing.empty() && !fs::exists(existing, error) && existing != existing.root_path())
-    existing = existing.parent_path();
-  if (!fs::is_directory(existing, error))
-    return "cannot create the folder " + parent.string() + ": " + existing.string() +
-           " is not a folder";
-  if (access(existing.c_str(), W_OK | X_OK) != 0)
-    return (existing == parent ? "cannot write in the folder " : "cannot create the folder ") +
-           parent.string() + ": no permission to write in " + existing.string();
-  return "";
-}
-
 // What validation of the document alone cannot see: read stages whose file does not exist and
 // write stages whose folder cannot be created. Paths still holding a ${variable} (deferred, such
 // as ${input} without --input) are skipped: they are only known when the pipeline runs.
@@ -68,7 +51,7 @@ void check_files(const mp::Pipeline& pipeline) {
     if (stage.type == "read" && !fs::exists(path, error))
       problems.push_back({location, "no such file '" + path + "' (stage " + stage.tag + ")"});
     if (stage.type == "write")
-      if (const std::string problem = folder_problem(path); !problem.empty())
+      if (const std::string problem = mp::folder_problem(path); !problem.empty())
         problems.push_back({location, problem + " (stage " + stage.tag + ")"});
   }
   if (!problems.empty()) throw mp::PipelineError(problems);

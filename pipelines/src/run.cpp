@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_for_each.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
@@ -113,6 +114,11 @@ std::string stem_of(const std::string& path) {
   return std::filesystem::path(path).stem().string();
 }
 
+// The stage index of a location "pipeline[N]...".
+std::size_t stage_of(const FileUse& use) {
+  return std::stoul(use.location.substr(use.location.find('[') + 1));
+}
+
 // A file as the checks compare it: through links, relative to the working folder.
 std::string file_key(const std::string& path) {
   std::error_code error;
@@ -169,6 +175,13 @@ void check_files_across(const std::vector<Pipeline>& pipelines,
                             " (their names are the same: put more of the path in the output, "
                             "or rename one)");
     }
+  // Write stages make their folders: one that cannot be made is known now, not after the work.
+  std::set<std::string> folders;
+  for (const auto& [key, w] : writes)
+    if (folders.insert(std::filesystem::path(key).parent_path().string()).second)
+      if (const std::string problem = folder_problem(w.use.path); !problem.empty())
+        add(w.use.location,
+            problem + " (stage " + pipelines[w.input].stages[stage_of(w.use)].tag + ")");
   for (const auto& [location, path] : caller_writes) {
     const std::string key = file_key(path);
     if (const auto r = reads.find(key); r != reads.end())
@@ -180,6 +193,24 @@ void check_files_across(const std::vector<Pipeline>& pipelines,
 }
 
 }  // namespace
+
+// Why the folders of `path` cannot be created or written in ("" when they can): the nearest
+// ancestor that exists must be a folder this process may write in.
+std::string folder_problem(const std::string& path) {
+  std::error_code error;
+  const std::filesystem::path parent = std::filesystem::absolute(path, error).parent_path();
+  std::filesystem::path existing = parent;
+  while (!existing.empty() && !std::filesystem::exists(existing, error) &&
+         existing != existing.root_path())
+    existing = existing.parent_path();
+  if (!std::filesystem::is_directory(existing, error))
+    return "cannot create the folder " + parent.string() + ": " + existing.string() +
+           " is not a folder";
+  if (access(existing.c_str(), W_OK | X_OK) != 0)
+    return (existing == parent ? "cannot write in the folder " : "cannot create the folder ") +
+           parent.string() + ": no permission to write in " + existing.string();
+  return "";
+}
 
 bool RunReport::ok() const {
   return std::all_of(inputs.begin(), inputs.end(), [](const InputReport& r) { return r.ok; });

@@ -115,6 +115,9 @@ folders)  # item 13
   expect 2 "morphex: nosuch/r.json: cannot write in the folder" \
     "$morphex" run "$grow" --set out_dir=out --input a.off --report nosuch/r.json
   [ -e out/a-grown.off ] && fail "ran anyway"
+  # a pipeline's write whose folder cannot be made: refused before the dilation, not after it
+  expect 2 "grow.json: pipeline\[2\].path: cannot create the folder .*a.off/out: .*a.off is not a folder \(stage write#2\)" \
+    "$morphex" run "$grow" --set out_dir=a.off/out --input a.off
   ;;
 typos)  # item 14
   expect 2 "^morphex: unknown command 'dilat' \(did you mean 'dilate'\?\)" "$morphex" dilat a.off

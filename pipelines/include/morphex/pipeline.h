@@ -148,6 +148,10 @@ struct FileUse {
 std::vector<FileUse> files_read(const Pipeline& pipeline);
 std::vector<FileUse> files_written(const Pipeline& pipeline);
 
+// Why the folders of `path` cannot be created or written in ("" when they can): the nearest
+// ancestor that exists must be a folder this process may write in.
+std::string folder_problem(const std::string& path);
+
 // ---- execution ---------------------------------------------------------------------------------
 
 struct StageReport {
