@@ -105,7 +105,7 @@ int print_summary(const IndexArgs& args, const IndexSummary& summary) {
                         {"meshes_per_minute", per_minute},
                         {"processes", summary.processes}};
     for (const auto& [path, error] : summary.errors)
-      j["errors"].push_back({{"path", path}, {"error", error}});
+      j["errors"].push_back({{"path", path}, {"error", user_error(args, error)}});
     std::cout << j.dump() << std::endl;
   } else {
     std::cout << args.db << ": indexed " << summary.indexed << " meshes (" << summary.skipped
