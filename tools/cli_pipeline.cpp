@@ -138,41 +138,41 @@ Command add_validate_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("validate", "Check a pipeline without running it");
   auto args = std::make_shared<PipelineArgs>();
   add_pipeline_options(cmd, *args);
-  return {cmd, [args]() -> int {
-            mp::Variables variables;
-            try {
-              variables = mp::parse_assignments(args->sets);
-            } catch (const mp::PipelineError& e) {
-              print_problems("", e);
-              return kBadInput;
+  return {
+      cmd, [args]() -> int {
+        mp::Variables variables;
+        try {
+          variables = mp::parse_assignments(args->sets);
+        } catch (const mp::PipelineError& e) {
+          print_problems("", e);
+          return kBadInput;
+        }
+        const auto inputs = expand_inputs(args->inputs);
+        try {
+          const nlohmann::json document = mp::load_document(args->file);
+          mp::check_assignments_used(document, variables);
+          std::size_t stages = 0;
+          if (inputs.empty()) {
+            const mp::Pipeline pipeline =
+                mp::validate(document, args->file, variables, {"input", "stem"});
+            check_files(pipeline);
+            stages = pipeline.stages.size();
+          } else {
+            mp::RunOptions options;
+            options.variables = variables;
+            options.inputs = inputs;
+            for (const mp::Pipeline& pipeline : mp::prepare_run(document, args->file, options)) {
+              check_files(pipeline);
+              stages = pipeline.stages.size();
             }
-            const auto inputs = expand_inputs(args->inputs);
-            try {
-              const nlohmann::json document = mp::load_document(args->file);
-              mp::check_assignments_used(document, variables);
-              std::size_t stages = 0;
-              if (inputs.empty()) {
-                const mp::Pipeline pipeline =
-                    mp::validate(document, args->file, variables, {"input", "stem"});
-                check_files(pipeline);
-                stages = pipeline.stages.size();
-              } else {
-                for (const std::string& input : inputs) {
-                  mp::Variables v = variables;
-                  v["input"] = input;
-                  v["stem"] = std::filesystem::path(input).stem().string();
-                  const mp::Pipeline pipeline = mp::validate(document, args->file, v);
-                  check_files(pipeline);
-                  stages = pipeline.stages.size();
-                }
-              }
-              std::cout << args->file << ": valid pipeline, " << stages << " stages\n";
-            } catch (const mp::PipelineError& e) {
-              print_problems(args->file, e);
-              return kBadInput;
-            }
-            return kSuccess;
-          }};
+          }
+          std::cout << args->file << ": valid pipeline, " << stages << " stages\n";
+        } catch (const mp::PipelineError& e) {
+          print_problems(args->file, e);
+          return kBadInput;
+        }
+        return kSuccess;
+      }};
 }
 
 std::string describe_option(const mp::OptionInfo& o) {

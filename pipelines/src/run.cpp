@@ -238,9 +238,8 @@ nlohmann::json RunReport::to_json() const {
   return out;
 }
 
-RunReport run(const nlohmann::json& document, const std::string& name, const RunOptions& options,
-              const StageRegistry& registry) {
-  // Validate for every input before running any, so that a bad pipeline runs nothing.
+std::vector<Pipeline> prepare_run(const nlohmann::json& document, const std::string& name,
+                                  const RunOptions& options, const StageRegistry& registry) {
   std::vector<Pipeline> pipelines;
   std::vector<Problem> problems;
   std::set<std::string> seen;
@@ -261,7 +260,15 @@ RunReport run(const nlohmann::json& document, const std::string& name, const Run
   }
   if (problems.empty()) check_files_across(pipelines, inputs, options.caller_writes, problems);
   if (!problems.empty()) throw PipelineError(std::move(problems));
+  return pipelines;
+}
 
+RunReport run(const nlohmann::json& document, const std::string& name, const RunOptions& options,
+              const StageRegistry& registry) {
+  // Validate for every input before running any, so that a bad pipeline runs nothing.
+  const std::vector<Pipeline> pipelines = prepare_run(document, name, options, registry);
+  const std::vector<std::string> inputs =
+      options.inputs.empty() ? std::vector<std::string>{""} : options.inputs;
   const Stopwatch start;
   Progress progress(options, pipelines.size() * pipelines[0].stages.size());
   RunReport report;

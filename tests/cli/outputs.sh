@@ -50,6 +50,8 @@ same_stem)  # item 2
   expect 2 "morphex: .*grow.json: pipeline\[2\].path: sa/1.off and sb/1.off would both write out/1-grown.off" \
     "$morphex" run "$grow" --set out_dir=out --input sa/1.off sb/1.off
   [ -e out/1-grown.off ] && fail "ran anyway"
+  expect 2 "pipeline\[2\].path: sa/1.off and sb/1.off would both write out/1-grown.off" \
+    "$morphex" validate "$grow" --set out_dir=out --input sa/1.off sb/1.off
   ;;
 deep_json)  # item 3
   awk 'BEGIN{printf "{\"pipeline\":[{\"type\":\"read\",\"path\":"

@@ -204,6 +204,11 @@ struct RunReport {
 // its InputReport and the others go on.
 RunReport run(const nlohmann::json& document, const std::string& name, const RunOptions& options,
               const StageRegistry& registry = StageRegistry::builtin());
+// What run does before it runs anything: the pipeline of every input, validated, and the checks
+// across inputs above; throws PipelineError. `morphex validate --input` refuses what run would.
+std::vector<Pipeline> prepare_run(const nlohmann::json& document, const std::string& name,
+                                  const RunOptions& options,
+                                  const StageRegistry& registry = StageRegistry::builtin());
 
 // What a stage sees while it runs.
 // The repair report as JSON (the `repair` object of reports, --stats and index entries).
