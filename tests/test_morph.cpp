@@ -85,7 +85,13 @@ TEST(StructuringElement, MeshFromFileKeepsItsCoordinatesAndConvexity) {
 
 TEST(StructuringElement, BadSpecificationsAreClearErrors) {
   EXPECT_EQ(error_of("sphere:r=1"),
-            "unknown structuring element shape 'sphere' (expected cube, box, octahedron, ball, "
+            "unknown structuring element shape 'sphere' (did you mean 'ball'? expected cube, "
+            "box, octahedron, ball, cylinder or mesh)");
+  EXPECT_EQ(error_of("cub:r=1"),
+            "unknown structuring element shape 'cub' (did you mean 'cube'? expected cube, "
+            "box, octahedron, ball, cylinder or mesh)");
+  EXPECT_EQ(error_of("xyzzy:r=1"),
+            "unknown structuring element shape 'xyzzy' (expected cube, box, octahedron, ball, "
             "cylinder or mesh)");
   EXPECT_EQ(error_of("ball:radius=1"),
             "ball: radius: unknown parameter (ball takes r, level, ox, oy, oz)");

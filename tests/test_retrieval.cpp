@@ -244,8 +244,15 @@ TEST(Index, IndexResumeQueryAndEvaluate) {
   EXPECT_TRUE(std::none_of(by_name.begin(), by_name.end(),
                            [&](const Neighbour& n) { return n.name == probe; }));
   EXPECT_LE(by_name[0].distance, by_name[1].distance);
-  // the same mesh as a file is described again and finds itself at distance 0
-  const auto by_file = query_index(db, items[0].file, 1, "d2", Metric::L1);
+  // by its path, an indexed mesh is the same query as by its name (issue 44: they disagreed)
+  const auto by_path = query_index(db, items[0].file, 3, "d2", Metric::L1);
+  ASSERT_EQ(by_path.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(by_path[i].name, by_name[i].name);
+    EXPECT_EQ(by_path[i].distance, by_name[i].distance);
+  }
+  // the same mesh as a file, not looked up in the index, is described again: itself at 0
+  const auto by_file = query_index(db, items[0].file, 1, "d2", Metric::L1, false);
   ASSERT_EQ(by_file.size(), 1u);
   EXPECT_EQ(by_file[0].name, probe);
   EXPECT_EQ(by_file[0].distance, 0.0);

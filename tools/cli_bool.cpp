@@ -40,7 +40,7 @@ Command add_bool_command(CLI::App& app) {
             if (!result.ok()) {
               const std::string& file =
                   result.status == BooleanStatus::InvalidInputA ? args->a : args->b;
-              print_error(shown_path(file) + ": " + result.message);
+              print_error(solid_problem(file, result.message));
               return kBadInput;
             }
             write_result(result.mesh, args->output, [&] {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // `morphex check MESH [--json]`: is this file a valid closed solid, and what is its exact volume?
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <iostream>
 
@@ -13,7 +14,15 @@ namespace morphex::cli {
 
 namespace {
 
-nlohmann::json report_json(const std::string& path, const MeshReport& r, double seconds) {
+// A volume as users read it: the shortest decimal that reads back as the same double.
+std::string decimal(const FT& value) {
+  char text[32];
+  const auto end = std::to_chars(text, text + sizeof text, CGAL::to_double(value)).ptr;
+  return std::string(text, end);
+}
+
+nlohmann::json report_json(const std::string& path, const MeshReport& r, double seconds,
+                           bool exact) {
   nlohmann::json j;
   j["file"] = path;
   j["valid"] = r.valid_solid();
@@ -32,34 +41,42 @@ nlohmann::json report_json(const std::string& path, const MeshReport& r, double 
   if (r.first_self_intersection)
     j["first_self_intersection"] = {r.first_self_intersection->first,
                                     r.first_self_intersection->second};
-  j["genus"] = r.genus;
+  // Genus and volume mean something for a closed surface only (an open one has genus -1).
+  j["genus"] = r.closed() ? nlohmann::json(r.genus) : nlohmann::json();
   j["bbox"] = {{"min", {r.bbox.xmin(), r.bbox.ymin(), r.bbox.zmin()}},
                {"max", {r.bbox.xmax(), r.bbox.ymax(), r.bbox.zmax()}}};
-  j["volume"] = to_rational_string(r.volume);
-  j["volume_approx"] = CGAL::to_double(r.volume);
+  j["volume"] = r.closed() ? nlohmann::json(CGAL::to_double(r.volume)) : nlohmann::json();
+  j["volume_approx"] = j["volume"];  // the name scripts used before "volume" was a decimal
+  if (exact)
+    j["volume_exact"] =
+        r.closed() ? nlohmann::json(to_rational_string(r.volume)) : nlohmann::json();
   j["seconds"] = seconds;
   return j;
 }
 
-void print_text(const std::string& path, const MeshReport& r) {
+void print_text(const std::string& path, const MeshReport& r, bool exact) {
   std::cout << path << ": " << (r.valid_solid() ? "valid closed solid" : "NOT a valid solid")
             << '\n'
             << "  triangles " << r.triangles << ", vertices " << r.vertices << ", components "
-            << r.components << ", genus " << r.genus << '\n'
+            << r.components << ", genus "
+            << (r.closed() ? std::to_string(r.genus) : "undefined (not closed)") << '\n'
             << "  border edges " << r.border_edges << ", non-manifold edges "
             << r.non_manifold_edges << ", non-manifold vertices " << r.non_manifold_vertices
             << ", degenerate faces " << r.degenerate_faces << '\n'
             << "  consistently oriented " << (r.consistently_oriented ? "yes" : "no")
             << ", outward " << (r.outward ? "yes" : "no") << ", self-intersections "
             << r.self_intersections << '\n'
-            << "  volume " << to_rational_string(r.volume) << " (~" << CGAL::to_double(r.volume)
-            << ")\n";
+            << "  volume "
+            << (!r.closed() ? "undefined (not closed)"
+                : exact     ? to_rational_string(r.volume) + " (~" + decimal(r.volume) + ")"
+                            : decimal(r.volume))
+            << '\n';
   if (!r.valid_solid()) std::cout << "  problem: " << describe_problems(r) << '\n';
 }
 
 // One file: its report on stdout (text, or one JSON line), its problem on stderr. Returns the
 // file's exit code.
-int check_one(const std::string& file, bool json) {
+int check_one(const std::string& file, bool json, bool exact) {
   const std::string path = shown_path(file);
   Mesh mesh;
   try {
@@ -76,11 +93,11 @@ int check_one(const std::string& file, bool json) {
   const MeshReport report = check_mesh(mesh);
   const double seconds = start.seconds();
   if (json)
-    emit_json(report_json(path, report, seconds), "-");
+    emit_json(report_json(path, report, seconds, exact), "-");
   else
-    print_text(path, report);
+    print_text(path, report, exact);
   if (!report.valid_solid()) {
-    std::cerr << "morphex: " << path << ": " << describe_problems(report) << '\n';
+    print_error(solid_problem(file, describe_problems(report)));
     return kFailed;
   }
   return kSuccess;
@@ -97,13 +114,18 @@ Command add_check_command(CLI::App& app) {
   cmd->add_option("MESH", *paths, "Mesh files (OFF, OBJ, STL, PLY, 3MF), '-' for standard input")
       ->required();
   cmd->add_flag("--json", *json, "Print one JSON object per file (one line each) instead of text");
+  auto exact = std::make_shared<bool>(false);
+  cmd->add_flag("--exact", *exact,
+                "Also print the exact volume, a rational (volume_exact in JSON; it can run to "
+                "thousands of digits)");
   return {cmd, [=]() -> int {
             if (std::count(paths->begin(), paths->end(), kStandardStream) > 1) {
               print_error("-: standard input can be read only once");
               return kBadInput;
             }
             int worst = kSuccess;  // bad input (2) outranks an invalid solid (1)
-            for (const std::string& path : *paths) worst = std::max(worst, check_one(path, *json));
+            for (const std::string& path : *paths)
+              worst = std::max(worst, check_one(path, *json, *exact));
             return worst;
           }};
 }

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -22,8 +23,11 @@ nlohmann::json result_stats(const Mesh& mesh, double seconds) {
   nlohmann::json j;
   j["faces"] = mesh.num_triangles();
   j["vertices"] = mesh.num_vertices();
-  j["volume"] = to_rational_string(report.volume);
-  j["volume_approx"] = CGAL::to_double(report.volume);
+  // A decimal by default: the exact rational can run to thousands of digits (volume_exact, kept
+  // by write_result under --exact only).
+  j["volume"] = CGAL::to_double(report.volume);
+  j["volume_approx"] = CGAL::to_double(report.volume);  // the name scripts used before "volume"
+  j["volume_exact"] = to_rational_string(report.volume);
   j["closed"] = report.closed();
   j["self_intersecting"] = report.self_intersections > 0;
   j["valid"] = report.valid_solid();
@@ -56,12 +60,22 @@ std::string shown_path(const std::string& path) {
   return path == kStandardStream ? "<stdin>" : path;
 }
 
+std::string solid_problem(const std::string& file, const std::string& problem) {
+  std::string text = shown_path(file) + ": " + problem;
+  for (const char* repairable : {"self-intersects", "non-manifold", "degenerate", "inward"})
+    if (problem.find(repairable) != std::string::npos &&
+        problem.find("not closed") == std::string::npos)
+      return text + " (`morphex repair " + (file == kStandardStream ? "-" : file) +
+             " -o repaired.off` makes the valid solid it bounds)";
+  return text;
+}
+
 std::optional<Mesh> read_solid(const std::string& path) {
   try {
     Mesh mesh = read_mesh(path);
     const MeshReport report = check_mesh(mesh, kValidityOnly);
     if (!report.valid_solid()) {
-      print_error(shown_path(path) + ": " + describe_problems(report));
+      print_error(solid_problem(path, describe_problems(report)));
       return std::nullopt;
     }
     return mesh;
@@ -84,6 +98,50 @@ bool output_overwrites_input(const std::string& output, const std::vector<std::s
       return true;
     }
   return false;
+}
+
+std::string output_folder_problem(const std::string& path) {
+  if (path == kStandardStream) return "";
+  namespace fs = std::filesystem;
+  std::error_code error;
+  fs::path folder = fs::path(path).parent_path();
+  if (folder.empty()) folder = ".";
+  if (!fs::exists(folder, error))
+    return "cannot write in the folder " + folder.string() + ": it does not exist";
+  if (!fs::is_directory(folder, error))
+    return "cannot write in the folder " + folder.string() + ": it is not a folder";
+  if (access(folder.c_str(), W_OK | X_OK) != 0)
+    return "cannot write in the folder " + folder.string() + ": no permission";
+  return "";
+}
+
+bool writes_safe(const std::vector<NamedFile>& writes, const std::vector<NamedFile>& reads) {
+  bool safe = true;
+  for (std::size_t i = 0; i < writes.size(); ++i) {
+    const NamedFile& w = writes[i];
+    if (w.path.empty() || w.path == kStandardStream) continue;
+    const auto refuse = [&](const std::string& problem) {
+      print_error(w.path + ": " + problem);
+      safe = false;
+    };
+    if (const std::string problem = output_folder_problem(w.path); !problem.empty())
+      refuse(problem);
+    for (const NamedFile& r : reads)
+      if (!r.path.empty() && r.path != kStandardStream && same_file(r.path, w.path))
+        refuse("refusing to overwrite " + r.role + " " + r.path + " (" + w.role + ")");
+    for (std::size_t j = 0; j < i; ++j)
+      if (writes[j].path != kStandardStream && same_file(writes[j].path, w.path))
+        refuse(w.role + " and " + writes[j].role + " name the same file");
+  }
+  return safe;
+}
+
+std::string se_file(const std::string& spec) {
+  if (spec.rfind("mesh:", 0) != 0) return "";
+  const std::size_t start = spec.find("path=");
+  if (start == std::string::npos) return "";
+  const std::size_t end = spec.find(',', start);
+  return spec.substr(start + 5, end == std::string::npos ? std::string::npos : end - start - 5);
 }
 
 void add_output_options(CLI::App* cmd, OutputArgs& args) {
@@ -114,11 +172,14 @@ void add_output_options(CLI::App* cmd, OutputArgs& args) {
             }
           },
           "FORMAT"));
-  cmd->add_flag("--exact", args.exact, "Write the lossless exact OFF format");
+  cmd->add_flag(
+      "--exact", args.exact,
+      "Write the lossless exact OFF format, and the exact volume (volume_exact) in --stats");
   cmd->add_option("--stats", args.stats, "Write statistics as JSON to FILE, or '-' for stdout");
 }
 
-bool output_usable(const OutputArgs& args, const std::vector<std::string>& inputs) {
+bool output_usable(const OutputArgs& args, const std::vector<std::string>& inputs,
+                   const std::vector<NamedFile>& other_reads) {
   const bool to_stdout = args.out == kStandardStream;
   if (to_stdout && args.stats == kStandardStream) {
     print_error(
@@ -136,7 +197,22 @@ bool output_usable(const OutputArgs& args, const std::vector<std::string>& input
     print_error(shown_path(args.out) + ": the exact format is OFF: use a .off output with --exact");
     return false;
   }
-  return !output_overwrites_input(args.out, inputs);
+  if (output_overwrites_input(args.out, inputs)) return false;
+  std::vector<NamedFile> reads = other_reads;
+  for (const std::string& input : inputs) reads.push_back({input, "the input"});
+  return writes_safe({{args.out, "--output"}, {args.stats, "--stats"}}, reads);
+}
+
+CLI::Validator positive_integer() {
+  return CLI::Validator(
+      [](std::string& value) -> std::string {
+        return !value.empty() && value.size() < 19 &&
+                       value.find_first_not_of("0123456789") == std::string::npos &&
+                       value.find_first_not_of('0') != std::string::npos
+                   ? ""
+                   : "expected a positive whole number, got '" + value + "'";
+      },
+      "POSITIVE");
 }
 
 std::string& command_line() {
@@ -158,7 +234,10 @@ void write_result(const Mesh& mesh, const OutputArgs& args,
                 "to an empty solid when rounded (--exact with a .off output keeps it)");
   if (args.stats.empty()) return;
   nlohmann::json j = stats();
-  if (!args.exact) j["rounding"] = rounding_json(rounding);
+  if (!args.exact) {
+    j.erase("volume_exact");
+    j["rounding"] = rounding_json(rounding);
+  }
   emit_json(j, args.stats);
 }
 

@@ -40,6 +40,25 @@ std::optional<Mesh> read_solid(const std::string& path);
 // Refuses an output path that names one of the inputs, and standard input ("-") named twice.
 bool output_overwrites_input(const std::string& output, const std::vector<std::string>& inputs);
 
+// A file a command reads or writes, with what it is to the user ("the input", "the structuring
+// element" for reads; the option, "--stats", for writes).
+struct NamedFile {
+  std::string path, role;
+};
+// Why the folder of `path` cannot take a new file ("" when it can): it must exist, be a folder and
+// be writable. Standard output ("-") always can.
+std::string output_folder_problem(const std::string& path);
+// Every file a command writes checked before any work against every file it reads (through links)
+// and against the other writes, and its folder checked: problems are printed ("morphex: OUT:
+// refusing to overwrite the input IN (--stats)") and false returned. Standard streams are skipped.
+bool writes_safe(const std::vector<NamedFile>& writes, const std::vector<NamedFile>& reads);
+// The file a structuring element's text reads (mesh:path=FILE), or "".
+std::string se_file(const std::string& spec);
+
+// "FILE: PROBLEM", with the advice to run `morphex repair` when the repair fixes that problem
+// (self-intersections, touching parts, degenerate faces, inward orientation; not holes).
+std::string solid_problem(const std::string& file, const std::string& problem);
+
 // A path as messages show it: "-" is "<stdin>".
 std::string shown_path(const std::string& path);
 
@@ -57,11 +76,16 @@ void add_output_options(CLI::App* cmd, OutputArgs& args);
 // What the output options cannot do together, reported (exit 2) before any work: --stats - with
 // -o -, --format with a file, --exact with a format other than OFF. Also refuses an output that is
 // one of the inputs (output_overwrites_input). False when refused.
-bool output_usable(const OutputArgs& args, const std::vector<std::string>& inputs);
+bool output_usable(const OutputArgs& args, const std::vector<std::string>& inputs,
+                   const std::vector<NamedFile>& other_reads = {});
 // Writes the mesh (atomically, in the format of the extension) and, if asked, the statistics that
 // `stats` builds (only then: they check the result, which costs as much as a check).
 void write_result(const Mesh& mesh, const OutputArgs& args,
                   const std::function<nlohmann::json()>& stats);
+
+// A whole number > 0, refused as "expected a positive whole number, got '0'" (CLI11's
+// PositiveNumber would print the range up to the largest double, 300 digits).
+CLI::Validator positive_integer();
 
 // Each subcommand registers itself on the app and returns the function that runs it.
 using Runner = std::function<int()>;
@@ -78,7 +102,9 @@ std::vector<Command> add_pipeline_commands(CLI::App& app);
 std::vector<Command> add_retrieval_commands(CLI::App& app);
 std::vector<Command> add_index_commands(CLI::App& app);  // index, ls, rm
 
-// Expands glob patterns; plain paths are kept even if missing (reading reports them).
+// Expands glob patterns and folders (their mesh files, all levels down, in name order); plain
+// paths are kept even if missing (reading reports them). Throws InputError for a pattern that
+// matches nothing and a folder without meshes.
 std::vector<std::string> expand_inputs(const std::vector<std::string>& patterns);
 
 // Progress on stderr, drawn from the libraries' progress callbacks: a bar redrawn in place on a

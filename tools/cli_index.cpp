@@ -40,6 +40,42 @@ struct IndexArgs {
   bool repair = true, retry_failed = false, quiet = false, json = false;
 };
 
+// A mesh's error as the user who gave no --pipeline reads it: without the location in the
+// default pipeline ("pipeline[0] (read): ") that they never wrote.
+std::string user_error(const IndexArgs& args, const std::string& error) {
+  if (!args.pipeline.empty() || error.rfind("pipeline[", 0) != 0) return error;
+  const std::size_t end = error.find("): ");
+  return end == std::string::npos ? error : error.substr(end + 3);
+}
+
+// Settings as stored ("<pipeline JSON>|<variables>|descriptors <version>") in words: the
+// pipeline's description or stages, its variables and the descriptors' version.
+std::string readable_settings(const std::string& settings) {
+  const std::size_t version = settings.rfind("|descriptors ");
+  if (version == std::string::npos) return settings;
+  const std::string rest = settings.substr(0, version);
+  const std::size_t sets = rest.rfind('|');
+  if (sets == std::string::npos) return settings;
+  std::string out;
+  try {
+    const nlohmann::json document = mp::parse_document(rest.substr(0, sets), "settings");
+    const nlohmann::json& stages = document.is_array() ? document : document.at("pipeline");
+    std::string types;
+    for (const auto& stage : stages)
+      types += (types.empty() ? "" : ", ") + stage.value("type", "?");
+    out = (document.is_object() && document.contains("description")
+               ? document["description"].get<std::string>() + " ("
+               : std::string("pipeline (")) +
+          types + ")";
+  } catch (const std::exception&) {
+    out = "pipeline (unreadable)";
+  }
+  std::string variables = rest.substr(sets + 1);
+  if (!variables.empty() && variables.back() == ';') variables.pop_back();
+  return out + (variables.empty() ? "" : "; variables " + variables) + "; descriptors version " +
+         settings.substr(version + 13);
+}
+
 std::optional<IndexPipeline> index_pipeline(const IndexArgs& args) {
   try {
     std::optional<nlohmann::json> document;
@@ -70,7 +106,7 @@ int print_summary(const IndexArgs& args, const IndexSummary& summary) {
                         {"meshes_per_minute", per_minute},
                         {"processes", summary.processes}};
     for (const auto& [path, error] : summary.errors)
-      j["errors"].push_back({{"path", path}, {"error", error}});
+      j["errors"].push_back({{"path", path}, {"error", user_error(args, error)}});
     std::cout << j.dump() << std::endl;
   } else {
     std::cout << args.db << ": indexed " << summary.indexed << " meshes (" << summary.skipped
@@ -105,7 +141,7 @@ int run_index(const IndexArgs& args, const IndexPipeline& pipeline, bool threads
   options.retry_failed = args.retry_failed;
   ProgressDisplay bar("indexed", "meshes", !args.quiet);
   auto on_mesh = [&](const IndexItem& item, const std::string& error, const IndexProgress& p) {
-    if (!error.empty()) print_error(item.path + ": " + error);
+    if (!error.empty()) print_error(item.path + ": " + user_error(args, error));
     if (p.total > 0 && !args.quiet) bar.update(p.done, p.total, p.failed);
   };
   options.on_stage = [&](const IndexProgress& p) {
@@ -144,7 +180,9 @@ Command add_index_command(CLI::App& app) {
       "index",
       "Describe meshes into a SQLite retrieval index (across MPI ranks under mpirun/srun)");
   auto args = std::make_shared<IndexArgs>();
-  cmd->add_option("INPUT", args->inputs, "Meshes or quoted globs")->required();
+  cmd->add_option("INPUT", args->inputs,
+                  "Meshes, folders (their meshes, all levels down) or quoted globs")
+      ->required();
   cmd->add_flag("--repair,!--no-repair", args->repair,
                 "Make meshes that are not valid solids into one before describing them (morphex "
                 "solidify: soups, open surfaces, flipped, repeated or degenerate faces, cracks, "
@@ -208,7 +246,7 @@ void print_entries(const std::vector<IndexedMesh>& entries) {
     if (!m.error.empty()) std::cout << "    error: " << m.error << '\n';
   }
   for (const std::string& s : settings)
-    std::cout << "settings " << text_hash(s).substr(0, 8) << ": " << s << '\n';
+    std::cout << "settings " << text_hash(s).substr(0, 8) << ": " << readable_settings(s) << '\n';
 }
 
 Command add_ls_command(CLI::App& app) {

@@ -35,7 +35,9 @@ Command add_morphology_command(CLI::App& app, MorphologyOp op, const std::string
   cmd->add_option("--se", args->se, se_help())->required();
   add_output_options(cmd, args->output);
   return {cmd, [args, op]() -> int {
-            if (!output_usable(args->output, {args->in})) return kBadInput;
+            if (!output_usable(args->output, {args->in},
+                               {{se_file(args->se), "the structuring element"}}))
+              return kBadInput;
             StructuringElement se;
             try {
               se = parse_structuring_element(args->se);

@@ -4,7 +4,9 @@
 #include <glob.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -29,28 +31,11 @@ void add_pipeline_options(CLI::App* cmd, PipelineArgs& args) {
   cmd->add_option("PIPELINE", args.file, "Pipeline JSON file")->required();
   cmd->add_option("--set", args.sets, "Variable for ${name}, as name=value (repeatable)");
   cmd->add_option("--input", args.inputs,
-                  "Meshes (or quoted globs) to run the pipeline over, each bound to ${input} and "
-                  "${stem}");
+                  "Meshes, folders (their meshes, all levels down) or quoted globs to run the "
+                  "pipeline over, each bound to ${input} and ${stem}");
 }
 
 namespace fs = std::filesystem;
-
-// Why the folders of `path` cannot be created or written in ("" when they can): the nearest
-// ancestor that exists must be a folder this process may write in.
-std::string folder_problem(const std::string& path) {
-  std::error_code error;
-  const fs::path parent = fs::absolute(path, error).parent_path();
-  fs::path existing = parent;
-  while (!existing.empty() && !fs::exists(existing, error) && existing != existing.root_path())
-    existing = existing.parent_path();
-  if (!fs::is_directory(existing, error))
-    return "cannot create the folder " + parent.string() + ": " + existing.string() +
-           " is not a folder";
-  if (access(existing.c_str(), W_OK | X_OK) != 0)
-    return (existing == parent ? "cannot write in the folder " : "cannot create the folder ") +
-           parent.string() + ": no permission to write in " + existing.string();
-  return "";
-}
 
 // What validation of the document alone cannot see: read stages whose file does not exist and
 // write stages whose folder cannot be created. Paths still holding a ${variable} (deferred, such
@@ -66,7 +51,7 @@ void check_files(const mp::Pipeline& pipeline) {
     if (stage.type == "read" && !fs::exists(path, error))
       problems.push_back({location, "no such file '" + path + "' (stage " + stage.tag + ")"});
     if (stage.type == "write")
-      if (const std::string problem = folder_problem(path); !problem.empty())
+      if (const std::string problem = mp::folder_problem(path); !problem.empty())
         problems.push_back({location, problem + " (stage " + stage.tag + ")"});
   }
   if (!problems.empty()) throw mp::PipelineError(problems);
@@ -107,6 +92,10 @@ Command add_run_command(CLI::App& app) {
               return kBadInput;
             }
             options.inputs = expand_inputs(args->inputs);
+            if (!report_path->empty()) {
+              if (!writes_safe({{*report_path, "--report"}}, {})) return kBadInput;
+              options.caller_writes.push_back({"--report", *report_path});
+            }
             // The stages of every input, on a terminal only (a log gets the summary line).
             ProgressDisplay display("ran", "stages", false);
             std::atomic<std::size_t> failed_inputs{0};
@@ -149,41 +138,41 @@ Command add_validate_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("validate", "Check a pipeline without running it");
   auto args = std::make_shared<PipelineArgs>();
   add_pipeline_options(cmd, *args);
-  return {cmd, [args]() -> int {
-            mp::Variables variables;
-            try {
-              variables = mp::parse_assignments(args->sets);
-            } catch (const mp::PipelineError& e) {
-              print_problems("", e);
-              return kBadInput;
+  return {
+      cmd, [args]() -> int {
+        mp::Variables variables;
+        try {
+          variables = mp::parse_assignments(args->sets);
+        } catch (const mp::PipelineError& e) {
+          print_problems("", e);
+          return kBadInput;
+        }
+        const auto inputs = expand_inputs(args->inputs);
+        try {
+          const nlohmann::json document = mp::load_document(args->file);
+          mp::check_assignments_used(document, variables);
+          std::size_t stages = 0;
+          if (inputs.empty()) {
+            const mp::Pipeline pipeline =
+                mp::validate(document, args->file, variables, {"input", "stem"});
+            check_files(pipeline);
+            stages = pipeline.stages.size();
+          } else {
+            mp::RunOptions options;
+            options.variables = variables;
+            options.inputs = inputs;
+            for (const mp::Pipeline& pipeline : mp::prepare_run(document, args->file, options)) {
+              check_files(pipeline);
+              stages = pipeline.stages.size();
             }
-            const auto inputs = expand_inputs(args->inputs);
-            try {
-              const nlohmann::json document = mp::load_document(args->file);
-              mp::check_assignments_used(document, variables);
-              std::size_t stages = 0;
-              if (inputs.empty()) {
-                const mp::Pipeline pipeline =
-                    mp::validate(document, args->file, variables, {"input", "stem"});
-                check_files(pipeline);
-                stages = pipeline.stages.size();
-              } else {
-                for (const std::string& input : inputs) {
-                  mp::Variables v = variables;
-                  v["input"] = input;
-                  v["stem"] = std::filesystem::path(input).stem().string();
-                  const mp::Pipeline pipeline = mp::validate(document, args->file, v);
-                  check_files(pipeline);
-                  stages = pipeline.stages.size();
-                }
-              }
-              std::cout << args->file << ": valid pipeline, " << stages << " stages\n";
-            } catch (const mp::PipelineError& e) {
-              print_problems(args->file, e);
-              return kBadInput;
-            }
-            return kSuccess;
-          }};
+          }
+          std::cout << args->file << ": valid pipeline, " << stages << " stages\n";
+        } catch (const mp::PipelineError& e) {
+          print_problems(args->file, e);
+          return kBadInput;
+        }
+        return kSuccess;
+      }};
 }
 
 std::string describe_option(const mp::OptionInfo& o) {
@@ -241,19 +230,49 @@ Command add_stages_command(CLI::App& app) {
 
 }  // namespace
 
+namespace {
+
+bool is_mesh_file(const fs::path& path) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  for (const char* known : {".off", ".obj", ".stl", ".ply", ".3mf"})
+    if (extension == known) return true;
+  return false;
+}
+
+// The mesh files under a folder, all levels down, in name order.
+std::vector<std::string> folder_meshes(const std::string& folder) {
+  std::vector<std::string> out;
+  for (const auto& entry :
+       fs::recursive_directory_iterator(folder, fs::directory_options::skip_permission_denied))
+    if (entry.is_regular_file() && is_mesh_file(entry.path())) out.push_back(entry.path().string());
+  std::sort(out.begin(), out.end());
+  if (out.empty())
+    throw InputError(folder, "no mesh file (OFF, OBJ, STL, PLY, 3MF) in this folder");
+  return out;
+}
+
+}  // namespace
+
 std::vector<std::string> expand_inputs(const std::vector<std::string>& patterns) {
   std::vector<std::string> out;
   for (const std::string& p : patterns) {
+    std::error_code error;
+    if (fs::is_directory(p, error)) {
+      for (std::string& file : folder_meshes(p)) out.push_back(std::move(file));
+      continue;
+    }
     if (p.find_first_of("*?[") == std::string::npos) {
       out.push_back(p);
       continue;
     }
     glob_t matches{};
-    if (glob(p.c_str(), 0, nullptr, &matches) == 0)
+    const int found = glob(p.c_str(), 0, nullptr, &matches);
+    if (found == 0)
       for (std::size_t i = 0; i < matches.gl_pathc; ++i) out.emplace_back(matches.gl_pathv[i]);
-    else
-      out.push_back(p);  // no match: reported as a missing file by the read stage
     globfree(&matches);
+    // A quoted pattern that matches nothing is a mistake to say, not a file name to try.
+    if (found != 0) throw InputError("'" + p + "'", "no file matches this pattern");
   }
   return out;
 }

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <set>
 #include <sstream>
 
 #include "cli_common.h"
@@ -177,7 +178,7 @@ Command add_query_command(CLI::App& app) {
   cmd->add_option("--db", args->db, "Index file")->required()->check(CLI::ExistingFile);
   cmd->add_option("MESH", args->mesh, "A mesh file, or the name (stem) or path of an indexed mesh")
       ->required();
-  cmd->add_option("-k", args->k, "Number of neighbours")->check(CLI::PositiveNumber);
+  cmd->add_option("-k", args->k, "Number of neighbours")->check(positive_integer());
   cmd->add_option("--descriptor", args->descriptor, "Descriptor kind")
       ->capture_default_str()
       ->check(CLI::IsMember(descriptor_kinds()));
@@ -243,9 +244,16 @@ Command add_evaluate_command(CLI::App& app) {
                           " models is in the index " + args->db);
               return kBadInput;
             }
+            // Label names the index does not hold are left out of the scores: say how many, as a
+            // misspelt or stale label file would otherwise only lower the scores silently.
+            std::set<std::string> indexed;
+            for (const IndexedMesh& m : db.load(false, {})) indexed.insert(m.name);
+            std::size_t not_indexed = 0;
+            for (const auto& [name, label] : labels) not_indexed += !indexed.count(name);
             nlohmann::json j = {{"models", e.models},
                                 {"metric", args->metric},
                                 {"unlabelled", e.unlabelled},
+                                {"labels_not_indexed", not_indexed},
                                 {"descriptors", nlohmann::json::object()}};
             if (!args->json)
               std::cout << std::left << std::setw(18) << "descriptor" << std::right << std::setw(18)
@@ -273,6 +281,9 @@ Command add_evaluate_command(CLI::App& app) {
                         << (e.unlabelled ? ", " + std::to_string(e.unlabelled) +
                                                " indexed models without a label skipped"
                                          : "")
+                        << (not_indexed ? ", " + std::to_string(not_indexed) +
+                                              " labelled names not in the index skipped"
+                                        : "")
                         << '\n';
             return kSuccess;
           }};

@@ -326,12 +326,14 @@ RoundedMesh round_mesh(const Mesh& mesh, const RoundingOptions& options) {
   }
   r.collapsed = out.mesh.triangles.empty() && !mesh.triangles.empty();
   if (options.measure_volume) {
-    const FT before = signed_volume(mesh);
-    const FT after = signed_volume(from_double(out.mesh));
-    r.volume_change = to_double_volume(after - before);
-    r.relative_volume_change =
-        CGAL::is_zero(before) ? 0 : to_double_volume((after - before) / before);
     r.volume_measured = true;
+    if (r.moved_vertices == 0) return out;  // the same solid: no change to measure
+    const FT before = signed_volume(mesh);
+    const FT change = signed_volume(from_double(out.mesh)) - before;
+    // + 0.0: an exact zero is reported as 0, not -0.
+    r.volume_change = to_double_volume(change) + 0.0;
+    r.relative_volume_change =
+        CGAL::is_zero(before) ? 0 : to_double_volume(change / before) + 0.0;
   }
   return out;
 }

@@ -14,6 +14,7 @@
 #include "morphex/check.h"
 #include "morphex/generators.h"
 #include "morphex/io.h"
+#include "morphex/nearest.h"
 
 namespace morphex {
 namespace {
@@ -191,10 +192,24 @@ StructuringElement make_structuring_element(const std::string& shape, const SePa
   const auto& shapes = structuring_element_shapes();
   const auto info = std::find_if(shapes.begin(), shapes.end(),
                                  [&](const SeShapeInfo& s) { return s.shape == shape; });
-  if (info == shapes.end())
+  if (info == shapes.end()) {
+    // Names users reach for first, then the nearest by spelling.
+    static const std::vector<std::pair<std::string, std::string>> synonyms = {
+        {"sphere", "ball"},    {"icosphere", "ball"},     {"cuboid", "box"},
+        {"prism", "cylinder"}, {"diamond", "octahedron"}, {"file", "mesh"}};
+    std::string hint;
+    for (const auto& [name, meant] : synonyms)
+      if (name == shape) hint = meant;
+    if (hint.empty()) {
+      std::vector<std::string> names;
+      for (const SeShapeInfo& s : shapes) names.push_back(s.shape);
+      hint = nearest_name(shape, names);
+    }
     throw StructuringElementError("", "shape",
-                                  "unknown structuring element shape '" + shape +
-                                      "' (expected cube, box, octahedron, ball, cylinder or mesh)");
+                                  "unknown structuring element shape '" + shape + "' (" +
+                                      (hint.empty() ? "" : "did you mean '" + hint + "'? ") +
+                                      "expected cube, box, octahedron, ball, cylinder or mesh)");
+  }
   const ParameterReader read(*info, params);
   StructuringElement se;
   se.shape = shape;

@@ -383,12 +383,19 @@ std::vector<Neighbour> query_index(IndexDb& db, const std::string& target, std::
                                    const std::string& kind, Metric metric, bool by_name) {
   const std::vector<IndexedMesh> meshes = db.load(true, {kind});
   const std::string setting = one_setting(db, meshes);
+  // The stored pipeline is checked on every query, also one that only uses stored vectors: an
+  // index whose pipeline morphex would not run is not one it made (index files are untrusted).
+  const IndexPipeline pipeline = stored_pipeline(db);
   std::vector<double> query;
   long long exclude = -1;
+  // A file the index recorded (by the absolute path index_item gives it) is an indexed mesh, as
+  // its name is: both use the stored vector and leave the mesh out of its own neighbours.
+  const bool file = fs::exists(target);
+  const std::string absolute = fs::absolute(target).lexically_normal().string();
   const auto stored = std::find_if(meshes.begin(), meshes.end(), [&](const IndexedMesh& m) {
-    return m.name == target || m.path == target;
+    return (!file && m.name == target) || m.path == target || m.path == absolute;
   });
-  if (by_name && !fs::exists(target) && stored != meshes.end()) {
+  if (by_name && stored != meshes.end()) {
     if (!stored->descriptors.count(kind))
       throw InputError(db.path(), stored->name + " has no '" + kind +
                                       "' descriptor (indexed by another version of morphex: "
@@ -400,7 +407,7 @@ std::vector<Neighbour> query_index(IndexDb& db, const std::string& target, std::
       throw InputError(target, by_name ? "neither a mesh file nor the name of an indexed mesh"
                                        : "cannot open file: no such file");
     // Described as the index's meshes were: its pipeline and variables.
-    const IndexPipeline stored = stored_pipeline(db);
+    const IndexPipeline& stored = pipeline;
     if (!setting.empty() && setting != stored.settings())
       throw InputError(db.path(),
                        "its meshes were described under other settings than its "

@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_for_each.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
@@ -113,7 +114,103 @@ std::string stem_of(const std::string& path) {
   return std::filesystem::path(path).stem().string();
 }
 
+// The stage index of a location "pipeline[N]...".
+std::size_t stage_of(const FileUse& use) {
+  return std::stoul(use.location.substr(use.location.find('[') + 1));
+}
+
+// A file as the checks compare it: through links, relative to the working folder.
+std::string file_key(const std::string& path) {
+  std::error_code error;
+  const auto canonical = std::filesystem::weakly_canonical(path, error);
+  return error ? path : canonical.string();
+}
+
+// What validating each input's pipeline alone cannot see: one input's write replacing a file
+// another input reads, two inputs writing one file (results lost), and the caller's own outputs
+// (--report) among the pipeline's files. Keyed by canonical path: linear in the inputs.
+void check_files_across(const std::vector<Pipeline>& pipelines,
+                        const std::vector<std::string>& inputs,
+                        const std::vector<std::pair<std::string, std::string>>& caller_writes,
+                        std::vector<Problem>& problems) {
+  struct Use {
+    std::size_t input;
+    FileUse use;
+  };
+  std::map<std::string, Use> reads, writes;
+  for (std::size_t i = 0; i < pipelines.size(); ++i)
+    for (const FileUse& r : files_read(pipelines[i])) reads.emplace(file_key(r.path), Use{i, r});
+  const bool several = pipelines.size() > 1;
+  std::set<std::string> seen;
+  const auto add = [&](const std::string& location, const std::string& message) {
+    if (seen.insert(location + message).second) problems.push_back({location, message});
+  };
+  // A write whose path every input shares does not depend on the input at all: said once.
+  std::set<std::string> fixed;
+  const bool one_stem = std::all_of(inputs.begin(), inputs.end(), [&](const std::string& input) {
+    return stem_of(input) == stem_of(inputs[0]);
+  });
+  if (several && !one_stem)
+    for (const FileUse& w : files_written(pipelines[0]))
+      if (std::all_of(pipelines.begin() + 1, pipelines.end(), [&](const Pipeline& p) {
+            const std::vector<FileUse> others = files_written(p);
+            return std::any_of(others.begin(), others.end(), [&](const FileUse& o) {
+              return o.location == w.location && o.path == w.path;
+            });
+          })) {
+        fixed.insert(w.location);
+        add(w.location,
+            "every input would write the same file " + w.path + " (put ${stem} in the path)");
+      }
+  for (std::size_t i = 0; i < pipelines.size(); ++i)
+    for (const FileUse& w : files_written(pipelines[i])) {
+      const std::string key = file_key(w.path);
+      if (const auto r = reads.find(key); r != reads.end() && r->second.input != i)
+        add(w.location, inputs[i] + " would overwrite " + r->second.use.what + " for " +
+                            inputs[r->second.input] + " (" + w.path + ")");
+      const auto [first, inserted] = writes.emplace(key, Use{i, w});
+      if (!inserted && first->second.input != i && !fixed.count(w.location))
+        add(w.location, inputs[first->second.input] + " and " + inputs[i] + " would both write " +
+                            w.path +
+                            " (their names are the same: put more of the path in the output, "
+                            "or rename one)");
+    }
+  // Write stages make their folders: one that cannot be made is known now, not after the work.
+  std::set<std::string> folders;
+  for (const auto& [key, w] : writes)
+    if (folders.insert(std::filesystem::path(key).parent_path().string()).second)
+      if (const std::string problem = folder_problem(w.use.path); !problem.empty())
+        add(w.use.location,
+            problem + " (stage " + pipelines[w.input].stages[stage_of(w.use)].tag + ")");
+  for (const auto& [location, path] : caller_writes) {
+    const std::string key = file_key(path);
+    if (const auto r = reads.find(key); r != reads.end())
+      add(location, "refusing to overwrite " + r->second.use.what +
+                        (several ? " for " + inputs[r->second.input] : "") + " (" + path + ")");
+    else if (const auto w = writes.find(key); w != writes.end())
+      add(location, "refusing to overwrite " + w->second.use.what + " (" + path + ")");
+  }
+}
+
 }  // namespace
+
+// Why the folders of `path` cannot be created or written in ("" when they can): the nearest
+// ancestor that exists must be a folder this process may write in.
+std::string folder_problem(const std::string& path) {
+  std::error_code error;
+  const std::filesystem::path parent = std::filesystem::absolute(path, error).parent_path();
+  std::filesystem::path existing = parent;
+  while (!existing.empty() && !std::filesystem::exists(existing, error) &&
+         existing != existing.root_path())
+    existing = existing.parent_path();
+  if (!std::filesystem::is_directory(existing, error))
+    return "cannot create the folder " + parent.string() + ": " + existing.string() +
+           " is not a folder";
+  if (access(existing.c_str(), W_OK | X_OK) != 0)
+    return (existing == parent ? "cannot write in the folder " : "cannot create the folder ") +
+           parent.string() + ": no permission to write in " + existing.string();
+  return "";
+}
 
 bool RunReport::ok() const {
   return std::all_of(inputs.begin(), inputs.end(), [](const InputReport& r) { return r.ok; });
@@ -141,9 +238,8 @@ nlohmann::json RunReport::to_json() const {
   return out;
 }
 
-RunReport run(const nlohmann::json& document, const std::string& name, const RunOptions& options,
-              const StageRegistry& registry) {
-  // Validate for every input before running any, so that a bad pipeline runs nothing.
+std::vector<Pipeline> prepare_run(const nlohmann::json& document, const std::string& name,
+                                  const RunOptions& options, const StageRegistry& registry) {
   std::vector<Pipeline> pipelines;
   std::vector<Problem> problems;
   std::set<std::string> seen;
@@ -162,15 +258,17 @@ RunReport run(const nlohmann::json& document, const std::string& name, const Run
         if (seen.insert(p.text()).second) problems.push_back(p);
     }
   }
-  if (problems.empty() && pipelines.size() > 1)
-    for (const Stage& w : pipelines[0].stages)
-      if (w.type == "write" && w.options["path"] == pipelines[1].stages[w.index].options["path"])
-        problems.push_back({"pipeline[" + std::to_string(w.index) + "].path",
-                            "every input would write the same file " +
-                                w.options["path"].get<std::string>() +
-                                " (put ${stem} in the path)"});
+  if (problems.empty()) check_files_across(pipelines, inputs, options.caller_writes, problems);
   if (!problems.empty()) throw PipelineError(std::move(problems));
+  return pipelines;
+}
 
+RunReport run(const nlohmann::json& document, const std::string& name, const RunOptions& options,
+              const StageRegistry& registry) {
+  // Validate for every input before running any, so that a bad pipeline runs nothing.
+  const std::vector<Pipeline> pipelines = prepare_run(document, name, options, registry);
+  const std::vector<std::string> inputs =
+      options.inputs.empty() ? std::vector<std::string>{""} : options.inputs;
   const Stopwatch start;
   Progress progress(options, pipelines.size() * pipelines[0].stages.size());
   RunReport report;

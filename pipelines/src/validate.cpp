@@ -151,6 +151,29 @@ std::shared_ptr<const StructuringElement> check_option(const OptionInfo& option,
   return nullptr;
 }
 
+// The 1-based offset of the first bracket nested deeper than kMaxJsonDepth, outside strings;
+// 0 when there is none.
+std::size_t too_deep(const std::string& text) {
+  std::size_t depth = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth) return i + 1;
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return 0;
+}
+
 }  // namespace
 
 PipelineError::PipelineError(std::vector<Problem> problems)
@@ -179,6 +202,13 @@ nlohmann::json parse_document(const std::string& text, const std::string& name) 
     if (what.rfind("parse error at ", 0) == 0) what = what.substr(what.find(": ") + 2);
     return "malformed JSON: " + what;
   };
+  // The parser is iterative, but the document's destructor, dump() and the validation recurse:
+  // thousands of nested brackets (40 KB of them) would overflow the stack. A pipeline needs a
+  // handful of levels.
+  if (const std::size_t byte = too_deep(text); byte > 0)
+    throw PipelineError(std::vector<Problem>{
+        {location(byte), "JSON nested deeper than " + std::to_string(kMaxJsonDepth) +
+                             " levels (a pipeline needs a few)"}});
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
@@ -407,6 +437,47 @@ void order_stages(Pipeline& pipeline, std::vector<Problem>& problems) {
   for (std::size_t s = 0; s < pipeline.stages.size(); ++s) visit(s);
 }
 
+// The file of a mesh structuring element option ({"shape": "mesh", "path": F} or "mesh:path=F").
+std::string element_file(const nlohmann::json& value) {
+  if (value.is_object() && value.value("shape", "") == "mesh" && value.contains("path") &&
+      value["path"].is_string())
+    return value["path"].get<std::string>();
+  if (!value.is_string()) return "";
+  const std::string text = value.get<std::string>();
+  const std::size_t start = text.find("path=");
+  if (text.rfind("mesh:", 0) != 0 || start == std::string::npos) return "";
+  const std::size_t end = text.find(',', start);
+  return text.substr(start + 5, end == std::string::npos ? std::string::npos : end - start - 5);
+}
+
+}  // namespace
+
+std::vector<FileUse> files_read(const Pipeline& pipeline) {
+  std::vector<FileUse> out;
+  for (const Stage& s : pipeline.stages) {
+    if (s.type == "read" && s.options.contains("path") && s.options["path"].is_string())
+      out.push_back({s.options["path"].get<std::string>(), at(at("pipeline", s.index), "path"),
+                     "the input read by " + at("pipeline", s.index)});
+    for (const auto& [name, element] : s.elements)
+      if (const std::string file = element_file(s.options.value(name, nlohmann::json()));
+          !file.empty())
+        out.push_back({file, at(at("pipeline", s.index), name),
+                       "the structuring element of " + at(at("pipeline", s.index), name)});
+  }
+  return out;
+}
+
+std::vector<FileUse> files_written(const Pipeline& pipeline) {
+  std::vector<FileUse> out;
+  for (const Stage& s : pipeline.stages)
+    if (s.type == "write" && s.options.contains("path") && s.options["path"].is_string())
+      out.push_back({s.options["path"].get<std::string>(), at(at("pipeline", s.index), "path"),
+                     "the output of " + at("pipeline", s.index)});
+  return out;
+}
+
+namespace {
+
 // A read feeding only repair or solidify stages passes its mesh on unchecked.
 void mark_unchecked_reads(Pipeline& pipeline) {
   for (Stage& r : pipeline.stages) {
@@ -421,18 +492,13 @@ void mark_unchecked_reads(Pipeline& pipeline) {
   }
 }
 
-// No write may replace a file that a read stage takes as input.
+// No write may replace a file that a read stage or a mesh structuring element takes as input.
 void check_overwrites(const Pipeline& pipeline, std::vector<Problem>& problems) {
-  for (const Stage& w : pipeline.stages) {
-    if (w.type != "write" || !w.options.contains("path")) continue;
-    const std::string out = w.options["path"].get<std::string>();
-    for (const Stage& r : pipeline.stages)
-      if (r.type == "read" && r.options.contains("path") &&
-          (r.options["path"] == out || same_file(r.options["path"].get<std::string>(), out)))
-        problems.push_back(
-            {at(at("pipeline", w.index), "path"),
-             "would overwrite the input read by " + at("pipeline", r.index) + " (" + out + ")"});
-  }
+  const std::vector<FileUse> reads = files_read(pipeline);
+  for (const FileUse& w : files_written(pipeline))
+    for (const FileUse& r : reads)
+      if (r.path == w.path || same_file(r.path, w.path))
+        problems.push_back({w.location, "would overwrite " + r.what + " (" + w.path + ")"});
 }
 
 }  // namespace

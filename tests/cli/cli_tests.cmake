@@ -11,9 +11,10 @@ morphex_cli_test(help 0 "check" --help)
 morphex_cli_test(check_help 0 "--json" check --help)
 morphex_cli_test(no_subcommand 2 "subcommand" )
 morphex_cli_test(unknown_option 2 "bogus" check --bogus ${data}/unit_cube.off)
-morphex_cli_test(check_cube 0 "\"volume\":\"1\"" check --json ${data}/unit_cube.off)
+morphex_cli_test(check_cube 0 "\"volume\":1.0" check --json ${data}/unit_cube.off)
+morphex_cli_test(check_cube_exact 0 "\"volume_exact\":\"1\"" check --json --exact ${data}/unit_cube.off)
 morphex_cli_test(check_cube_text 0 "valid closed solid" check ${data}/unit_cube.off)
-morphex_cli_test(check_exact_third 0 "\"volume\":\"1/27\"" check --json ${data}/third_cube_exact.off)
+morphex_cli_test(check_exact_third 0 "\"volume_exact\":\"1/27\"" check --json --exact ${data}/third_cube_exact.off)
 morphex_cli_test(check_open 1 "open_cube.off: mesh is not closed: 4 border edges, first at vertex"
   check ${data}/open_cube.off)
 morphex_cli_test(check_open_json 1 "\"border_edges\":4" check --json ${data}/open_cube.off)
@@ -107,3 +108,13 @@ morphex_cli_test(check_many_json 2
   check --json ${data}/unit_cube.off ${data}/does_not_exist.off ${data}/open_cube.off)
 morphex_cli_test(check_many_invalid 1 "unit_cube.off: valid closed solid.*open_cube.off: NOT a valid solid"
   check ${data}/unit_cube.off ${data}/open_cube.off)
+# Issue 44: outputs never replace inputs, every output path checked before work, deep JSON, small
+# memory limits, failed writes to standard output, decimal volumes, typos, folders and help.
+foreach(item side_outputs same_stem deep_json stdout_full volume folders typos inputs help)
+  add_test(NAME cli.outputs_${item} COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/outputs.sh
+    $<TARGET_FILE:morphex> ${data} ${PROJECT_BINARY_DIR}/cli-outputs ${item})
+endforeach()
+if(NOT MORPHEX_SANITIZE MATCHES "address")  # see cli.max_memory
+  add_test(NAME cli.outputs_memory COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/outputs.sh
+    $<TARGET_FILE:morphex> ${data} ${PROJECT_BINARY_DIR}/cli-outputs memory)
+endif()

@@ -145,3 +145,12 @@ def test_index_refuses_files_that_are_not_indexes(tmp_path):
     text.write_text("not a database, just text long enough to be read as a header " * 4)
     with pytest.raises(ValueError, match="not a morphex index"):
         morphex.Index(text)
+
+
+def test_run_pipeline_refuses_deep_nesting(tmp_path, data_dir):
+    # issue 44: 20,000 nested brackets (40 KB) crashed the process with SIGSEGV
+    deep = tmp_path / "deep.json"
+    deep.write_text('{"pipeline": [{"type": "read", "path": ' + "[" * 20000 + "]" * 20000 + "}]}")
+    for document in (deep, deep.read_text()):
+        with pytest.raises(ValueError, match="nested deeper than 64 levels"):
+            morphex.run_pipeline(document, [data_dir / "unit_cube.off"])

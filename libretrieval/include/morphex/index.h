@@ -112,10 +112,11 @@ struct Neighbour {
 };
 
 // The k indexed meshes nearest to `target` by descriptor `kind` under `metric`, nearest first (ties
-// by name). `target` is a mesh file, described by the index's own pipeline, or (when no such file
-// exists and `by_name`) the name or recorded path of an indexed mesh, whose stored vector is used
-// and which is not ranked. Throws InputError, also when the index's meshes were described under
-// several settings, or its stored pipeline holds other than descriptor stages.
+// by name). `target` is a mesh file, described by the index's own pipeline, or (when `by_name`)
+// an indexed mesh: its recorded path, or its name when no such file exists. An indexed mesh's
+// stored vector is used and it is not ranked, whether named by name or by path. Throws
+// InputError, also when the index's meshes were described under several settings, or its stored
+// pipeline holds other than descriptor stages.
 std::vector<Neighbour> query_index(IndexDb& db, const std::string& target, std::size_t k,
                                    const std::string& kind, Metric metric, bool by_name = true);
 

@@ -127,7 +127,9 @@ struct Pipeline {
   std::vector<std::size_t> order;  // a topological order of the stage graph
 };
 
-// Parses JSON text; malformed JSON is reported with line and column.
+// Parses JSON text; malformed JSON is reported with line and column, and so is nesting deeper than
+// kMaxJsonDepth brackets (refused before parsing: deeper documents would overflow the stack).
+constexpr std::size_t kMaxJsonDepth = 64;
 nlohmann::json parse_document(const std::string& text, const std::string& name);
 // Reads and parses a pipeline file.
 nlohmann::json load_document(const std::string& path);
@@ -138,6 +140,18 @@ nlohmann::json load_document(const std::string& path);
 Pipeline validate(const nlohmann::json& document, const std::string& name,
                   const Variables& variables, const std::vector<std::string>& deferred = {},
                   const StageRegistry& registry = StageRegistry::builtin());
+
+// The files a validated pipeline reads (read stages, mesh structuring elements) and writes, with
+// their JSON location and what they are to the user ("the input read by pipeline[0]").
+struct FileUse {
+  std::string path, location, what;
+};
+std::vector<FileUse> files_read(const Pipeline& pipeline);
+std::vector<FileUse> files_written(const Pipeline& pipeline);
+
+// Why the folders of `path` cannot be created or written in ("" when they can): the nearest
+// ancestor that exists must be a folder this process may write in.
+std::string folder_problem(const std::string& path);
 
 // ---- execution ---------------------------------------------------------------------------------
 
@@ -172,6 +186,9 @@ struct RunOptions {
   // Called once per input as soon as it finishes (from a worker thread, one call at a time), so a
   // caller can commit results before the whole run ends.
   std::function<void(const InputReport&)> on_input_done;
+  // Files the caller will write besides the pipeline's own (the CLI's --report), as {location,
+  // path}: refused before anything runs when one is a file the pipeline reads or writes.
+  std::vector<std::pair<std::string, std::string>> caller_writes;
 };
 
 struct RunReport {
@@ -181,11 +198,18 @@ struct RunReport {
   nlohmann::json to_json() const;
 };
 
-// Validates the pipeline for every input first (throws PipelineError before anything runs), then
+// Validates the pipeline for every input first (throws PipelineError before anything runs: also
+// when a write of one input would replace a file another input reads, two inputs would write one
+// file, or a caller_writes file is read or written by the pipeline), then
 // runs the inputs in parallel, independent branches in parallel; a failing input is reported in
 // its InputReport and the others go on.
 RunReport run(const nlohmann::json& document, const std::string& name, const RunOptions& options,
               const StageRegistry& registry = StageRegistry::builtin());
+// What run does before it runs anything: the pipeline of every input, validated, and the checks
+// across inputs above; throws PipelineError. `morphex validate --input` refuses what run would.
+std::vector<Pipeline> prepare_run(const nlohmann::json& document, const std::string& name,
+                                  const RunOptions& options,
+                                  const StageRegistry& registry = StageRegistry::builtin());
 
 // The repair report as JSON (the `repair` object of reports, --stats and index entries).
 nlohmann::json to_json(const RepairReport& report);
