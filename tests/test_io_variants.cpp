@@ -153,3 +153,33 @@ TEST(Gzip, DamagedAndOversizedStreamsAreRefused) {
   EXPECT_NE(error_of(bomb).find("file too large once decompressed"), std::string::npos);
   set_input_limits(before);
 }
+
+TEST(ObjVariants, GroupsMaterialsNormalsAndPolygonsAreRead) {
+  Dir dir;
+  // A unit cube as six quads with every record an exporter adds; one face a pentagon (a point on
+  // an edge of the top), negative indices on another.
+  const std::string obj =
+      "mtllib cube.mtl\no cube\ng box\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\n"
+      "v 1 1 1\nv 0 1 1\nv 0.5 1 1\nvt 0 0\nvn 0 0 1\ns off\nusemtl red\n"
+      "f 1/1/1 4/1/1 3/1/1 2/1/1\nf 5 6 7 9 8\nf -9 -8 -4 -5\nf 2 3 7 6\nf 3 4 8 9 7\n"
+      "f 4 1 5 8\n";
+  const Mesh m = read_mesh(dir.write("cube.obj", obj));
+  const MeshReport r = check_mesh(m);
+  EXPECT_TRUE(r.valid_solid()) << describe_problems(r);
+  EXPECT_EQ(r.volume, FT(1));
+}
+
+TEST(PlyVariants, ExtraPropertiesAndIndexTypesAreRead) {
+  Dir dir;
+  const std::string header =
+      "ply\nformat ascii 1.0\ncomment colours and normals\nelement vertex 4\nproperty float x\n"
+      "property float y\nproperty float z\nproperty float nx\nproperty uchar red\n"
+      "element face 4\nproperty list uint8 uint16 vertex_index\nproperty uchar flags\n"
+      "element material 1\nproperty float shine\nend_header\n";
+  const std::string body =
+      "0 0 0 1 255\n1 0 0 1 0\n0 1 0 1 0\n0 0 1 1 0\n3 0 2 1 7\n3 0 1 3 7\n"
+      "3 1 2 3 7\n3 0 3 2 7\n0.5\n";
+  const Mesh m = read_mesh(dir.write("t.ply", header + body));
+  EXPECT_EQ(m.num_triangles(), 4u);
+  EXPECT_EQ(signed_volume(m), FT(1) / 6);
+}

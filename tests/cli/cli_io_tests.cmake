@@ -93,3 +93,10 @@ morphex_sh_test(solidify_sheet 0 "cannot solidify: mesh bounds no .*exit 1"
    echo \"exit $?\"")
 morphex_sh_test(gzip_stdin_check 0 "<stdin>: valid closed solid"
   "gzip -c ${data}/unit_cube.off | ${mx} check -")
+# index over a folder of meshes as they come (issue 43): open, inward, self-intersecting, a
+# soup written as STL, and a sheet; every one but the sheet is solidified, described and indexed,
+# what was done recorded per mesh (the STL, a valid union, is indexed as it is).
+morphex_sh_test(index_damaged_folder 0 "sheet.off: pipeline.*solidify.*bounds no.*indexed 5 meshes \\(0 already up to date, 1 failed\\).*solidified 3"
+  "rm -rf ${io_out}/wild && mkdir -p ${io_out}/wild && cp ${data}/open_cube.off ${data}/inward_cube.off ${data}/crossing_cubes.off ${data}/unit_cube.off ${data}/sheet.off ${io_out}/wild/ && ${mx} bool union ${data}/unit_cube.off ${data}/third_cube_exact.off -o ${io_out}/wild/soup.stl && rm -f ${io_out}/wild.sqlite
+   ${mx} index ${io_out}/wild --db ${io_out}/wild.sqlite --pipeline ${data}/pipelines/quick-descriptors.json 2>&1
+   echo solidified $(${mx} ls --json --db ${io_out}/wild.sqlite | grep -o '\"method\":\"[a-z]*\"' | grep -vc unchanged)")
