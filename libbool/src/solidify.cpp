@@ -12,6 +12,7 @@
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -42,14 +43,23 @@ std::size_t weld(std::vector<SoupPoint>& points, double tolerance) {
   };
   struct Hash {
     std::size_t operator()(const Key& k) const {
-      return std::size_t(k.x * 73856093LL ^ k.y * 19349663LL ^ k.z * 83492791LL);
+      return std::size_t(std::uint64_t(k.x) * 73856093u ^ std::uint64_t(k.y) * 19349663u ^
+                         std::uint64_t(k.z) * 83492791u);
     }
   };
   std::unordered_map<Key, std::vector<std::size_t>, Hash> cells;
   std::size_t welded = 0;
+  // Cells counted from the box's corner: at most diagonal / tolerance of them along an axis.
+  CGAL::Bbox_3 box;
+  for (const SoupPoint& p : points) box += p.bbox();
+  const double extent = std::max({box.xmax() - box.xmin(), box.ymax() - box.ymin(),
+                                  box.zmax() - box.zmin()});
+  // Below the doubles' resolution only equal positions are one (repair_polygon_soup merges them).
+  if (!(extent / tolerance < 1e15)) return 0;
   auto cell = [&](const SoupPoint& p) {
-    return Key{(long long)std::floor(p.x() / tolerance), (long long)std::floor(p.y() / tolerance),
-               (long long)std::floor(p.z() / tolerance)};
+    return Key{(long long)std::floor((p.x() - box.xmin()) / tolerance),
+               (long long)std::floor((p.y() - box.ymin()) / tolerance),
+               (long long)std::floor((p.z() - box.zmin()) / tolerance)};
   };
   for (std::size_t v = 0; v < points.size(); ++v) {
     const Key c = cell(points[v]);
