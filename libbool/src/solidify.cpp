@@ -187,6 +187,7 @@ SolidifyResult solidify(const Mesh& mesh, const SolidifyOptions& options) {
   SolidifyResult out;
   SolidifyReport& r = out.report;
   r.input_faces = mesh.num_triangles();
+  if (mesh.empty()) throw InputError("", "mesh bounds no volume: it has no faces");
   if (check_mesh(mesh, kValidityOnly).valid_solid()) {
     r.method = "unchanged";
     out.mesh = mesh;
@@ -204,7 +205,16 @@ SolidifyResult solidify(const Mesh& mesh, const SolidifyOptions& options) {
     repaired = repair_mesh(chain, options.repair);
   } catch (const InputError&) {  // not a closed chain: the soup tools make one
     r.method = "soup";
-    repaired = repair_mesh(closed_chain(mesh, options, r), options.repair);
+    const Mesh chain = closed_chain(mesh, options, r);
+    try {
+      repaired = repair_mesh(chain, options.repair);
+    } catch (const InputError& e) {
+      // Borders the hole filling could not close (a patch whose border touches itself): the
+      // surface encloses nothing that the soup tools could find.
+      if (e.problem().find("not closed") == std::string::npos) throw;
+      throw InputError("", "mesh bounds no volume: an open surface whose borders could not be "
+                           "closed (" + e.problem() + ")");
+    }
   }
   r.intersecting_pairs = repaired.report.intersecting_pairs;
   out.mesh = std::move(repaired.mesh);
