@@ -151,6 +151,17 @@ class Statement {
 }  // namespace
 
 IndexDb::IndexDb(const std::string& path, IndexAccess access) : path_(path), access_(access) {
+  // A constructor that throws runs no destructor: the connection is closed here.
+  try {
+    open_checked(path, access);
+  } catch (...) {
+    sqlite3_close_v2(db_);
+    db_ = nullptr;
+    throw;
+  }
+}
+
+void IndexDb::open_checked(const std::string& path, IndexAccess access) {
   std::error_code error;
   const bool exists = fs::exists(path, error);
   if (exists && !fs::is_regular_file(path, error))

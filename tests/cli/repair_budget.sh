@@ -2,9 +2,9 @@
 # The repair's work budget (issue 44, item 5): a soup of 500 crossing tetrahedra (149 KB, made
 # here) is refused by `morphex repair` at once (exit 2, "repair would exceed its budget") instead
 # of taking gigabytes; `index`, which repairs by default, records it as failed and goes on.
-# Usage: repair_budget.sh MORPHEX PIPELINE DATA_DIR DIR
+# Usage: repair_budget.sh MORPHEX PIPELINE DATA_DIR DIR [CAP]   (CAP: "--max-memory-mb N", or empty)
 set -u
-morphex=$1 pipeline=$2 data=$3 dir=$4
+morphex=$1 pipeline=$2 data=$3 dir=$4 cap=${5:-}
 rm -rf "$dir" && mkdir -p "$dir" && cd "$dir" || exit 1
 fail() { echo "FAIL: $*"; exit 1; }
 expect() {  # expect CODE REGEX COMMAND...: exit code and a match in stdout+stderr
@@ -26,11 +26,11 @@ awk 'BEGIN {
   }
 }' > soup.off
 cp "$data/unit_cube.off" cube.off
-# --max-memory-mb: should the budget fail, the test fails quickly instead of swapping.
+# The cap: should the budget fail, the test fails quickly instead of swapping.
 expect 2 "soup.off: cannot repair: repair would exceed its budget: .* pairs of its 2000 faces" \
-  "$morphex" --max-memory-mb 2000 repair soup.off -o repaired.off
+  "$morphex" $cap repair soup.off -o repaired.off
 [ ! -e repaired.off ] || fail "a refused repair wrote its output"
 expect 1 "soup.off: .*repair would exceed its budget.*indexed 1 meshes \(0 already up to date, 1 failed\)" \
-  "$morphex" --max-memory-mb 2000 index soup.off cube.off --db index.sqlite --pipeline "$pipeline"
+  "$morphex" $cap index soup.off cube.off --db index.sqlite --pipeline "$pipeline"
 expect 0 "soup +failed" "$morphex" ls --db index.sqlite
 echo "PASS"

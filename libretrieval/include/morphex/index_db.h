@@ -74,6 +74,8 @@ class IndexDb {
   IndexAccess access() const { return access_; }
 
  private:
+  // The constructor's work: open, check what the file is, create or upgrade the schema.
+  void open_checked(const std::string& path, IndexAccess access);
   void open(int flags, const std::string& uri);
   void create_or_upgrade();
   void require_index();
