@@ -8,7 +8,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <chrono>
 #include <filesystem>
+#include <thread>
 #include <fstream>
 #include <limits>
 #include <set>
@@ -170,16 +172,28 @@ void IndexDb::open_checked(const std::string& path, IndexAccess access) {
   if (access == IndexAccess::ReadOnly) {
     if (!exists) throw InputError(path, "no such index file");
     if (bytes == 0) throw InputError(path, "not a morphex index (an empty file)");
-    open(SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, sqlite_uri(path));
-    try {
-      require_index();
-    } catch (const std::runtime_error&) {
-      // A write-ahead-log index on read-only storage: SQLite cannot make the shared-memory file
-      // that readers use. Nothing can write the file there, so it may be read as immutable.
-      const int code = sqlite3_errcode(db_) & 0xff;
-      if (code != SQLITE_CANTOPEN && code != SQLITE_READONLY) throw;
-      open(SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, sqlite_uri(path) + "?immutable=1");
-      require_index();
+    // Another process closing the index as its last connection removes the write-ahead log and
+    // its shared memory; a reader opening at that moment is told "busy" without waiting (SQLite's
+    // busy handler does not cover recovery): tried again for a while.
+    for (int attempt = 0;; ++attempt) {
+      open(SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, sqlite_uri(path));
+      try {
+        require_index();
+        break;
+      } catch (const std::runtime_error&) {
+        const int code = sqlite3_errcode(db_) & 0xff;
+        if ((code == SQLITE_BUSY || code == SQLITE_LOCKED) && attempt < 40) {
+          std::this_thread::sleep_for(std::chrono::milliseconds(25));
+          continue;
+        }
+        // A write-ahead-log index on read-only storage: SQLite cannot make the shared-memory
+        // file that readers use. Nothing can write the file there, so it may be read as
+        // immutable.
+        if (code != SQLITE_CANTOPEN && code != SQLITE_READONLY) throw;
+        open(SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, sqlite_uri(path) + "?immutable=1");
+        require_index();
+        break;
+      }
     }
     if (bytes <= kQuickCheckBytes) quick_check();
     sqlite3_busy_timeout(db_, 5000);
