@@ -3,6 +3,7 @@
 // habits, gzip-compressed files, and the limits that keep a compressed file from exhausting memory.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
 #include <zlib.h>
 
 #include <filesystem>
@@ -182,4 +183,19 @@ TEST(PlyVariants, ExtraPropertiesAndIndexTypesAreRead) {
   const Mesh m = read_mesh(dir.write("t.ply", header + body));
   EXPECT_EQ(m.num_triangles(), 4u);
   EXPECT_EQ(signed_volume(m), FT(1) / 6);
+}
+
+// A device is written in place, never replaced: renaming a temporary over /dev/null (as root)
+// turned it into a regular file that later redirections filled (found by this session's
+// `--stats /dev/null`).
+TEST(AtomicWrite, DevicesAreWrittenInPlace) {
+  struct stat before {}, after {};
+  ASSERT_EQ(stat("/dev/null", &before), 0);
+  ASSERT_TRUE(S_ISCHR(before.st_mode));
+  write_file_atomically("/dev/null", [](std::ostream& out) { out << "written\n"; });
+  ASSERT_EQ(stat("/dev/null", &after), 0);
+  EXPECT_TRUE(S_ISCHR(after.st_mode));
+  EXPECT_EQ(after.st_ino, before.st_ino);
+  std::ifstream in("/dev/null");
+  EXPECT_EQ(in.peek(), std::char_traits<char>::eof());  // still the device: reads nothing
 }

@@ -66,6 +66,19 @@ void remove_pending_temporary_files() noexcept {
 
 void write_file_atomically(const std::string& path,
                            const std::function<void(std::ostream&)>& writer) {
+  struct stat existing {};
+  if (stat(path.c_str(), &existing) == 0 && !S_ISREG(existing.st_mode) &&
+      !S_ISDIR(existing.st_mode)) {
+    // A device or a pipe (/dev/null, /dev/stdout, a FIFO) is written in place: it holds no file
+    // to keep whole, and renaming a temporary over it would replace the device itself (run as
+    // root, `--stats /dev/null` turned /dev/null into a regular file).
+    std::ofstream out(path, std::ios::binary);
+    if (!out) throw std::runtime_error(path + ": cannot open: " + std::strerror(errno));
+    writer(out);
+    out.flush();
+    if (!out) throw std::runtime_error(path + ": write failed");
+    return;
+  }
   const fs::path target(path);
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::string tmp = (dir / ("." + target.filename().string() + ".tmp.XXXXXX")).string();

@@ -100,3 +100,6 @@ morphex_sh_test(index_damaged_folder 0 "sheet.off: pipeline.*solidify.*bounds no
   "rm -rf ${io_out}/wild && mkdir -p ${io_out}/wild && cp ${data}/open_cube.off ${data}/inward_cube.off ${data}/crossing_cubes.off ${data}/unit_cube.off ${data}/sheet.off ${io_out}/wild/ && ${mx} bool union ${data}/unit_cube.off ${data}/third_cube_exact.off -o ${io_out}/wild/soup.stl && rm -f ${io_out}/wild.sqlite
    ${mx} index ${io_out}/wild --db ${io_out}/wild.sqlite --pipeline ${data}/pipelines/quick-descriptors.json 2>&1
    echo solidified $(${mx} ls --json --db ${io_out}/wild.sqlite | grep -o '\"method\":\"[a-z]*\"' | grep -vc unchanged)")
+# --stats onto a device writes into it, never renames a file over it (/dev/null stays one).
+morphex_sh_test(outputs_onto_devices 0 "^still a device"
+  "${mx} bool union ${data}/unit_cube.off ${data}/unit_cube.off -o ${io_out}/dev.off --stats /dev/null && test -c /dev/null && echo still a device")
