@@ -6,13 +6,7 @@
 set -u
 morphex=$1 pipeline=$2 data=$3 dir=$4
 rm -rf "$dir" && mkdir -p "$dir/a" "$dir/b"
-fail() { echo "FAIL: $*"; exit 1; }
-expect() {  # expect CODE REGEX COMMAND...: exit code and a match in stdout+stderr
-  local code=$1 regex=$2; shift 2
-  out=$("$@" 2>&1); local got=$?
-  [ "$got" -eq "$code" ] || fail "exit $got (expected $code): $*"$'\n'"$out"
-  echo "$out" | grep -Ezq -- "$regex" || fail "no /$regex/ in the output of: $*"$'\n'"$out"
-}
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # fail, expect
 cp "$data/unit_cube.off" "$dir/a/cube.off"
 cp "$data/third_cube_exact.off" "$dir/b/cube.off"  # same name, another folder
 cp "$data/open_cube.off" "$dir/a/open.off"

@@ -6,13 +6,7 @@
 set -u
 morphex=$1 data=$2 dir=$3/$4 item=$4
 rm -rf "$dir" && mkdir -p "$dir/sa" "$dir/sb" "$dir/out"
-fail() { echo "FAIL: $*"; exit 1; }
-expect() {  # expect CODE REGEX COMMAND...: exit code and a match in stdout+stderr
-  local code=$1 regex=$2; shift 2
-  out=$("$@" 2>&1); local got=$?
-  [ "$got" -eq "$code" ] || fail "exit $got (expected $code): $*"$'\n'"$out"
-  echo "$out" | grep -Ezq -- "$regex" || fail "no /$regex/ in the output of: $*"$'\n'"$out"
-}
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # fail, expect
 intact() { cmp -s "$1" "$2" || fail "$1 was changed"; }
 cd "$dir" || exit 1
 cp "$data/unit_cube.off" a.off

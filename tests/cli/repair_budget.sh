@@ -6,13 +6,7 @@
 set -u
 morphex=$1 pipeline=$2 data=$3 dir=$4 cap=${5:-}
 rm -rf "$dir" && mkdir -p "$dir" && cd "$dir" || exit 1
-fail() { echo "FAIL: $*"; exit 1; }
-expect() {  # expect CODE REGEX COMMAND...: exit code and a match in stdout+stderr
-  local code=$1 regex=$2; shift 2
-  out=$("$@" 2>&1); local got=$?
-  [ "$got" -eq "$code" ] || fail "exit $got (expected $code): $*"$'\n'"$out"
-  echo "$out" | grep -Ezq -- "$regex" || fail "no /$regex/ in the output of: $*"$'\n'"$out"
-}
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"  # fail, expect
 # 500 tetrahedra of random doubles in one box, each closed: faces meet ~100 others each.
 awk 'BEGIN {
   srand(7); n = 500; print "OFF"; print 4 * n, 4 * n, 0
