@@ -14,13 +14,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <sstream>
 #include <unordered_map>
 
 #include "morphex/check.h"
 #include "morphex/repair.h"
 #include "morphex/union_find.h"
+#include "point_index.h"
 
 namespace morphex {
 namespace {
@@ -52,8 +52,8 @@ std::size_t weld(std::vector<SoupPoint>& points, double tolerance) {
   // Cells counted from the box's corner: at most diagonal / tolerance of them along an axis.
   CGAL::Bbox_3 box;
   for (const SoupPoint& p : points) box += p.bbox();
-  const double extent = std::max({box.xmax() - box.xmin(), box.ymax() - box.ymin(),
-                                  box.zmax() - box.zmin()});
+  const double extent =
+      std::max({box.xmax() - box.xmin(), box.ymax() - box.ymin(), box.zmax() - box.zmin()});
   // Below the doubles' resolution only equal positions are one (repair_polygon_soup merges them).
   if (!(extent / tolerance < 1e15)) return 0;
   auto cell = [&](const SoupPoint& p) {
@@ -96,27 +96,74 @@ double diagonal(const Mesh& mesh) {
                    std::pow(box.zmax() - box.zmin(), 2));
 }
 
-// Faces turned in every closed part whose volume is negative: in a wild mesh a part is material,
-// never a cavity (an inward export or a flipped part).
-std::size_t turn_inward_parts(Mesh& m) {
+// Each part's (component's) volume sign: interval sums of the faces' triple products in one pass,
+// the exact sum where the interval does not decide.
+std::vector<CGAL::Sign> part_signs(const Mesh& m, const std::vector<std::uint32_t>& part_of,
+                                   std::size_t parts) {
+  using I = CGAL::Interval_nt<false>;
+  std::vector<I> sums(parts, I(0));
+  {
+    CGAL::Protect_FPU_rounding<true> rounding;
+    for (std::uint32_t f = 0; f < m.triangles.size(); ++f) {
+      const Triangle& t = m.triangles[f];
+      const auto &a = CGAL::approx(m.points[t[0]]), &b = CGAL::approx(m.points[t[1]]),
+                 &c = CGAL::approx(m.points[t[2]]);
+      sums[part_of[f]] += a.x() * (b.y() * c.z() - b.z() * c.y()) +
+                          a.y() * (b.z() * c.x() - b.x() * c.z()) +
+                          a.z() * (b.x() * c.y() - b.y() * c.x());
+    }
+  }
+  std::vector<CGAL::Sign> signs(parts, CGAL::ZERO);
+  std::vector<std::uint8_t> undecided(parts, 0);
+  for (std::size_t p = 0; p < parts; ++p) {
+    const CGAL::Uncertain<CGAL::Sign> s = CGAL::sign(sums[p]);
+    if (CGAL::is_certain(s)) signs[p] = CGAL::get_certain(s);
+    undecided[p] = !CGAL::is_certain(s);
+  }
+  std::vector<FT> exact(parts, FT(0));
+  for (std::uint32_t f = 0; f < m.triangles.size(); ++f)
+    if (undecided[part_of[f]]) {
+      const Triangle& t = m.triangles[f];
+      exact[part_of[f]] +=
+          CGAL::determinant(m.points[t[0]] - CGAL::ORIGIN, m.points[t[1]] - CGAL::ORIGIN,
+                            m.points[t[2]] - CGAL::ORIGIN);
+    }
+  for (std::size_t p = 0; p < parts; ++p)
+    if (undecided[p]) signs[p] = CGAL::sign(exact[p]);
+  return signs;
+}
+
+// In a wild mesh a part is material, never a cavity: the faces of every part whose volume is
+// negative are turned (an inward export, a flipped part), and parts without volume are dropped
+// (a sheet closed onto itself by the hole filling, a face and its reverse): they bound nothing,
+// and a soup of many would otherwise cost the repair's check a pair for every two that cross.
+void orient_parts(Mesh& m, SolidifyReport& r) {
   UnionFind sets(m.points.size());
   for (const Triangle& t : m.triangles) {
     sets.join(t[0], t[1]);
     sets.join(t[0], t[2]);
   }
-  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> parts;
-  for (std::uint32_t f = 0; f < m.triangles.size(); ++f)
-    parts[sets.find(m.triangles[f][0])].push_back(f);
-  std::size_t turned = 0;
-  for (const auto& [root, faces] : parts) {
-    Mesh part;
-    part.points = m.points;
-    for (const std::uint32_t f : faces) part.triangles.push_back(m.triangles[f]);
-    if (signed_volume_sign(part) != CGAL::NEGATIVE) continue;
-    ++turned;
-    for (const std::uint32_t f : faces) std::swap(m.triangles[f][1], m.triangles[f][2]);
+  std::vector<std::uint32_t> part_of_root(m.points.size(), UINT32_MAX), part_of(m.triangles.size());
+  std::size_t parts = 0;
+  for (std::uint32_t f = 0; f < m.triangles.size(); ++f) {
+    std::uint32_t& p = part_of_root[sets.find(m.triangles[f][0])];
+    if (p == UINT32_MAX) p = std::uint32_t(parts++);
+    part_of[f] = p;
   }
-  return turned;
+  const std::vector<CGAL::Sign> signs = part_signs(m, part_of, parts);
+  for (const CGAL::Sign s : signs) r.turned_parts += s == CGAL::NEGATIVE;
+  std::vector<Triangle> kept;
+  kept.reserve(m.triangles.size());
+  for (std::uint32_t f = 0; f < m.triangles.size(); ++f) {
+    Triangle t = m.triangles[f];
+    if (signs[part_of[f]] == CGAL::ZERO) {
+      ++r.dropped_faces;
+      continue;
+    }
+    if (signs[part_of[f]] == CGAL::NEGATIVE) std::swap(t[1], t[2]);
+    kept.push_back(t);
+  }
+  m.triangles = std::move(kept);
 }
 
 // Steps 3 of solidify.h: the soup tools, then the mesh of the closed chain they make.
@@ -157,26 +204,19 @@ Mesh closed_chain(const Mesh& mesh, const SolidifyOptions& options, SolidifyRepo
     for (std::size_t k = 1; k + 1 < corners.size(); ++k)  // soup polygons are triangles already
       out.triangles.push_back({corners[0], corners[k], corners[k + 1]});
   }
-  r.turned_parts = turn_inward_parts(out);
+  orient_parts(out, r);
+  if (out.empty()) throw InputError("", "mesh bounds no volume: none of its parts encloses any");
   return out;
 }
 
 // The mesh over distinct positions (equal points made one vertex), so that parts are the
 // components a reader of the shape sees, not the faces of a soup.
 Mesh merged_positions(const Mesh& mesh) {
-  struct Less {
-    bool operator()(const Point& a, const Point& b) const {
-      return CGAL::compare_xyz(a, b) == CGAL::SMALLER;
-    }
-  };
-  std::map<Point, VertexIndex, Less> index;
   Mesh out;
   std::vector<VertexIndex> id(mesh.points.size());
-  for (std::size_t v = 0; v < mesh.points.size(); ++v) {
-    const auto [it, inserted] = index.emplace(mesh.points[v], VertexIndex(out.points.size()));
-    if (inserted) out.points.push_back(mesh.points[v]);
-    id[v] = it->second;
-  }
+  detail::PointIndex index(out.points);  // the one the repair merges positions with
+  index.reserve(mesh.points.size());
+  for (std::size_t v = 0; v < mesh.points.size(); ++v) id[v] = index.id(mesh.points[v]);
   for (const Triangle& t : mesh.triangles) out.triangles.push_back({id[t[0]], id[t[1]], id[t[2]]});
   return out;
 }
@@ -201,10 +241,13 @@ SolidifyResult solidify(const Mesh& mesh, const SolidifyOptions& options) {
     // alone would subtract it), then the exact repair of their union.
     r.method = "repair";
     Mesh chain = merged_positions(mesh);
-    r.turned_parts = turn_inward_parts(chain);
+    orient_parts(chain, r);
+    if (chain.empty())
+      throw InputError("", "mesh bounds no volume: none of its parts encloses any");
     repaired = repair_mesh(chain, options.repair);
   } catch (const InputError&) {  // not a closed chain: the soup tools make one
     r.method = "soup";
+    r.turned_parts = r.dropped_faces = 0;  // counted again, on the soup's closed chain
     const Mesh chain = closed_chain(mesh, options, r);
     try {
       repaired = repair_mesh(chain, options.repair);
@@ -212,8 +255,10 @@ SolidifyResult solidify(const Mesh& mesh, const SolidifyOptions& options) {
       // Borders the hole filling could not close (a patch whose border touches itself): the
       // surface encloses nothing that the soup tools could find.
       if (e.problem().find("not closed") == std::string::npos) throw;
-      throw InputError("", "mesh bounds no volume: an open surface whose borders could not be "
-                           "closed (" + e.problem() + ")");
+      throw InputError("",
+                       "mesh bounds no volume: an open surface whose borders could not be "
+                       "closed (" +
+                           e.problem() + ")");
     }
   }
   r.intersecting_pairs = repaired.report.intersecting_pairs;
