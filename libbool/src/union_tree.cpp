@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "morphex/boolean.h"
+#include "morphex/progress.h"
 #include "spatial.h"
 
 namespace morphex {
@@ -32,10 +33,36 @@ bool boxes_overlap(const CGAL::Bbox_3& a, const CGAL::Bbox_3& b) {
 
 struct Counters {
   std::atomic<std::size_t> binary_unions{0}, disjoint_merges{0};
+  // Triangles of the first i operands: a node's union is weighed by the input triangles below it
+  // (its work grows with them), so the progress bar does not race through the many small unions
+  // at the leaves and then stall at the root.
+  std::vector<double> triangles_before;
+  ProgressCounter* progress = nullptr;
+  double weight(std::size_t begin, std::size_t end) const {
+    return triangles_before[end] - triangles_before[begin];
+  }
 };
+
+// The sum of the weights of the internal nodes of unite's tree over [begin, end).
+double tree_weight(const Counters& counters, std::size_t begin, std::size_t end) {
+  if (end - begin < 2) return 0;
+  const std::size_t middle = begin + (end - begin) / 2;
+  return counters.weight(begin, end) + tree_weight(counters, begin, middle) +
+         tree_weight(counters, middle, end);
+}
+
+Operand unite_node(std::vector<Operand>& items, std::size_t begin, std::size_t end,
+                   Counters& counters);
 
 Operand unite(std::vector<Operand>& items, std::size_t begin, std::size_t end, Counters& counters) {
   if (end - begin == 1) return std::move(items[begin]);
+  Operand out = unite_node(items, begin, end, counters);
+  counters.progress->add(counters.weight(begin, end));
+  return out;
+}
+
+Operand unite_node(std::vector<Operand>& items, std::size_t begin, std::size_t end,
+                   Counters& counters) {
   const std::size_t middle = begin + (end - begin) / 2;
   Operand left, right;
   // Small subtrees are not worth a task; the cut-off keeps scheduling overhead negligible.
@@ -97,6 +124,12 @@ Mesh compute_union(std::vector<Mesh> solids, UnionStats* stats) {
   for (std::size_t i : order) sorted.push_back(std::move(items[i]));
 
   Counters counters;
+  counters.triangles_before.assign(sorted.size() + 1, 0);
+  for (std::size_t i = 0; i < sorted.size(); ++i)
+    counters.triangles_before[i + 1] =
+        counters.triangles_before[i] + double(sorted[i].mesh.triangles.size());
+  ProgressCounter progress(tree_weight(counters, 0, sorted.size()));
+  counters.progress = &progress;
   Operand result = unite(sorted, 0, sorted.size(), counters);
   if (stats) {
     stats->binary_unions = counters.binary_unions;

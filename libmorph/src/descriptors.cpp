@@ -14,6 +14,7 @@
 #include "morphex/check.h"
 #include "morphex/generators.h"
 #include "morphex/morphology.h"
+#include "morphex/progress.h"
 #include "morphex/simplify.h"
 #include "morphex/union_find.h"
 
@@ -158,6 +159,7 @@ void filter_by_cubes(const Mesh& a, const DescriptorSettings& s, Descriptors& d)
   bool vanished = false;  // a larger cube cannot fit where a smaller one did not
   for (double r : d.open_radii) {
     const StructuringElement cube = cube_of(FT(r));
+    const ProgressPhase phase(finished / steps, (finished + 1) / steps, "opening");
     Mesh opened;
     if (!vanished) {
       opened = opening_of_valid(a, cube);
@@ -175,6 +177,7 @@ void filter_by_cubes(const Mesh& a, const DescriptorSettings& s, Descriptors& d)
   if (!s.closings) return;
   for (double r : d.close_radii) {
     const StructuringElement cube = cube_of(FT(r));
+    const ProgressPhase phase(finished / steps, (finished + 1) / steps, "closing");
     const Moments m = moments_of(closing_of_valid(a, cube));
     d.anti_granulometry.push_back(std::max(0.0, m.volume / whole.volume - 1));
     append_placement(d.closing_residue, m - whole, whole);

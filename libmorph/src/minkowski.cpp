@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Minkowski sums as unions of convex pieces (see minkowski.h for the decomposition).
 #include "morphex/minkowski.h"
+#include "morphex/progress.h"
 #include "morphex/stopwatch.h"
 
 #include <tbb/parallel_for.h>
@@ -152,6 +153,8 @@ bool convex_contains_origin(const Mesh& convex) {
 std::optional<std::vector<Mesh>> timed_convolution_pieces(const Mesh& surface, const Mesh& b,
                                                           const Point& c, MinkowskiStats* stats) {
   const Stopwatch start;
+  // The pieces are a small part of a Minkowski sum's time; their union, the rest.
+  const ProgressPhase phase(0, 0.15, "Minkowski pieces");
   auto pieces = convolution_pieces(surface, b, c);
   if (pieces && stats) {
     stats->seconds_pieces += start.seconds();
@@ -188,7 +191,12 @@ Mesh sum_with_component(const Mesh& a, const Mesh& b, bool b_convex, MinkowskiSt
     const Point c = interior_point(b);
     if (auto pieces = timed_convolution_pieces(a, b, c, stats)) {
       // The pieces first: A + c spans them all and would be carried through every level.
-      Mesh shell = timed_union(std::move(*pieces), stats);
+      Mesh shell;
+      {
+        const ProgressPhase phase(0.15, 0.85, "uniting pieces");
+        shell = timed_union(std::move(*pieces), stats);
+      }
+      const ProgressPhase phase(0.85, 1, "uniting with the input");
       return timed_union(
           {std::move(shell), c == Point(CGAL::ORIGIN) ? a : translated(a, c - CGAL::ORIGIN)},
           stats);

@@ -9,6 +9,7 @@
 #include "minkowski_internal.h"
 #include "morphex/boolean.h"
 #include "morphex/generators.h"
+#include "morphex/progress.h"
 
 namespace morphex {
 
@@ -65,6 +66,8 @@ Mesh dilate_valid(const Mesh& a, const std::vector<SePart>& parts, MinkowskiStat
   if (a.empty()) return {};
   Mesh result;
   for (std::size_t i = 0; i < parts.size(); ++i) {
+    const double n = double(parts.size());
+    const ProgressPhase phase(i / n, (i + 1) / n);
     Mesh sum = detail::sum_with_component(a, parts[i].mesh, parts[i].convex, &stats);
     result = i == 0 ? std::move(sum) : binary(result, sum, BooleanOp::Union);
   }
@@ -83,6 +86,7 @@ Mesh erode_by_part(const Mesh& a, const SePart& b, MinkowskiStats& stats) {
   const Point c = b.convex ? detail::interior_point(minus_b) : Point(CGAL::ORIGIN);
   if (b.convex) pieces = detail::timed_convolution_pieces(reversed(a), minus_b, c, &stats);
   if (pieces) {
+    const ProgressPhase phase(0.15, 0.8, "uniting pieces");
     shell = detail::timed_union(std::move(*pieces), &stats);
     moved = c == Point(CGAL::ORIGIN) ? a : translated(a, c - CGAL::ORIGIN);
   } else {
@@ -91,6 +95,7 @@ Mesh erode_by_part(const Mesh& a, const SePart& b, MinkowskiStats& stats) {
     moved = origin_inside ? a : translated(a, CGAL::ORIGIN - b.mesh.points.front());
   }
   ++stats.binary_unions;
+  const ProgressPhase phase(0.8, 1, "subtracting the shell");
   return binary(moved, shell, BooleanOp::Difference);
 }
 
@@ -99,6 +104,8 @@ Mesh erode_valid(const Mesh& a, const std::vector<SePart>& parts, MinkowskiStats
   if (a.empty()) return {};
   Mesh result;
   for (std::size_t i = 0; i < parts.size() && !(i > 0 && result.empty()); ++i) {
+    const double n = double(parts.size());
+    const ProgressPhase phase(i / n, (i + 1) / n);
     Mesh eroded = erode_by_part(a, parts[i], stats);
     result = i == 0 ? std::move(eroded) : binary(result, eroded, BooleanOp::Intersection);
   }
@@ -118,21 +125,39 @@ std::optional<Mesh> box_round_trip(const Mesh& a, const std::vector<SePart>& par
 
 Mesh open_valid(const Mesh& a, const std::vector<SePart>& parts, MinkowskiStats& s) {
   if (auto round_trip = box_round_trip(a, parts, true)) return std::move(*round_trip);
-  return dilate_valid(erode_valid(a, parts, s), parts, s);
+  Mesh eroded;
+  {
+    const ProgressPhase phase(0, 0.5, "erosion");
+    eroded = erode_valid(a, parts, s);
+  }
+  const ProgressPhase phase(0.5, 1, "dilation");
+  return dilate_valid(eroded, parts, s);
 }
 
 Mesh close_valid(const Mesh& a, const std::vector<SePart>& parts, MinkowskiStats& s) {
   if (auto round_trip = box_round_trip(a, parts, false)) return std::move(*round_trip);
-  return erode_valid(dilate_valid(a, parts, s), parts, s);
+  Mesh dilated;
+  {
+    const ProgressPhase phase(0, 0.5, "dilation");
+    dilated = dilate_valid(a, parts, s);
+  }
+  const ProgressPhase phase(0.5, 1, "erosion");
+  return erode_valid(dilated, parts, s);
 }
 
 template <class Body>
 Mesh timed(const Mesh& a, const StructuringElement& se, MorphologyStats* stats, Body&& body,
            bool validate = true) {
   const auto start = std::chrono::steady_clock::now();
-  if (validate) detail::require_valid(a, "input");
-  if (validate) check_structuring_element_scale(se, a);
+  // The input check costs about as much as a small operation.
+  const double checked = validate ? 0.1 : 0;
+  if (validate) {
+    const ProgressPhase phase(0, checked, "checking input");
+    detail::require_valid(a, "input");
+    check_structuring_element_scale(se, a);
+  }
   MinkowskiStats minkowski;
+  const ProgressPhase phase(checked, 1);
   Mesh result = body(minkowski);
   make_exact(result);
   if (stats) {
