@@ -35,7 +35,11 @@ Command add_bool_command(CLI::App& app) {
               return kBadInput;
             }
             const Stopwatch start;
-            const BooleanResult result = compute_boolean(a, b, parse_boolean_op(args->op));
+            BooleanResult result;
+            {
+              const OperationProgress progress(args->op);
+              result = compute_boolean(a, b, parse_boolean_op(args->op));
+            }
             const double seconds = start.seconds();
             if (!result.ok()) {
               const std::string& file =

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -275,6 +276,44 @@ void ProgressDisplay::update(std::size_t done, std::size_t total, std::size_t fa
             << done << "/" << total << " " << units_ << ", " << failed << " failed, ETA "
             << eta_text.str() << (note.empty() ? "" : "  " + note) << (done == total ? "\n" : "")
             << std::flush;
+}
+
+namespace {
+double progress_delay() {
+  const char* text = std::getenv("MORPHEX_PROGRESS_AFTER");
+  if (!text || !*text) return 2;
+  char* end = nullptr;
+  const double value = std::strtod(text, &end);
+  return end && *end == 0 && value >= 0 ? value : 2;
+}
+}  // namespace
+
+OperationProgress::OperationProgress(std::string verb)
+    : verb_(std::move(verb)),
+      tty_(isatty(STDERR_FILENO) != 0),
+      after_(progress_delay()),
+      scope_([this](double share, const std::string& phase) { draw(share, phase); }) {}
+
+OperationProgress::~OperationProgress() {
+  if (drawn_) std::cerr << "\r\033[K" << std::flush;
+}
+
+// Called under the progress lock, from whichever thread reported.
+void OperationProgress::draw(double share, const std::string& phase) {
+  if (!tty_) return;
+  const double elapsed = clock_.seconds();
+  // Redrawn at most ten times a second: a terminal line is cheap, but not free over ssh.
+  if (elapsed < after_ || (last_draw_ >= 0 && elapsed - last_draw_ < 0.1 && share < 1)) return;
+  last_draw_ = elapsed;
+  drawn_ = true;
+  const int width = 30;
+  const int filled = std::clamp(int(width * share), 0, width);
+  std::ostringstream line;
+  line << "\r\033[K" << verb_ << " [" << std::string(filled, '=')
+       << std::string(width - filled, ' ') << "] " << std::setw(3) << int(share * 100) << "%  "
+       << int(elapsed) / 60 << "m" << std::setw(2) << std::setfill('0') << int(elapsed) % 60 << "s";
+  if (!phase.empty()) line << "  " << phase;
+  std::cerr << line.str() << std::flush;
 }
 
 }  // namespace morphex::cli

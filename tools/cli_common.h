@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "morphex/mesh.h"
+#include "morphex/progress.h"
 #include "morphex/rounding.h"
 #include "morphex/stopwatch.h"
 
@@ -122,6 +123,28 @@ class ProgressDisplay {
   bool tty_, in_logs_;
   double last_line_ = -1;
   Stopwatch clock_;
+};
+
+// A bar on a terminal for one long operation (a Boolean, a morphology, a check, a repair), drawn
+// from the libraries' progress reports once the operation has run for two seconds
+// (MORPHEX_PROGRESS_AFTER=SECONDS changes the delay; tests set 0) and cleared when it ends. In a
+// log (stderr not a terminal) it prints nothing: the result's statistics carry the time.
+class OperationProgress {
+ public:
+  explicit OperationProgress(std::string verb);
+  ~OperationProgress();
+  OperationProgress(const OperationProgress&) = delete;
+  OperationProgress& operator=(const OperationProgress&) = delete;
+
+ private:
+  void draw(double share, const std::string& phase);
+  std::string verb_;
+  bool tty_;
+  double after_;
+  double last_draw_ = -1;
+  bool drawn_ = false;
+  Stopwatch clock_;
+  ProgressScope scope_;
 };
 
 }  // namespace morphex::cli

@@ -24,6 +24,22 @@ std::string se_help() {
   return help;
 }
 
+// read_solid has checked the input: the library's checking entry points would check it again.
+Mesh morphology_of_valid(MorphologyOp op, const Mesh& a, const StructuringElement& se,
+                         MorphologyStats* stats) {
+  switch (op) {
+    case MorphologyOp::Dilate:
+      return dilation_of_valid(a, se, stats);
+    case MorphologyOp::Erode:
+      return erosion_of_valid(a, se, stats);
+    case MorphologyOp::Open:
+      return opening_of_valid(a, se, stats);
+    case MorphologyOp::Close:
+      return closing_of_valid(a, se, stats);
+  }
+  throw std::logic_error("unknown morphological operation");
+}
+
 Command add_morphology_command(CLI::App& app, MorphologyOp op, const std::string& summary) {
   auto* cmd = app.add_subcommand(to_string(op), summary);
   struct Args {
@@ -57,7 +73,11 @@ Command add_morphology_command(CLI::App& app, MorphologyOp op, const std::string
             }
             const Stopwatch start;
             MorphologyStats stats;
-            const Mesh result = apply_morphology(op, *a, se, &stats);
+            Mesh result;
+            {
+              const OperationProgress progress(to_string(op));
+              result = morphology_of_valid(op, *a, se, &stats);
+            }
             const double seconds = start.seconds();
             write_result(result, args->output, [&] {
               nlohmann::json j = result_stats(result, seconds);
@@ -90,7 +110,11 @@ Command add_minkowski_command(CLI::App& app) {
             if (!b) return kBadInput;
             const Stopwatch start;
             MinkowskiStats stats;
-            const Mesh result = minkowski_sum(*a, *b, &stats);
+            Mesh result;
+            {
+              const OperationProgress progress("minkowski");
+              result = minkowski_sum(*a, *b, &stats);
+            }
             const double seconds = start.seconds();
             write_result(result, args->output, [&] {
               nlohmann::json j = result_stats(result, seconds);

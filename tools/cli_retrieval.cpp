@@ -115,7 +115,11 @@ Command add_describe_command(CLI::App& app) {
             }
             if (!mesh) return kBadInput;
             const Stopwatch start;
-            const Descriptors d = describe_valid(*mesh, s);  // read_solid or repair checked it
+            Descriptors d;
+            {
+              const OperationProgress progress("describe");
+              d = describe_valid(*mesh, s);  // read_solid or repair checked it
+            }
             nlohmann::json j = descriptors_json(d);
             if (repaired && repaired->changed) j["solidify"] = mp::to_json(*repaired);
             j["name"] = fs::path(args->mesh).stem().string();

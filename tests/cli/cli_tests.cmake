@@ -90,14 +90,20 @@ if(NOT MORPHEX_SANITIZE MATCHES "address")
   morphex_cli_test(max_memory 1 "out of memory: the operation needs more memory"
     --max-memory-mb 5 dilate ${data}/unit_cube.off --se ball:r=1/10,level=4 -o ${PROJECT_BINARY_DIR}/never.off)
 endif()
+add_test(NAME cli.progress_on_a_terminal COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/progress.sh
+  $<TARGET_FILE:morphex> ${data} ${PROJECT_BINARY_DIR}/cli-progress)
+set_tests_properties(cli.progress_on_a_terminal PROPERTIES PASS_REGULAR_EXPRESSION "PASS")
 add_test(NAME cli.sigint_leaves_no_output COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/interrupt.sh
   $<TARGET_FILE:morphex> ${data} ${PROJECT_BINARY_DIR}/cli-interrupt)
 
 # The benchmarks run and agree with their exact peers on a small case (timings are not asserted).
-add_test(NAME bench.bool_smoke COMMAND bench_bool --max-level 2 --only "icospheres L2")
-set_tests_properties(bench.bool_smoke PROPERTIES PASS_REGULAR_EXPRESSION "=coref =Nef")
-add_test(NAME bench.morph_smoke COMMAND bench_morph --se cube:r=1/4 --peer l-shape)
-set_tests_properties(bench.morph_smoke PROPERTIES PASS_REGULAR_EXPRESSION "agree with minkowski_sum_3")
+if(MORPHEX_BUILD_BENCHMARKS)
+  add_test(NAME bench.bool_smoke COMMAND bench_bool --max-level 2 --only "icospheres L2")
+  set_tests_properties(bench.bool_smoke PROPERTIES PASS_REGULAR_EXPRESSION "=coref =Nef")
+  add_test(NAME bench.morph_smoke COMMAND bench_morph --se cube:r=1/4 --peer l-shape)
+  set_tests_properties(bench.morph_smoke PROPERTIES PASS_REGULAR_EXPRESSION
+                       "agree with minkowski_sum_3")
+endif()
 # Paths that are not mesh files say so (not "unknown mesh format ''").
 morphex_cli_test(check_directory 2 "tests/data: is a directory, not a mesh file" check ${data})
 # `check -` reads standard input (tests/cli/cli_io_tests.cmake); nothing piped in is bad input.
