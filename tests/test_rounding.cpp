@@ -5,14 +5,6 @@
 // morphex and by an independent reader (CGAL's polygon soup I/O and Polygon Mesh Processing).
 #include <gtest/gtest.h>
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/IO/polygon_soup_io.h>
-#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
-#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
-#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
-#include <CGAL/Polygon_mesh_processing/self_intersections.h>
-#include <CGAL/Surface_mesh.h>
-
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -24,6 +16,7 @@
 #include "morphex/generators.h"
 #include "morphex/io.h"
 #include "morphex/rounding.h"
+#include "peers.h"
 
 namespace fs = std::filesystem;
 using namespace morphex;
@@ -57,27 +50,11 @@ MeshReport checked(const Mesh& m) {
 // without self-intersections (faces touching at coincident copies of a vertex count as meeting
 // there, so results that touch themselves are only checked as closed), positive volume.
 void expect_independently_valid(const std::string& path, bool touching_allowed) {
-  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-  namespace PMP = CGAL::Polygon_mesh_processing;
-  std::vector<K::Point_3> points;
-  std::vector<std::vector<std::size_t>> polygons;
-  ASSERT_TRUE(CGAL::IO::read_polygon_soup(path, points, polygons)) << path;
-  PMP::merge_duplicate_points_in_polygon_soup(points, polygons);
-  PMP::orient_polygon_soup(points, polygons);  // duplicates the vertices where a solid touches
-  CGAL::Surface_mesh<K::Point_3> sm;
-  PMP::polygon_soup_to_polygon_mesh(points, polygons, sm);
-  EXPECT_TRUE(CGAL::is_closed(sm)) << path;
-  if (!touching_allowed) EXPECT_FALSE(PMP::does_self_intersect(sm)) << path;
-  double volume = 0;
-  for (auto f : sm.faces()) {
-    auto h = sm.halfedge(f);
-    const auto &a = sm.point(sm.source(h)), &b = sm.point(sm.target(h)),
-               &c = sm.point(sm.target(sm.next(h)));
-    volume += CGAL::scalar_product(a - CGAL::ORIGIN,
-                                   CGAL::cross_product(b - CGAL::ORIGIN, c - CGAL::ORIGIN)) /
-              6;
-  }
-  EXPECT_GT(volume, 0) << path;
+  const peers::ForeignRead read = peers::cgal_read_back(path);
+  ASSERT_TRUE(read.read) << path;
+  EXPECT_TRUE(read.closed) << path;
+  if (!touching_allowed) EXPECT_FALSE(read.self_intersecting) << path;
+  EXPECT_GT(read.volume, 0) << path;
 }
 
 // Writes `exact` in every plain format; each file must read back (by morphex) as a valid solid

@@ -8,6 +8,12 @@
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/minkowski_sum_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/IO/polygon_soup_io.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
+#include <CGAL/Surface_mesh.h>
 
 #include <chrono>
 #include <exception>
@@ -57,6 +63,30 @@ PeerResult nef_minkowski_sum(const Mesh& a, const Mesh& b) {
 
 bool cgal_does_self_intersect(const Mesh& mesh) {
   return PMP::does_self_intersect(to_surface_mesh(mesh));
+}
+
+ForeignRead cgal_read_back(const std::string& path) {
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  ForeignRead out;
+  std::vector<K::Point_3> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  if (!CGAL::IO::read_polygon_soup(path, points, polygons)) return out;
+  out.read = true;
+  PMP::merge_duplicate_points_in_polygon_soup(points, polygons);
+  PMP::orient_polygon_soup(points, polygons);
+  CGAL::Surface_mesh<K::Point_3> sm;
+  PMP::polygon_soup_to_polygon_mesh(points, polygons, sm);
+  out.closed = CGAL::is_closed(sm);
+  out.self_intersecting = PMP::does_self_intersect(sm);
+  for (auto f : sm.faces()) {
+    const auto h = sm.halfedge(f);
+    const auto &a = sm.point(sm.source(h)), &b = sm.point(sm.target(h)),
+               &c = sm.point(sm.target(sm.next(h)));
+    out.volume += CGAL::scalar_product(a - CGAL::ORIGIN,
+                                       CGAL::cross_product(b - CGAL::ORIGIN, c - CGAL::ORIGIN)) /
+                  6;
+  }
+  return out;
 }
 
 }  // namespace morphex::peers

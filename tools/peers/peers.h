@@ -6,6 +6,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 
 #include "morphex/boolean.h"
 #include "morphex/mesh.h"
@@ -29,5 +30,16 @@ PeerResult nef_minkowski_sum(const Mesh& a, const Mesh& b);
 
 // Polygon_mesh_processing::does_self_intersect.
 bool cgal_does_self_intersect(const Mesh& mesh);
+
+// A mesh file as another tool sees it: read by CGAL's polygon soup readers (not morphex's),
+// duplicate points merged, oriented as a soup (which duplicates the vertices where a solid
+// touches itself), made a Surface_mesh over doubles.
+struct ForeignRead {
+  bool read = false;  // CGAL could read the file
+  bool closed = false;
+  bool self_intersecting = false;  // does_self_intersect (faces meeting at a copied vertex count)
+  double volume = 0;               // signed, from the doubles read
+};
+ForeignRead cgal_read_back(const std::string& path);
 
 }  // namespace morphex::peers
