@@ -78,7 +78,7 @@ Chart precision_recall_chart(const std::vector<std::pair<std::string, PrecisionR
   Chart chart;
   chart.title = title;
   chart.x_label = "recall";
-  chart.y_label = "precision (interpolated, mean over the queries)";
+  chart.y_label = "mean interpolated precision";
   for (const auto& [kind, curve] : curves)
     chart.series.push_back({kind, curve.recall, curve.precision, false});
   chart.x_min = 0;
