@@ -337,7 +337,7 @@ Command add_evaluate_command(CLI::App& app) {
             if (!args->plot.empty()) {
               const std::string title =
                   "Precision-recall: " + fs::path(args->labels).filename().string() + ", " +
-                  std::to_string(e.models) + " models, " + args->metric;
+                  std::to_string(e.models) + " models, metric " + args->metric;
               write_plot(args->plot,
                          Figure{"", {precision_recall_chart(e.precision_recall, title)}, 1});
               if (args->plot == "-") return kSuccess;
