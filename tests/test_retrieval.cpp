@@ -64,8 +64,9 @@ TEST(Retrieval, PrecisionRecallAndClassScoresOfAHandCheckedExample) {
   const std::vector<std::string> names = {"a1", "a2", "a3", "b1", "b2", "c1"};
   const std::vector<std::string> classes = {"A", "A", "A", "B", "B", "C"};
   const std::vector<std::vector<double>> d = {
-      {0, 1, 4, 2, 5, 100},    {1, 0, 3, 6, 7, 100},     {4, 3, 0, 8, 9, 100},
-      {2, 6, 8, 0, 10, 100},   {5, 7, 9, 10, 0, 100},    {100, 100, 100, 100, 100, 0}};
+      {0, 1, 4, 2, 5, 100},  {1, 0, 3, 6, 7, 100},  {4, 3, 0, 8, 9, 100},
+      {2, 6, 8, 0, 10, 100}, {5, 7, 9, 10, 0, 100}, {100, 100, 100, 100, 100, 0},
+  };
   const std::vector<QueryScores> queries = score_queries(names, classes, d);
   ASSERT_EQ(queries.size(), 5u);  // c1 has no class mate to find
   // a1 finds its mates at ranks 1 and 3: precision 1 up to recall 1/2, then 2/3. a2 and a3 find
