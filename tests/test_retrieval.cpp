@@ -57,6 +57,63 @@ TEST(Retrieval, ScoresOfAHandCheckedExample) {
   EXPECT_DOUBLE_EQ(s.dcg, (3 + 1 / std::log2(3.0)) / 4);  // ranks 2 count fully, rank 3 by 1/log2 3
 }
 
+// a1, a2, a3 in class A; b1, b2 in B; c1 alone in C, last in every ranking. Rankings:
+//   a1: a2 b1 a3 b2 c1   a2: a1 a3 b1 b2 c1   a3: a2 a1 b1 b2 c1
+//   b1: a1 a2 a3 b2 c1   b2: a1 a2 a3 b1 c1
+TEST(Retrieval, PrecisionRecallAndClassScoresOfAHandCheckedExample) {
+  const std::vector<std::string> names = {"a1", "a2", "a3", "b1", "b2", "c1"};
+  const std::vector<std::string> classes = {"A", "A", "A", "B", "B", "C"};
+  const std::vector<std::vector<double>> d = {
+      {0, 1, 4, 2, 5, 100},  {1, 0, 3, 6, 7, 100},  {4, 3, 0, 8, 9, 100},
+      {2, 6, 8, 0, 10, 100}, {5, 7, 9, 10, 0, 100}, {100, 100, 100, 100, 100, 0},
+  };
+  const std::vector<QueryScores> queries = score_queries(names, classes, d);
+  ASSERT_EQ(queries.size(), 5u);  // c1 has no class mate to find
+  // a1 finds its mates at ranks 1 and 3: precision 1 up to recall 1/2, then 2/3. a2 and a3 find
+  // theirs first (precision 1 throughout); b1 and b2 find their one mate 4th (1/4 throughout).
+  const PrecisionRecall pr = precision_recall(queries);
+  ASSERT_EQ(pr.recall.size(), 21u);
+  ASSERT_EQ(pr.precision.size(), 21u);
+  EXPECT_EQ(pr.queries, 5u);
+  for (std::size_t l = 0; l < 21; ++l) {
+    EXPECT_DOUBLE_EQ(pr.recall[l], double(l) / 20);
+    EXPECT_NEAR(pr.precision[l], l <= 10 ? (3 + 0.5) / 5 : (2 + 2.0 / 3 + 0.5) / 5, 1e-12) << l;
+  }
+  EXPECT_EQ(queries[0].precision[10], 1.0);  // recall 1/2 is reached at rank 1
+  EXPECT_NEAR(queries[0].precision[11], 2.0 / 3, 1e-15);
+  // Per class: 6 results per query, so E is over 5 results (P = found / 5, R = 1).
+  const std::vector<ClassScores> per_class = class_scores(queries, classes);
+  ASSERT_EQ(per_class.size(), 3u);
+  const ClassScores &a = per_class[0], &b = per_class[1], &c = per_class[2];
+  EXPECT_EQ(a.name, "A");
+  EXPECT_EQ(a.models, 3u);
+  EXPECT_EQ(a.scores.queries, 3u);
+  EXPECT_DOUBLE_EQ(a.scores.nearest_neighbor, 1);
+  EXPECT_DOUBLE_EQ(a.scores.first_tier, (0.5 + 1 + 1) / 3);  // a1 has b1 among its first two
+  EXPECT_DOUBLE_EQ(a.scores.second_tier, 1);
+  EXPECT_DOUBLE_EQ(a.scores.e_measure, 4.0 / 7);  // P = 2/5, R = 1
+  EXPECT_DOUBLE_EQ(a.scores.dcg, ((1 + 1 / std::log2(3.0)) / 2 + 2) / 3);
+  EXPECT_EQ(b.name, "B");
+  EXPECT_EQ(b.models, 2u);
+  EXPECT_EQ(b.scores.queries, 2u);
+  EXPECT_DOUBLE_EQ(b.scores.nearest_neighbor, 0);
+  EXPECT_DOUBLE_EQ(b.scores.second_tier, 0);
+  EXPECT_DOUBLE_EQ(b.scores.e_measure, 1.0 / 3);  // P = 1/5, R = 1
+  EXPECT_DOUBLE_EQ(b.scores.dcg, 0.5);            // 1 / log2(4)
+  EXPECT_EQ(c.name, "C");
+  EXPECT_EQ(c.models, 1u);
+  EXPECT_EQ(c.scores.queries, 0u);
+  // The means over all queries are the means of the classes' sums, as evaluate_retrieval has them.
+  const RetrievalScores all = evaluate_retrieval(names, classes, d);
+  EXPECT_EQ(all.queries, 5u);
+  EXPECT_DOUBLE_EQ(all.nearest_neighbor, 3.0 / 5);
+  EXPECT_NEAR(all.dcg, (3 * a.scores.dcg + 2 * b.scores.dcg) / 5, 1e-15);
+  EXPECT_NEAR(all.e_measure, (3 * a.scores.e_measure + 2 * b.scores.e_measure) / 5, 1e-15);
+  EXPECT_EQ(evaluate_per_class(names, classes, d).size(), 3u);
+  EXPECT_EQ(precision_recall(names, classes, d).precision, pr.precision);
+  EXPECT_THROW(score_queries(names, {"A"}, d), InputError);
+}
+
 TEST(Retrieval, ClaFilesAreParsedAndCheckedWithLineNumbers) {
   const auto labels = parse_cla("PSB 1\n2 3\n\nA 0 2\nx\ny\n\nB 0 1\nz\n", "l.cla");
   EXPECT_EQ(labels.size(), 3u);

@@ -16,6 +16,7 @@
 #include "morphex/index.h"
 #include "morphex/io.h"
 #include "morphex/pipeline.h"
+#include "morphex/plot.h"
 #include "morphex/retrieval.h"
 #include "morphex/solidify.h"
 #include "morphex/stopwatch.h"
@@ -46,10 +47,33 @@ nlohmann::json descriptors_json(const Descriptors& d) {
   return j;
 }
 
+// --plot FILE: an SVG file, written atomically; "-" writes it on stdout in place of the usual
+// output (which is why it cannot go with --json).
+void add_plot_option(CLI::App* cmd, std::string& plot, const std::string& what) {
+  cmd->add_option("--plot", plot,
+                  "Write " + what + " as an SVG file (- : on stdout, in place of the table)")
+      ->type_name("FILE");
+}
+
+bool plot_usable(const std::string& plot, bool json, const std::vector<NamedFile>& reads) {
+  if (plot == "-" && json) {
+    print_error("--plot - and --json both write to stdout: give --plot a file name");
+    return false;
+  }
+  return writes_safe({{plot, "--plot"}}, reads);
+}
+
+void write_plot(const std::string& plot, const Figure& figure) {
+  if (plot == "-")
+    std::cout << to_svg(figure);
+  else
+    write_svg(plot, figure);
+}
+
 Command add_describe_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("describe", "Morphological descriptors and D2 of a mesh");
   struct Args {
-    std::string mesh;
+    std::string mesh, plot;
     bool json = false, repair = true;
     DescriptorSettings settings;
   };
@@ -58,6 +82,8 @@ Command add_describe_command(CLI::App& app) {
   cmd->add_option("MESH", args->mesh, "Mesh (a valid solid, or anything solidify takes)")
       ->required();
   cmd->add_flag("--json", args->json, "One JSON object on stdout");
+  add_plot_option(cmd, args->plot,
+                  "the granulometry, anti-granulometry, pattern spectrum and D2 curves");
   cmd->add_flag("--repair,!--no-repair", args->repair,
                 "Make a mesh that is not a valid solid into one first (morphex solidify; on by "
                 "default, what was done reported); --no-repair refuses it instead");
@@ -97,6 +123,7 @@ Command add_describe_command(CLI::App& app) {
               print_error("--open-from/--close-from must not exceed --open-to/--close-to");
               return kBadInput;
             }
+            if (!plot_usable(args->plot, args->json, {{args->mesh, "the input"}})) return kBadInput;
             std::optional<Mesh> mesh;
             std::optional<SolidifyReport> repaired;
             if (args->repair) {
@@ -126,6 +153,11 @@ Command add_describe_command(CLI::App& app) {
             j["path"] = args->mesh;
             j["settings"] = s.to_string();
             j["seconds"] = start.seconds();
+            if (!args->plot.empty()) {
+              write_plot(args->plot, descriptor_figure(d, j["name"].get<std::string>()));
+              if (args->plot == "-") return kSuccess;
+              j["plot"] = args->plot;
+            }
             if (args->json) {
               std::cout << j.dump() << std::endl;
               return kSuccess;
@@ -140,6 +172,7 @@ Command add_describe_command(CLI::App& app) {
                 std::cout << ' ' << std::setprecision(4) << v;
               std::cout << '\n';
             }
+            if (!args->plot.empty()) std::cout << "wrote " << args->plot << '\n';
             return kSuccess;
           }};
 }
@@ -219,11 +252,53 @@ Command add_query_command(CLI::App& app) {
       }};
 }
 
+nlohmann::json scores_json(const RetrievalScores& s) {
+  return {{"nearest_neighbor", s.nearest_neighbor},
+          {"first_tier", s.first_tier},
+          {"second_tier", s.second_tier},
+          {"e_measure", s.e_measure},
+          {"dcg", s.dcg},
+          {"queries", s.queries}};
+}
+
+// The table's header and rows: a first column `first` wide, then the five measures.
+void print_scores_header(const std::string& first, int width) {
+  std::cout << std::left << std::setw(width) << first << std::right << std::setw(18)
+            << "Nearest Neighbor" << std::setw(12) << "First Tier" << std::setw(13) << "Second Tier"
+            << std::setw(11) << "E-measure" << std::setw(8) << "DCG" << '\n';
+}
+void print_scores_row(const std::string& first, int width, const RetrievalScores& s) {
+  std::cout << std::left << std::setw(width) << first << std::right << std::fixed
+            << std::setprecision(3) << std::setw(18) << s.nearest_neighbor << std::setw(12)
+            << s.first_tier << std::setw(13) << s.second_tier << std::setw(11) << s.e_measure
+            << std::setw(8) << s.dcg << '\n'
+            << std::defaultfloat;
+}
+
+// Per descriptor kind, a table of its classes: size, queries and the means of their queries.
+void print_per_class(const IndexEvaluation& e) {
+  for (const auto& [kind, classes] : e.per_class) {
+    std::size_t width = 18;
+    for (const ClassScores& c : classes) width = std::max(width, c.name.size() + 2);
+    std::cout << "\nper class, " << kind << ":\n";
+    print_scores_header("class (models)", int(width));
+    for (const ClassScores& c : classes) {
+      const std::string first = c.name + " (" + std::to_string(c.models) + ")";
+      if (c.scores.queries == 0)
+        std::cout << std::left << std::setw(int(width)) << first << std::right << std::setw(18)
+                  << "-"
+                  << "  (no other member to find)\n";
+      else
+        print_scores_row(first, int(width), c.scores);
+    }
+  }
+}
+
 Command add_evaluate_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("evaluate", "Retrieval scores of every stored descriptor");
   struct Args {
-    std::string db, labels, metric = "l1";
-    bool json = false;
+    std::string db, labels, metric = "l1", plot;
+    bool json = false, per_class = false;
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("--db", args->db, "Index file")->required()->check(CLI::ExistingFile);
@@ -232,8 +307,17 @@ Command add_evaluate_command(CLI::App& app) {
   cmd->add_option("--metric", args->metric, "Distance: l1, l2 or chi2")
       ->capture_default_str()
       ->check(CLI::IsMember({"l1", "l2", "chi2"}));
-  cmd->add_flag("--json", args->json, "One JSON object on stdout");
+  cmd->add_flag("--json", args->json,
+                "One JSON object on stdout (with each descriptor's precision-recall curve)");
+  cmd->add_flag("--per-class", args->per_class,
+                "Also the scores of each class (a table per descriptor, or \"per_class\" in JSON)");
+  add_plot_option(cmd, args->plot,
+                  "the precision-recall curves of every descriptor (21 recall levels, "
+                  "interpolated precision averaged over the queries)");
   return {cmd, [args]() -> int {
+            if (!plot_usable(args->plot, args->json,
+                             {{args->db, "the index"}, {args->labels, "the labels"}}))
+              return kBadInput;
             std::map<std::string, std::string> labels;
             try {
               labels = read_cla(args->labels);
@@ -254,41 +338,47 @@ Command add_evaluate_command(CLI::App& app) {
             for (const IndexedMesh& m : db.load(false, {})) indexed.insert(m.name);
             std::size_t not_indexed = 0;
             for (const auto& [name, label] : labels) not_indexed += !indexed.count(name);
+            if (!args->plot.empty()) {
+              const std::string title =
+                  "Precision-recall: " + fs::path(args->labels).filename().string() + ", " +
+                  std::to_string(e.models) + " models, metric " + args->metric;
+              write_plot(args->plot,
+                         Figure{"", {precision_recall_chart(e.precision_recall, title)}, 1});
+              if (args->plot == "-") return kSuccess;
+            }
             nlohmann::json j = {{"models", e.models},
                                 {"metric", args->metric},
                                 {"unlabelled", e.unlabelled},
                                 {"labels_not_indexed", not_indexed},
                                 {"descriptors", nlohmann::json::object()}};
-            if (!args->json)
-              std::cout << std::left << std::setw(18) << "descriptor" << std::right << std::setw(18)
-                        << "Nearest Neighbor" << std::setw(12) << "First Tier" << std::setw(13)
-                        << "Second Tier" << std::setw(11) << "E-measure" << std::setw(8) << "DCG"
-                        << '\n';
-            for (const auto& [kind, s] : e.scores) {
-              j["descriptors"][kind] = {{"nearest_neighbor", s.nearest_neighbor},
-                                        {"first_tier", s.first_tier},
-                                        {"second_tier", s.second_tier},
-                                        {"e_measure", s.e_measure},
-                                        {"dcg", s.dcg},
-                                        {"queries", s.queries}};
-              if (!args->json)
-                std::cout << std::left << std::setw(18) << kind << std::right << std::fixed
-                          << std::setprecision(3) << std::setw(18) << s.nearest_neighbor
-                          << std::setw(12) << s.first_tier << std::setw(13) << s.second_tier
-                          << std::setw(11) << s.e_measure << std::setw(8) << s.dcg << '\n'
-                          << std::defaultfloat;
+            if (!args->plot.empty()) j["plot"] = args->plot;
+            if (!args->json) print_scores_header("descriptor", 18);
+            for (std::size_t k = 0; k < e.scores.size(); ++k) {
+              const auto& [kind, s] = e.scores[k];
+              nlohmann::json& d = j["descriptors"][kind] = scores_json(s);
+              const PrecisionRecall& pr = e.precision_recall[k].second;
+              d["precision_recall"] = {{"recall", pr.recall}, {"precision", pr.precision}};
+              if (args->per_class)
+                for (const ClassScores& c : e.per_class[k].second) {
+                  d["per_class"][c.name] = scores_json(c.scores);
+                  d["per_class"][c.name]["models"] = c.models;
+                }
+              if (!args->json) print_scores_row(kind, 18, s);
             }
-            if (args->json)
+            if (args->json) {
               std::cout << j.dump() << std::endl;
-            else
-              std::cout << e.models << " labelled models"
-                        << (e.unlabelled ? ", " + std::to_string(e.unlabelled) +
-                                               " indexed models without a label skipped"
-                                         : "")
-                        << (not_indexed ? ", " + std::to_string(not_indexed) +
-                                              " labelled names not in the index skipped"
-                                        : "")
-                        << '\n';
+              return kSuccess;
+            }
+            std::cout << e.models << " labelled models"
+                      << (e.unlabelled ? ", " + std::to_string(e.unlabelled) +
+                                             " indexed models without a label skipped"
+                                       : "")
+                      << (not_indexed ? ", " + std::to_string(not_indexed) +
+                                            " labelled names not in the index skipped"
+                                      : "")
+                      << '\n';
+            if (args->per_class) print_per_class(e);
+            if (!args->plot.empty()) std::cout << "wrote " << args->plot << '\n';
             return kSuccess;
           }};
 }

@@ -100,11 +100,11 @@ const std::map<std::string, std::string>& examples() {
        "out_dir=out"},
       {"validate", "morphex validate pipeline.json --set out_dir=out"},
       {"stages", "morphex stages\n  morphex stages dilate"},
-      {"describe", "morphex describe part.off --json"},
+      {"describe", "morphex describe part.off --json\n  morphex describe part.off --plot c.svg"},
       {"generate", "morphex generate collection --per-class 4"},
       {"index", "morphex index meshes/ --db index.sqlite"},
       {"query", "morphex query --db index.sqlite part.off -k 5"},
-      {"evaluate", "morphex evaluate --db index.sqlite --labels labels.cla"},
+      {"evaluate", "morphex evaluate --db index.sqlite --labels labels.cla --plot pr.svg"},
       {"ls", "morphex ls --db index.sqlite --failed"},
       {"rm", "morphex rm --db index.sqlite part old/other.off"},
   };

@@ -465,7 +465,10 @@ IndexEvaluation evaluate_index(IndexDb& db, const std::map<std::string, std::str
     for (std::size_t a = 0; a < meshes.size(); ++a)
       for (std::size_t b = 0; b < meshes.size(); ++b)
         d[a][b] = distance(meshes[a].descriptors.at(kind), meshes[b].descriptors.at(kind), metric);
-    out.scores.emplace_back(kind, evaluate_retrieval(names, classes, d));
+    const std::vector<QueryScores> queries = score_queries(names, classes, d);
+    out.scores.emplace_back(kind, mean_scores(queries));
+    out.per_class.emplace_back(kind, class_scores(queries, classes));
+    out.precision_recall.emplace_back(kind, precision_recall(queries));
   }
   return out;
 }

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "morphex/mesh.h"
+#include "morphex/retrieval.h"
 
 namespace morphex::python {
 
@@ -71,6 +72,12 @@ void register_mesh(py::module_& m);
 void register_operations(py::module_& m);
 void register_retrieval(py::module_& m);
 void register_index(py::module_& m);
+void register_plots(py::module_& m);
+
+// An evaluation as Index.evaluate and evaluate_retrieval return it: the mean scores, 'per_class'
+// and 'precision_recall' (plot.cpp).
+py::dict evaluation_dict(const RetrievalScores& scores, const std::vector<ClassScores>& per_class,
+                         const PrecisionRecall& curve);
 
 // The text of the `threads` keyword's documentation, shared by every long operation.
 inline constexpr const char* kThreadsDoc =

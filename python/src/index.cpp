@@ -270,16 +270,10 @@ py::dict Index::evaluate(const py::object& labels_arg, const std::string& metric
     py::gil_scoped_release release;
     evaluation = evaluate_index(db(), labels, metric);
   }
-  for (const auto& [kind, s] : evaluation.scores) {
-    py::dict j;
-    j["nearest_neighbor"] = s.nearest_neighbor;
-    j["first_tier"] = s.first_tier;
-    j["second_tier"] = s.second_tier;
-    j["e_measure"] = s.e_measure;
-    j["dcg"] = s.dcg;
-    j["queries"] = s.queries;
-    out[kind.c_str()] = j;
-  }
+  for (std::size_t k = 0; k < evaluation.scores.size(); ++k)
+    out[evaluation.scores[k].first.c_str()] =
+        evaluation_dict(evaluation.scores[k].second, evaluation.per_class[k].second,
+                        evaluation.precision_recall[k].second);
   return out;
 }
 
@@ -330,7 +324,8 @@ descriptor: one of descriptor_kinds() (default 'combined'); metric: 'l1', 'l2' o
 
 labels: {name: class} or the path of a Princeton .cla file. Each labelled mesh queries all the
 others. Returns {kind: {'nearest_neighbor', 'first_tier', 'second_tier', 'e_measure', 'dcg',
-'queries'}}.)doc")
+'queries', 'per_class': {class: {the same scores, 'models'}}, 'precision_recall': {'recall',
+'precision'}}} (see evaluate_retrieval; precision_recall_chart() and plot_svg() draw the curves).)doc")
       .def(
           "names",
           [](Index& index) {

@@ -39,4 +39,5 @@ that is not a valid closed solid. Long operations release the GIL and take threa
   register_operations(m);
   register_retrieval(m);
   register_index(m);
+  register_plots(m);
 }

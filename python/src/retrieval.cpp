@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// describe() (what `morphex describe --json` prints, with numpy arrays), evaluate_retrieval and
+// describe() (what `morphex describe --json` prints, with numpy arrays) and
 // run_pipeline().
 #include <chrono>
 

@@ -122,8 +122,11 @@ std::vector<Neighbour> query_index(IndexDb& db, const std::string& target, std::
 
 struct IndexEvaluation {
   std::size_t models = 0, unlabelled = 0;  // indexed meshes with and without a label
-  // Per descriptor kind stored for every labelled mesh, in descriptor_kinds() order.
+  // Per descriptor kind stored for every labelled mesh, in descriptor_kinds() order (the same
+  // kinds in the same order in all three).
   std::vector<std::pair<std::string, RetrievalScores>> scores;
+  std::vector<std::pair<std::string, std::vector<ClassScores>>> per_class;
+  std::vector<std::pair<std::string, PrecisionRecall>> precision_recall;
 };
 
 // Every labelled indexed mesh queried against the others (labels: model name -> class). Throws
