@@ -77,10 +77,11 @@
     view.scene.background = new THREE.Color(BACKGROUND);
     view.camera = new THREE.PerspectiveCamera(35, 1, 0.01, 1000);
     view.scene.add(view.camera);
-    view.scene.add(new THREE.HemisphereLight(0xffffff, 0x9aa8b8, 0.75));
+    view.scene.add(new THREE.HemisphereLight(0xffffff, 0x9aa8b8, 0.6));
     // A key light from the upper left and a fill from the right, both following the camera, so
     // that the faces in view always get distinct shades.
-    const key = new THREE.DirectionalLight(0xffffff, 0.6), fill = new THREE.DirectionalLight(0xffffff, 0.3);
+    const key = new THREE.DirectionalLight(0xffffff, 0.45);
+    const fill = new THREE.DirectionalLight(0xffffff, 0.25);
     key.position.set(-0.5, 1, 0.8);
     fill.position.set(1, 0.1, 0.5);
     view.camera.add(key, fill);
@@ -102,7 +103,7 @@
   function resizeView() {
     if (!view.renderer) return;
     const canvas = $('view');
-    const width = canvas.clientWidth || 600, height = canvas.clientHeight || 420;
+    const width = canvas.clientWidth || 600, height = canvas.clientHeight || 380;
     view.renderer.setSize(width, height, false);
     view.camera.aspect = width / height;
     view.camera.updateProjectionMatrix();
@@ -334,6 +335,7 @@
       const mesh = await getJSON('/api/mesh/' + id);
       if (state.selected !== id) return;
       $('view-title').textContent = mesh.name + (mesh['class'] ? '  (' + mesh['class'] + ')' : '');
+      if (!state.query) history.replaceState(null, '', '#mesh=' + encodeURIComponent(mesh.name));
       showDetails(mesh);
       setCurves(mesh);
       await showModel(id);
@@ -441,6 +443,23 @@
     if (values.includes(chosen)) select.value = chosen;
   }
 
+  // #query=NAME[&kind=&metric=&k=] selects NAME and runs its query; #mesh=NAME shows NAME; without
+  // either, the first mesh is shown.
+  async function applyAddress() {
+    const hash = new URLSearchParams(location.hash.slice(1));
+    for (const key of ['kind', 'metric']) {
+      const value = hash.get(key);
+      if (value && [...$(key).options].some((o) => o.value === value)) $(key).value = value;
+      else if (value) showMessage(key + ' ' + value + ': not one this index offers.');
+    }
+    if (hash.get('k')) $('k').value = hash.get('k');
+    const wanted = hash.get('query') || hash.get('mesh');
+    const mesh = wanted ? state.byName.get(wanted) : state.meshes[0];
+    if (wanted && !mesh) showMessage(wanted + ': no indexed mesh has this name.');
+    if (hash.get('query') && mesh) await runQuery({name: mesh.name});
+    else if (mesh) await select(mesh.id);
+  }
+
   async function start() {
     initView();
     try {
@@ -452,12 +471,10 @@
       $('index-name').textContent = info.index;
       $('index-stats').textContent = info.meshes + ' meshes, ' + info.failed + ' failed';
       document.title = info.index + ' — morphex';
-      const hash = new URLSearchParams(location.hash.slice(1));
       const kinds = info.kinds.length ? info.kinds : [info.default_kind];
-      fillSelect($('kind'), kinds, hash.get('kind') || info.default_kind);
-      fillSelect($('metric'), info.metrics, hash.get('metric') || info.default_metric);
+      fillSelect($('kind'), kinds, info.default_kind);
+      fillSelect($('metric'), info.metrics, info.default_metric);
       $('k').max = info.max_neighbours;
-      if (hash.get('k')) $('k').value = hash.get('k');
       $('upload-note').textContent = info.formats.join(', ') + ' (or .gz of them), up to ' +
           number(info.max_upload_bytes / 1048576, 3) + ' MiB; described with the index\'s own ' +
           'pipeline, then deleted.';
@@ -466,11 +483,7 @@
       renderGallery();
       renderFailures(failures);
       document.body.dataset.ready = 'true';
-      const wanted = hash.get('query') || hash.get('mesh');
-      const mesh = wanted ? state.byName.get(wanted) : meshes[0];
-      if (wanted && !mesh) showMessage(wanted + ': no indexed mesh has this name.');
-      if (hash.get('query') && mesh) await runQuery({name: mesh.name});
-      else if (mesh) await select(mesh.id);
+      await applyAddress();
     } catch (e) {
       showMessage(e.message);
     }
@@ -483,5 +496,9 @@
     else showMessage('Select a mesh to query first.');
   });
   $('upload-form').addEventListener('submit', upload);
+  // An address typed or pasted while the page is open (the page's own updates do not fire this).
+  window.addEventListener('hashchange', () => {
+    if (state.info) applyAddress();
+  });
   start();
 })();

@@ -119,14 +119,14 @@ Image render_thumbnail(const DoubleMesh& mesh, int size, int supersample) {
     // is, and a light from the viewer: faces of different directions get distinct shades, and
     // no face in view is dark.
     const Vec light = normalised({0.35, 1.0, 0.6});
-    const float front[3] = {0.36f, 0.56f, 0.82f}, back[3] = {0.86f, 0.46f, 0.32f};
+    const float front[3] = {0.42f, 0.62f, 0.9f}, back[3] = {0.9f, 0.5f, 0.36f};
     for (const Triangle& t : mesh.triangles) {
       const Vec& a = mesh.points[t[0]];
       Vec normal = normalised(cross(sub(mesh.points[t[1]], a), sub(mesh.points[t[2]], a)));
       const bool facing = dot(normal, cam.toward) >= 0;
       if (!facing) normal = {-normal[0], -normal[1], -normal[2]};
       const float shade =
-          float(0.3 + 0.4 * std::max(0.0, dot(normal, light)) + 0.35 * dot(normal, cam.toward));
+          float(0.5 + 0.3 * std::max(0.0, dot(normal, light)) + 0.2 * dot(normal, cam.toward));
       const float* base = facing ? front : back;
       const float colour[3] = {base[0] * shade, base[1] * shade, base[2] * shade};
       fill_triangle(samples, screen[t[0]], screen[t[1]], screen[t[2]], colour);
