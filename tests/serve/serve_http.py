@@ -12,6 +12,7 @@ import os
 import shutil
 import socket
 import struct
+import subprocess
 import sys
 import urllib.parse
 import zlib
@@ -228,6 +229,14 @@ def main():
         test_uploads(server, morphex, index, collection, tmpdir)
         test_files(server, ids, failed_id)
         test_bad_requests(server, ids, failed_id, data)
+        # A second server cannot take the port (httplib's default SO_REUSEPORT would share it).
+        try:
+            second = subprocess.run([morphex, "serve", "--db", index, "--port", str(server.port)],
+                                    capture_output=True, text=True, timeout=20)
+        except subprocess.TimeoutExpired:
+            fail("a second server listened on the same port")
+        check(second.returncode == 2 and "already in use" in second.stderr,
+              f"second server: exit {second.returncode}: {second.stderr}")
         # Still serving after every refusal.
         check(len(server.json("/api/meshes")) == 12, "listing after the bad requests")
         check(served_ranking(server.json("/api/query?name=tee-1&k=5")) ==

@@ -241,6 +241,13 @@ IndexServer::IndexServer(const std::string& index_path, ServerOptions options)
   // Room for the multipart form around the file; the file itself is checked against the limit.
   s.http.set_payload_max_length(std::size_t(s.options.max_upload_bytes) + (std::size_t(1) << 20));
   s.http.set_read_timeout(30);
+  // httplib's default sets SO_REUSEPORT, with which a second server (another index, another
+  // user's program under the same uid) could bind the same port and take half the requests:
+  // SO_REUSEADDR only, so that a restarted server can bind again while old connections linger.
+  s.http.set_socket_options([](socket_t socket) {
+    const int yes = 1;
+    setsockopt(socket, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
   s.http.set_default_headers({
       {"X-Content-Type-Options", "nosniff"},
       {"Referrer-Policy", "no-referrer"},
