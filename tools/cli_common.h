@@ -102,6 +102,7 @@ std::vector<Command> add_morphology_commands(CLI::App& app);
 std::vector<Command> add_pipeline_commands(CLI::App& app);
 std::vector<Command> add_retrieval_commands(CLI::App& app);
 std::vector<Command> add_index_commands(CLI::App& app);  // index, ls, rm
+Command add_serve_command(CLI::App& app);
 
 // Expands glob patterns and folders (their mesh files, all levels down, in name order); plain
 // paths are kept even if missing (reading reports them). Throws InputError for a pattern that

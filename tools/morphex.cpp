@@ -107,6 +107,7 @@ const std::map<std::string, std::string>& examples() {
       {"evaluate", "morphex evaluate --db index.sqlite --labels labels.cla --plot pr.svg"},
       {"ls", "morphex ls --db index.sqlite --failed"},
       {"rm", "morphex rm --db index.sqlite part old/other.off"},
+      {"serve", "morphex serve --db index.sqlite --port 8080"},
   };
   return text;
 }
@@ -225,6 +226,7 @@ int main(int argc, char** argv) {
   for (Command& c : add_pipeline_commands(app)) commands.push_back(std::move(c));
   for (Command& c : add_retrieval_commands(app)) commands.push_back(std::move(c));
   for (Command& c : add_index_commands(app)) commands.push_back(std::move(c));
+  commands.push_back(add_serve_command(app));
 
   for (const Command& c : commands)
     if (const auto e = examples().find(c.app->get_name()); e != examples().end())

@@ -379,6 +379,67 @@ std::size_t remove_indexed(IndexDb& db, const std::vector<std::string>& keys) {
   return paths.size();
 }
 
+namespace {
+
+// Checks the index's meshes against the stored pipeline: a query file is described by that
+// pipeline, so its vector compares only with meshes described under the same settings.
+void require_stored_settings(const IndexDb& db, const std::string& setting,
+                             const IndexPipeline& stored) {
+  if (!setting.empty() && setting != stored.settings())
+    throw InputError(db.path(),
+                     "its meshes were described under other settings than its "
+                     "stored pipeline gives today (another descriptor version): "
+                     "index them again");
+}
+
+// The k meshes of `meshes` nearest to `query` by `kind`, leaving out the mesh with id `exclude`.
+std::vector<Neighbour> rank_meshes(const std::vector<IndexedMesh>& meshes,
+                                   const std::vector<double>& query, std::size_t k,
+                                   const std::string& kind, Metric metric, long long exclude) {
+  // One contiguous matrix of the stored vectors, in the order of `meshes` (by name), so that the
+  // scan breaks ties by name.
+  DescriptorMatrix matrix(query.size());
+  std::vector<const IndexedMesh*> rows;
+  std::size_t exclude_row = DescriptorMatrix::kNone;
+  for (const IndexedMesh& m : meshes) {
+    const auto it = m.descriptors.find(kind);
+    if (it == m.descriptors.end()) continue;
+    if (m.id == exclude) exclude_row = rows.size();
+    matrix.add(it->second);
+    rows.push_back(&m);
+  }
+  std::vector<Neighbour> ranked;
+  for (const Match& match : matrix.nearest(query, k, metric, exclude_row))
+    ranked.push_back(
+        {rows[match.row]->name, rows[match.row]->path, match.distance, rows[match.row]->id});
+  return ranked;
+}
+
+}  // namespace
+
+IndexPipeline query_pipeline(IndexDb& db) {
+  const IndexPipeline pipeline = stored_pipeline(db);
+  require_stored_settings(db, one_setting(db, db.load(true, {})), pipeline);
+  return pipeline;
+}
+
+std::map<std::string, std::vector<double>> describe_query(const IndexPipeline& pipeline,
+                                                          const std::string& file) {
+  mp::RunOptions options;
+  options.inputs = {file};
+  options.variables = pipeline.variables;
+  const mp::RunReport r = mp::run(pipeline.document, pipeline.name, options);
+  if (!r.ok()) throw InputError(file, r.inputs.front().error);
+  return descriptors_of(r.inputs.front());
+}
+
+std::vector<Neighbour> rank_index(IndexDb& db, const std::vector<double>& query, std::size_t k,
+                                  const std::string& kind, Metric metric, long long exclude) {
+  const std::vector<IndexedMesh> meshes = db.load(true, {kind});
+  one_setting(db, meshes);
+  return rank_meshes(meshes, query, k, kind, metric, exclude);
+}
+
 std::vector<Neighbour> query_index(IndexDb& db, const std::string& target, std::size_t k,
                                    const std::string& kind, Metric metric, bool by_name) {
   const std::vector<IndexedMesh> meshes = db.load(true, {kind});
@@ -407,38 +468,13 @@ std::vector<Neighbour> query_index(IndexDb& db, const std::string& target, std::
       throw InputError(target, by_name ? "neither a mesh file nor the name of an indexed mesh"
                                        : "cannot open file: no such file");
     // Described as the index's meshes were: its pipeline and variables.
-    const IndexPipeline& stored = pipeline;
-    if (!setting.empty() && setting != stored.settings())
-      throw InputError(db.path(),
-                       "its meshes were described under other settings than its "
-                       "stored pipeline gives today (another descriptor version): "
-                       "index them again");
-    mp::RunOptions options;
-    options.inputs = {target};
-    options.variables = stored.variables;
-    const mp::RunReport r = mp::run(stored.document, db.path(), options);
-    if (!r.ok()) throw InputError(target, r.inputs.front().error);
-    const auto descriptors = descriptors_of(r.inputs.front());
+    require_stored_settings(db, setting, pipeline);
+    const auto descriptors = describe_query(pipeline, target);
     if (!descriptors.count(kind))
       throw InputError(target, "the index's pipeline gives no '" + kind + "' descriptor");
     query = descriptors.at(kind);
   }
-  // One contiguous matrix of the stored vectors, in the order of `meshes` (by name), so that the
-  // scan breaks ties by name.
-  DescriptorMatrix matrix(query.size());
-  std::vector<const IndexedMesh*> rows;
-  std::size_t exclude_row = DescriptorMatrix::kNone;
-  for (const IndexedMesh& m : meshes) {
-    const auto it = m.descriptors.find(kind);
-    if (it == m.descriptors.end()) continue;
-    if (m.id == exclude) exclude_row = rows.size();
-    matrix.add(it->second);
-    rows.push_back(&m);
-  }
-  std::vector<Neighbour> ranked;
-  for (const Match& match : matrix.nearest(query, k, metric, exclude_row))
-    ranked.push_back({rows[match.row]->name, rows[match.row]->path, match.distance});
-  return ranked;
+  return rank_meshes(meshes, query, k, kind, metric, exclude);
 }
 
 IndexEvaluation evaluate_index(IndexDb& db, const std::map<std::string, std::string>& labels,

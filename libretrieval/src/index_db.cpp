@@ -378,12 +378,36 @@ bool IndexDb::remove(const std::string& path) {
 }
 
 std::vector<IndexedMesh> IndexDb::load(bool only_ok, const std::vector<std::string>& kinds) {
+  return load_rows(only_ok, -1, kinds);
+}
+
+std::optional<IndexedMesh> IndexDb::entry(long long id, bool with_descriptors) {
+  if (id < 0) return std::nullopt;
+  std::vector<IndexedMesh> rows = load_rows(
+      false, id, with_descriptors ? std::vector<std::string>{"*"} : std::vector<std::string>{});
+  if (rows.empty()) return std::nullopt;
+  return std::move(rows.front());
+}
+
+std::vector<std::string> IndexDb::kinds() {
+  std::vector<std::string> out;
+  Statement s(db_, path_, "SELECT DISTINCT kind FROM descriptors ORDER BY kind");
+  while (s.step()) out.push_back(s.text(0));
+  return out;
+}
+
+// load() and entry(): every row (`id` < 0) or the row of `id`.
+std::vector<IndexedMesh> IndexDb::load_rows(bool only_ok, long long id,
+                                            const std::vector<std::string>& kinds) {
   std::vector<IndexedMesh> out;
   std::map<long long, std::size_t> position;
+  std::string where = only_ok ? " WHERE status = 'ok'" : "";
+  if (id >= 0) where += (where.empty() ? " WHERE" : " AND") + std::string(" id = ?");
   Statement meshes(db_, path_,
-                   std::string("SELECT id, name, path, hash, settings, status, error, "
-                               "repair, faces, volume, seconds, indexed_at FROM meshes") +
-                       (only_ok ? " WHERE status = 'ok'" : "") + " ORDER BY name, path");
+                   "SELECT id, name, path, hash, settings, status, error, repair, faces, volume, "
+                   "seconds, indexed_at FROM meshes" +
+                       where + " ORDER BY name, path");
+  if (id >= 0) meshes.bind(1, id);
   while (meshes.step()) {
     IndexedMesh m;
     m.id = meshes.integer(0);
@@ -402,10 +426,12 @@ std::vector<IndexedMesh> IndexDb::load(bool only_ok, const std::vector<std::stri
     out.push_back(std::move(m));
   }
   for (const std::string& kind : kinds) {
-    Statement descriptors(db_, path_,
-                          std::string("SELECT mesh_id, kind, vector FROM descriptors") +
-                              (kind == "*" ? "" : " WHERE kind = ?"));
-    if (kind != "*") descriptors.bind(1, kind);
+    std::string filter = kind == "*" ? "" : " WHERE kind = ?";
+    if (id >= 0) filter += (filter.empty() ? " WHERE" : " AND") + std::string(" mesh_id = ?");
+    Statement descriptors(db_, path_, "SELECT mesh_id, kind, vector FROM descriptors" + filter);
+    int next = 1;
+    if (kind != "*") descriptors.bind(next++, kind);
+    if (id >= 0) descriptors.bind(next, id);
     while (descriptors.step()) {
       const auto it = position.find(descriptors.integer(0));
       if (it == position.end()) continue;

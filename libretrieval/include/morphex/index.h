@@ -109,6 +109,7 @@ std::size_t remove_indexed(IndexDb& db, const std::vector<std::string>& keys);
 struct Neighbour {
   std::string name, path;
   double distance = 0;
+  long long id = 0;  // the mesh's row in the index
 };
 
 // The k indexed meshes nearest to `target` by descriptor `kind` under `metric`, nearest first (ties
@@ -119,6 +120,17 @@ struct Neighbour {
 // pipeline holds other than descriptor stages.
 std::vector<Neighbour> query_index(IndexDb& db, const std::string& target, std::size_t k,
                                    const std::string& kind, Metric metric, bool by_name = true);
+
+// The steps of query_index for a mesh file, for callers that describe outside a lock on the index
+// (morphex serve): the index's stored pipeline, checked as query_index checks it (only descriptor
+// stages, the meshes' settings); `file` described by it (every kind of its last describe stage,
+// InputError naming the file when it cannot be); and the ranking of a vector against the stored
+// ones, leaving out the mesh of id `exclude`.
+IndexPipeline query_pipeline(IndexDb& db);
+std::map<std::string, std::vector<double>> describe_query(const IndexPipeline& pipeline,
+                                                          const std::string& file);
+std::vector<Neighbour> rank_index(IndexDb& db, const std::vector<double>& query, std::size_t k,
+                                  const std::string& kind, Metric metric, long long exclude = -1);
 
 struct IndexEvaluation {
   std::size_t models = 0, unlabelled = 0;  // indexed meshes with and without a label

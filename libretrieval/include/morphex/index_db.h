@@ -68,6 +68,10 @@ class IndexDb {
   // Every row (only the successful ones by default), ordered by name then path, with the
   // descriptors of `kinds` ({"*"}: every kind; {}: none).
   std::vector<IndexedMesh> load(bool only_ok = true, const std::vector<std::string>& kinds = {"*"});
+  // The row of this id (any status), with every descriptor kind when asked; nullopt when none.
+  std::optional<IndexedMesh> entry(long long id, bool with_descriptors = true);
+  // The descriptor kinds stored for any mesh, by name.
+  std::vector<std::string> kinds();
   // Removes the row of this recorded path and its descriptors; false when there is none.
   bool remove(const std::string& path);
   const std::string& path() const { return path_; }
@@ -81,6 +85,8 @@ class IndexDb {
   void require_index();
   void quick_check();
   void exec(const std::string& sql);
+  std::vector<IndexedMesh> load_rows(bool only_ok, long long id,
+                                     const std::vector<std::string>& kinds);
   sqlite3* db_ = nullptr;
   std::string path_;
   IndexAccess access_;
