@@ -12,11 +12,6 @@ namespace morphex::detail {
 
 namespace {
 
-double finite(double d, const std::string& name, const std::string& where) {
-  if (!std::isfinite(d)) throw InputError(name, "non-finite coordinate " + where);
-  return d;
-}
-
 struct PlyProperty {
   std::string name, type, list_count_type;
   bool list = false;
@@ -198,7 +193,7 @@ Mesh read_ply(const std::string& content, const std::string& name) {
           if (is_vertex) {
             const int axis = p.name == "x" ? 0 : p.name == "y" ? 1 : p.name == "z" ? 2 : -1;
             if (axis >= 0) {
-              xyz[axis] = finite(v, name, "at vertex " + std::to_string(i));
+              xyz[axis] = finite_coordinate(v, name, "at vertex " + std::to_string(i));
               ++found;
             }
           }

@@ -29,10 +29,6 @@ class SoupIndexer {
   std::unordered_map<std::array<double, 3>, VertexIndex, DoublePointHash> index_;
 };
 
-double finite(double d, const std::string& name, const std::string& where) {
-  if (!std::isfinite(d)) throw InputError(name, "non-finite coordinate " + where);
-  return d;
-}
 
 Mesh read_stl_binary(const std::string& content, const std::string& name) {
   if (content.size() < 84)
@@ -53,7 +49,8 @@ Mesh read_stl_binary(const std::string& content, const std::string& name) {
       float xyz[3];
       std::memcpy(xyz, record + 12 * k, 12);
       std::array<double, 3> p;
-      for (int c = 0; c < 3; ++c) p[c] = finite(xyz[c], name, "in triangle " + std::to_string(t));
+      for (int c = 0; c < 3; ++c)
+        p[c] = finite_coordinate(xyz[c], name, "in triangle " + std::to_string(t));
       tri[k] = index.add(p);
     }
     mesh.triangles.push_back(tri);

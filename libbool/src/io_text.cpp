@@ -83,6 +83,11 @@ FT number(std::string_view token, const std::string& name, std::size_t line) {
   }
 }
 
+double finite_coordinate(double d, const std::string& name, const std::string& where) {
+  if (!std::isfinite(d)) throw InputError(name, "non-finite coordinate " + where);
+  return d;
+}
+
 double double_number(std::string_view token, const std::string& name, std::size_t line) {
   const double d = CGAL::to_double(number(token, name, line));
   if (!std::isfinite(d))

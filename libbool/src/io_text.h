@@ -82,6 +82,8 @@ std::string shown(std::string_view token);
 FT number(std::string_view token, const std::string& name, std::size_t line);
 // The same as a double (formats that store doubles), refusing non-finite values.
 double double_number(std::string_view token, const std::string& name, std::size_t line);
+// A binary format's coordinate: InputError naming the file and `where` when it is not finite.
+double finite_coordinate(double d, const std::string& name, const std::string& where);
 // A non-negative count of at most 18 digits.
 std::uint64_t count(std::string_view token, const std::string& name, std::size_t line,
                     const char* what);
