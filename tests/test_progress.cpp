@@ -11,6 +11,7 @@
 #include "morphex/generators.h"
 #include "morphex/morphology.h"
 #include "morphex/progress.h"
+#include "morphex/solidify.h"
 #include "morphex/structuring_element.h"
 
 using namespace morphex;
@@ -125,6 +126,28 @@ TEST(Progress, AnOpeningByAnOctahedronMovesOneBarThroughBothHalves) {
     if (phase.rfind("erosion", 0) == 0) EXPECT_LE(share, 0.1 + 0.9 * 0.5 + 1e-12) << phase;
     if (phase.rfind("dilation", 0) == 0) EXPECT_GE(share, 0.1 + 0.9 * 0.5 - 1e-12) << phase;
   }
+}
+
+TEST(Progress, SolidifyReportsTheCheckAndTheRepairsSteps) {
+  // Two overlapping cubes in one mesh: a closed chain that crosses itself, which the repair
+  // resolves by its winding arrangement.
+  Mesh two = make_cube(1);
+  const Mesh other = make_cube(1, Point(FT(1) / 2, FT(1) / 3, FT(1) / 5));
+  const auto offset = VertexIndex(two.points.size());
+  two.points.insert(two.points.end(), other.points.begin(), other.points.end());
+  for (const Triangle& t : other.triangles)
+    two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  Recorded r;
+  {
+    ProgressScope scope(r.sink());
+    EXPECT_TRUE(solidify(two).report.changed);
+  }
+  EXPECT_TRUE(r.monotone());
+  ASSERT_FALSE(r.reports.empty());
+  EXPECT_DOUBLE_EQ(r.reports.back().first, 1.0);
+  EXPECT_TRUE(r.saw_phase("checking"));
+  EXPECT_TRUE(r.saw_phase("repairing"));
+  EXPECT_TRUE(r.saw_phase("intersecting"));  // the arrangement's own steps, inside the repair's
 }
 
 }  // namespace

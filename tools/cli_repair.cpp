@@ -54,6 +54,7 @@ Command add_repair_command(CLI::App& app) {
             const Stopwatch start;
             RepairResult result;
             try {
+              const OperationProgress progress("repair");
               result = repair_mesh(mesh, args->repair);
             } catch (const InputError& e) {
               print_error(shown_path(args->in) + ": cannot repair: " + e.what());
@@ -103,6 +104,7 @@ Command add_solidify_command(CLI::App& app) {
             const Stopwatch start;
             SolidifyResult result;
             try {
+              const OperationProgress progress("solidify");
               result = solidify(mesh, args->options);
             } catch (const InputError& e) {
               print_error(shown_path(args->in) + ": cannot solidify: " + e.what());

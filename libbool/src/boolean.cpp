@@ -5,7 +5,6 @@
 #include <tbb/parallel_invoke.h>
 
 #include <chrono>
-#include <memory>
 #include <stdexcept>
 
 #include "boolean_internal.h"
@@ -45,11 +44,11 @@ BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
   // Each step's share of the bar, roughly its share of a Boolean's time on bench_bool's real
   // pairs, so that the bar moves evenly; the check takes the first part when it runs.
   const double checked = options.validate_inputs ? 0.4 : 0;
-  const auto step = [checked](double begin, double end, const char* name) {
-    return std::make_unique<ProgressPhase>(checked + (1 - checked) * begin,
-                                           checked + (1 - checked) * end, name);
+  ProgressSteps steps;
+  const auto step = [&](double end, const char* name) {
+    steps.next(checked + (1 - checked) * end, name);
   };
-  auto phase = std::make_unique<ProgressPhase>(0, checked, "checking inputs");
+  steps.next(checked, "checking inputs");
   if (options.validate_inputs) {
     // Both operands at once: each check is parallel inside, but its sequential parts (edge
     // records, patch proofs) leave threads idle that the other check can use.
@@ -71,8 +70,7 @@ BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
   }
   BooleanStats& stats = result.stats;
   stats.seconds.validate = clock.lap();
-  phase.reset();
-  phase = step(0, 0.1, "pairing triangles");
+  step(0.1, "pairing triangles");
 
   // The exact point table of both operands (step 3's), first: the trees step 2 builds box the
   // vertices from its contiguous copy of their intervals.
@@ -85,8 +83,7 @@ BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
   const auto pairs = detail::candidate_pairs(a, b, trees);
   stats.candidate_pairs = pairs.size();
   stats.seconds.pairs = clock.lap();
-  phase.reset();
-  phase = step(0.1, 0.45, "intersecting");
+  step(0.45, "intersecting");
 
   detail::IntersectOptions intersect_options;
   intersect_options.points = &points;
@@ -99,14 +96,12 @@ BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
   for (int side = 0; side < 2; ++side)
     for (const auto& [facet, cut] : x.cuts[side]) stats.segments += cut.segments.size();
   stats.seconds.segments = clock.lap();
-  phase.reset();
-  phase = step(0.45, 0.7, "retriangulating");
+  step(0.7, "retriangulating");
 
   const detail::Refined refined[2] = {detail::retriangulate(a, 0, x),
                                       detail::retriangulate(b, 1, x)};
   stats.seconds.retriangulate = clock.lap();
-  phase.reset();
-  phase = step(0.7, 0.8, "classifying");
+  step(0.8, "classifying");
 
   detail::ClassifyCounts counts[2];
   // The two sides at once: a side's patch flood fill is sequential.
@@ -119,8 +114,7 @@ BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
   stats.patches_by_ray_cast = counts[0].by_ray_cast + counts[1].by_ray_cast;
   stats.orientation_conflicts = counts[0].rule_conflicts + counts[1].rule_conflicts;
   stats.seconds.classify = clock.lap();
-  phase.reset();
-  phase = step(0.8, 1, "assembling");
+  step(1, "assembling");
 
   result.mesh =
       detail::assemble(a, b, x, refined, labels, op, options.merge_coplanar && !options.provenance,

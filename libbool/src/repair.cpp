@@ -2,6 +2,7 @@
 // repair_mesh: merged vertices, repeated faces, the closed-chain test and the orientation, then
 // winding_solid (morphex/repair.h).
 #include "morphex/repair.h"
+#include "morphex/progress.h"
 
 #include <tbb/parallel_sort.h>
 
@@ -153,6 +154,8 @@ RepairResult repair_mesh(const Mesh& mesh, const RepairOptions& options) {
   // improperly: the arrangement intersects only those.
   CheckOptions check = kValidityOnly;
   check.list_self_intersections = true;
+  ProgressSteps steps;
+  steps.next(0.15, "checking");
   const MeshReport report = check_mesh(mesh, check);
   if (report.valid_solid()) {
     result.mesh = mesh;
@@ -183,6 +186,7 @@ RepairResult repair_mesh(const Mesh& mesh, const RepairOptions& options) {
   winding.merge_coplanar = options.merge_coplanar;
   winding.pairs = &pairs;
   WindingStats stats;
+  steps.next(1, "");  // the arrangement names its own steps
   result.mesh = winding_solid(chain, {}, winding, &stats);
   if (result.mesh.empty()) throw InputError("", "mesh bounds no region of positive winding number");
   r.degenerate_faces = stats.degenerate_faces;

@@ -2,6 +2,7 @@
 // solidify (morphex/solidify.h): a closed chain from a soup with CGAL's polygon-soup tools, then
 // the exact repair.
 #include "morphex/solidify.h"
+#include "morphex/progress.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/border.h>
@@ -228,6 +229,8 @@ SolidifyResult solidify(const Mesh& mesh, const SolidifyOptions& options) {
   SolidifyReport& r = out.report;
   r.input_faces = mesh.num_triangles();
   if (mesh.empty()) throw InputError("", "mesh bounds no volume: it has no faces");
+  ProgressSteps steps;
+  steps.next(0.1, "checking");
   if (check_mesh(mesh, kValidityOnly).valid_solid()) {
     r.method = "unchanged";
     out.mesh = mesh;
@@ -240,6 +243,7 @@ SolidifyResult solidify(const Mesh& mesh, const SolidifyOptions& options) {
     // A closed chain: each part taken as material (an inward part is turned, where the repair
     // alone would subtract it), then the exact repair of their union.
     r.method = "repair";
+    steps.next(1, "repairing");
     Mesh chain = merged_positions(mesh);
     orient_parts(chain, r);
     if (chain.empty())
@@ -248,7 +252,11 @@ SolidifyResult solidify(const Mesh& mesh, const SolidifyOptions& options) {
   } catch (const InputError&) {  // not a closed chain: the soup tools make one
     r.method = "soup";
     r.turned_parts = r.dropped_faces = 0;  // counted again, on the soup's closed chain
+    // Inside the repair's share of the bar, which moves on from where the failed attempt left it.
+    ProgressSteps soup_steps;
+    soup_steps.next(0.25, "closing the soup");
     const Mesh chain = closed_chain(mesh, options, r);
+    soup_steps.next(1, "repairing");
     try {
       repaired = repair_mesh(chain, options.repair);
     } catch (const InputError& e) {

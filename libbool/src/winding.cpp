@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // winding_solid: the chain, the pairs, the driver and the assembly (morphex/winding.h).
 #include "morphex/winding.h"
+#include "morphex/progress.h"
 #include "morphex/stopwatch.h"
 
 #include <tbb/parallel_for.h>
@@ -197,15 +198,20 @@ Mesh winding_solid(const Mesh& surface, const std::vector<int>& weights,
   Stopwatch clock;
   if (options.planes && options.planes->size() != surface.triangles.size())
     throw InputError("", "winding_solid: one plane label per triangle expected");
+  // Each step's share of the bar, about its share of a repair's or a sweep's time.
+  ProgressSteps steps;
+  steps.next(0.05, "preparing the surface");
   const Chain chain = prepare_chain(surface, weights, options.planes, stats);
   stats.seconds_chain = clock.lap();
   Mesh result;
   if (!chain.soup.triangles.empty()) {
+    steps.next(0.15, "pairing triangles");
     const TriangleTree tree(chain.soup);
     const Pairs pairs = options.pairs ? known_pairs(chain, *options.pairs) : self_pairs(tree);
     stats.candidate_pairs = pairs.size();
     stats.seconds_pairs = clock.lap();
 
+    steps.next(0.55, "intersecting");
     IntersectOptions soup;
     soup.soup = true;
     soup.planes = &chain.plane;
@@ -215,14 +221,17 @@ Mesh winding_solid(const Mesh& surface, const std::vector<int>& weights,
     stats.cut_facets = x.cuts[0].size();
     stats.seconds_segments = clock.lap();
 
+    steps.next(0.75, "retriangulating");
     const Refined refined = retriangulate(chain.soup, 0, x);
     const std::vector<Member> members = members_of(chain.soup, refined, x);
     stats.seconds_cuts = clock.lap();
 
+    steps.next(0.9, "winding numbers");
     const std::vector<std::int8_t> keep =
         select_by_winding(chain, tree, members, x, options.threshold, stats);
     stats.seconds_winding = clock.lap();
 
+    steps.next(1, "assembling");
     result = assemble_kept(chain, x, members, keep, options.merge_coplanar, options.result_planes);
     stats.seconds_assembly = clock.lap();
   }

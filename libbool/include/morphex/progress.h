@@ -17,6 +17,7 @@
 #include <atomic>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace morphex {
@@ -63,6 +64,21 @@ class ProgressPhase {
   const detail::ProgressFrame* previous_;
   detail::ProgressFrame frame_;
   bool active_;
+};
+
+// Consecutive steps of one operation: next(end, phase) ends the current step (if any) and starts
+// one that runs to `end` (a share of the current range), from where the last one ended.
+class ProgressSteps {
+ public:
+  void next(double end, std::string phase) {
+    current_.reset();
+    current_.emplace(begin_, end, std::move(phase));
+    begin_ = end;
+  }
+
+ private:
+  std::optional<ProgressPhase> current_;
+  double begin_ = 0;
 };
 
 // Counts finished units of `total` from any thread, reported as a share of the range current on
