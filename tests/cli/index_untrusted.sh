@@ -71,15 +71,20 @@ expect 0 "third" "$morphex" query --db copy.sqlite cube -k 1
 unchanged copy.sqlite "$hash"
 
 # 9: on read-only storage (a folder another user cannot write, when run as root) an index in WAL
-# mode can still be listed, queried and evaluated.
+# mode can still be listed, queried and evaluated. The other user gets copies in a folder of its
+# own reach: the build tree may sit under a private folder (a 0700 home or temporary folder).
 if [ "$(id -u)" -eq 0 ] && command -v setpriv > /dev/null; then
-  mkdir -p readonly && cp good.sqlite readonly/ && chmod 755 readonly && chmod 644 readonly/good.sqlite
-  chmod o+x "$dir"
-  as_nobody() { (cd readonly && setpriv --reuid=65534 --regid=65534 --clear-groups "$@"); }
-  expect 0 "cube +ok" as_nobody "$morphex" ls --db good.sqlite
-  expect 0 "third" as_nobody "$morphex" query --db good.sqlite cube -k 1
+  shared=$(mktemp -d) && chmod 755 "$shared" && mkdir "$shared/readonly" || fail "mktemp"
+  cp good.sqlite "$shared/readonly/" && cp "$morphex" "$shared/morphex" &&
+    cp "$data/unindexed-labels.cla" "$shared/labels.cla" || fail "copies for nobody"
+  chmod 755 "$shared/readonly" "$shared/morphex" && chmod 644 "$shared/readonly/good.sqlite" \
+    "$shared/labels.cla"
+  as_nobody() { (cd "$shared/readonly" && setpriv --reuid=65534 --regid=65534 --clear-groups "$@"); }
+  expect 0 "cube +ok" as_nobody "$shared/morphex" ls --db good.sqlite
+  expect 0 "third" as_nobody "$shared/morphex" query --db good.sqlite cube -k 1
   expect 2 "none of its 2 models is in the index" \
-    as_nobody "$morphex" evaluate --db good.sqlite --labels "$data/unindexed-labels.cla"
+    as_nobody "$shared/morphex" evaluate --db good.sqlite --labels "$shared/labels.cla"
+  rm -rf "$shared"
 fi
 
 # 9: a damaged index (garbage pages, a damaged header, a truncated file): exit 2, unchanged.
