@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "morphex/boolean.h"
+#include "morphex/check.h"
 #include "morphex/generators.h"
 #include "morphex/morphology.h"
 #include "morphex/progress.h"
@@ -148,6 +149,19 @@ TEST(Progress, SolidifyReportsTheCheckAndTheRepairsSteps) {
   EXPECT_TRUE(r.saw_phase("checking"));
   EXPECT_TRUE(r.saw_phase("repairing"));
   EXPECT_TRUE(r.saw_phase("intersecting"));  // the arrangement's own steps, inside the repair's
+}
+
+TEST(Progress, TheCheckReportsItsPasses) {
+  Recorded r;
+  {
+    ProgressScope scope(r.sink());
+    EXPECT_TRUE(check_mesh(make_cube(1)).valid_solid());
+  }
+  EXPECT_TRUE(r.monotone());
+  ASSERT_FALSE(r.reports.empty());
+  EXPECT_DOUBLE_EQ(r.reports.back().first, 1.0);
+  for (const char* pass : {"points and faces", "edges and vertex stars", "self-intersections"})
+    EXPECT_TRUE(r.saw_phase(pass)) << pass;
 }
 
 }  // namespace

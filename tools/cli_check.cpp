@@ -90,7 +90,11 @@ int check_one(const std::string& file, bool json, bool exact) {
     return kBadInput;
   }
   const Stopwatch start;
-  const MeshReport report = check_mesh(mesh);
+  MeshReport report;
+  {
+    const OperationProgress progress("check");
+    report = check_mesh(mesh);
+  }
   const double seconds = start.seconds();
   if (json)
     emit_json(report_json(path, report, seconds, exact), "-");

@@ -74,7 +74,11 @@ std::string solid_problem(const std::string& file, const std::string& problem) {
 std::optional<Mesh> read_solid(const std::string& path) {
   try {
     Mesh mesh = read_mesh(path);
-    const MeshReport report = check_mesh(mesh, kValidityOnly);
+    MeshReport report;
+    {
+      const OperationProgress progress("check");
+      report = check_mesh(mesh, kValidityOnly);
+    }
     if (!report.valid_solid()) {
       print_error(solid_problem(path, describe_problems(report)));
       return std::nullopt;

@@ -228,6 +228,7 @@ Command add_query_command(CLI::App& app) {
         IndexDb db(args->db, IndexAccess::ReadOnly);
         std::vector<Neighbour> ranked;
         try {
+          const OperationProgress progress("query");  // a query mesh file is described first
           ranked =
               query_index(db, args->mesh, args->k, args->descriptor, parse_metric(args->metric));
         } catch (const InputError& e) {

@@ -4,6 +4,7 @@
 // exact tests on a point table (intervals first), where neighbouring triangles are told apart by
 // the positions they share.
 #include "morphex/check.h"
+#include "morphex/progress.h"
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
@@ -618,22 +619,29 @@ MeshReport run_check(const Mesh& mesh, const CheckOptions& options,
   MeshReport r;
   r.vertices = mesh.num_vertices();
   r.triangles = mesh.num_triangles();
+  // Each pass's share of the bar, about its share of a smooth mesh's check.
+  ProgressSteps steps;
+  steps.next(0.15, "points and faces");
   const PointTable table(mesh, mesh, true);
   // From the table's copy of the points' intervals: contiguous, where each point is a pointer.
   for (VertexIndex v = 0; v < mesh.num_vertices(); ++v) r.bbox += table.approx(v).bbox();
   // Each face's normal in doubles (its plane record when a pass asks for it).
   const detail::FacePlanes planes(mesh, table.input_near_doubles(), table.input_error());
   const std::vector<std::uint8_t> degenerate = find_degenerate_faces(mesh, table, planes, r);
+  steps.next(0.4, "edges and vertex stars");
   UnionFind components(mesh.num_triangles());
   std::vector<std::uint8_t> proved;
   const ManifoldEdges manifold =
       check_topology(mesh, table, options.self_intersections, components, proved, r);
   const std::vector<std::uint32_t> component_of =
       number_components(components, mesh.num_triangles(), r);
+  steps.next(0.5, "volume");
   if (options.volume) r.volume = signed_volume(mesh);
   r.genus = total_genus(mesh, component_of, r);
+  steps.next(0.95, "self-intersections");
   if (options.self_intersections && mesh.num_triangles() > 1)
     find_self_intersections(mesh, table, planes, degenerate, manifold, proved, options, r, tree);
+  steps.next(1, "outward");
   r.outward = is_outward(mesh, table, component_of, options, r);
   return r;
 }
