@@ -24,22 +24,6 @@ std::string se_help() {
   return help;
 }
 
-// read_solid has checked the input: the library's checking entry points would check it again.
-Mesh morphology_of_valid(MorphologyOp op, const Mesh& a, const StructuringElement& se,
-                         MorphologyStats* stats) {
-  switch (op) {
-    case MorphologyOp::Dilate:
-      return dilation_of_valid(a, se, stats);
-    case MorphologyOp::Erode:
-      return erosion_of_valid(a, se, stats);
-    case MorphologyOp::Open:
-      return opening_of_valid(a, se, stats);
-    case MorphologyOp::Close:
-      return closing_of_valid(a, se, stats);
-  }
-  throw std::logic_error("unknown morphological operation");
-}
-
 Command add_morphology_command(CLI::App& app, MorphologyOp op, const std::string& summary) {
   auto* cmd = app.add_subcommand(to_string(op), summary);
   struct Args {
@@ -76,7 +60,7 @@ Command add_morphology_command(CLI::App& app, MorphologyOp op, const std::string
             Mesh result;
             {
               const OperationProgress progress(to_string(op));
-              result = morphology_of_valid(op, *a, se, &stats);
+              result = apply_morphology_of_valid(op, *a, se, &stats);  // read_solid checked it
             }
             const double seconds = start.seconds();
             write_result(result, args->output, [&] {

@@ -207,19 +207,32 @@ Mesh closing_of_valid(const Mesh& a, const StructuringElement& se, MorphologySta
       a, se, stats, [&](MinkowskiStats& s) { return close_valid(a, parts_of(se), s); }, false);
 }
 
-Mesh apply_morphology(MorphologyOp op, const Mesh& a, const StructuringElement& se,
-                      MorphologyStats* stats) {
+namespace {
+Mesh dispatch(MorphologyOp op, const Mesh& a, const std::vector<SePart>& parts,
+              MinkowskiStats& s) {
   switch (op) {
     case MorphologyOp::Dilate:
-      return dilation(a, se, stats);
+      return dilate_valid(a, parts, s);
     case MorphologyOp::Erode:
-      return erosion(a, se, stats);
+      return erode_valid(a, parts, s);
     case MorphologyOp::Open:
-      return opening(a, se, stats);
+      return open_valid(a, parts, s);
     case MorphologyOp::Close:
-      return closing(a, se, stats);
+      return close_valid(a, parts, s);
   }
   throw std::logic_error("unknown morphological operation");
+}
+}  // namespace
+
+Mesh apply_morphology(MorphologyOp op, const Mesh& a, const StructuringElement& se,
+                      MorphologyStats* stats) {
+  return timed(a, se, stats, [&](MinkowskiStats& s) { return dispatch(op, a, parts_of(se), s); });
+}
+
+Mesh apply_morphology_of_valid(MorphologyOp op, const Mesh& a, const StructuringElement& se,
+                               MorphologyStats* stats) {
+  return timed(
+      a, se, stats, [&](MinkowskiStats& s) { return dispatch(op, a, parts_of(se), s); }, false);
 }
 
 }  // namespace morphex

@@ -44,5 +44,7 @@ Mesh opening(const Mesh& a, const StructuringElement& se, MorphologyStats* stats
 Mesh closing(const Mesh& a, const StructuringElement& se, MorphologyStats* stats = nullptr);
 Mesh apply_morphology(MorphologyOp op, const Mesh& a, const StructuringElement& se,
                       MorphologyStats* stats = nullptr);
+Mesh apply_morphology_of_valid(MorphologyOp op, const Mesh& a, const StructuringElement& se,
+                               MorphologyStats* stats = nullptr);
 
 }  // namespace morphex
