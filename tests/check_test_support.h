@@ -11,12 +11,12 @@
 #include <utility>
 #include <vector>
 
-#include "check_planar.h"
+#include "check/check_planar.h"
 #include "morphex/check.h"
-#include "morphex/generators.h"
-#include "point_index.h"
-#include "point_table.h"
-#include "spatial.h"
+#include "morphex/internal/fixtures.h"
+#include "exact/point_index.h"
+#include "exact/point_table.h"
+#include "tree/box_tree.h"
 
 namespace morphex::test_support {
 

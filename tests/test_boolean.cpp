@@ -9,7 +9,7 @@
 
 #include "morphex/boolean.h"
 #include "morphex/check.h"
-#include "morphex/generators.h"
+#include "morphex/internal/fixtures.h"
 #include "morphex/winding.h"
 
 using namespace morphex;

@@ -7,11 +7,11 @@
 #include <cmath>
 #include <random>
 
-#include "box_frame.h"
+#include "tree/box_frame.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
-#include "morphex/generators.h"
-#include "point_table.h"
+#include "morphex/internal/fixtures.h"
+#include "exact/point_table.h"
 
 using namespace morphex;
 

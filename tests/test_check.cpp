@@ -9,16 +9,16 @@
 #include <optional>
 #include <random>
 
-#include "check_internal.h"
-#include "check_planar.h"
+#include "check/check_internal.h"
+#include "check/check_planar.h"
 #include "check_test_support.h"
 #include "morphex/check.h"
-#include "morphex/generators.h"
+#include "morphex/internal/fixtures.h"
 #include "peers.h"
-#include "point_index.h"
-#include "point_table.h"
-#include "spatial.h"
-#include "volume_internal.h"
+#include "exact/point_index.h"
+#include "exact/point_table.h"
+#include "tree/box_tree.h"
+#include "mesh/volume_internal.h"
 
 using namespace morphex;
 

@@ -14,9 +14,9 @@
 #include <thread>
 #include <vector>
 
-#include "check_planes.h"
-#include "morphex/generators.h"
-#include "point_table.h"
+#include "check/check_planes.h"
+#include "morphex/shapes.h"
+#include "exact/point_table.h"
 
 using namespace morphex;
 

@@ -11,13 +11,13 @@
 #include <set>
 #include <string>
 
-#include "check_stars.h"
+#include "check/check_stars.h"
 #include "check_test_support.h"
 #include "morphex/check.h"
-#include "morphex/generators.h"
-#include "morphex/union_find.h"
-#include "point_table.h"
-#include "spatial.h"
+#include "morphex/internal/fixtures.h"
+#include "morphex/internal/union_find.h"
+#include "exact/point_table.h"
+#include "tree/box_tree.h"
 
 using namespace morphex;
 

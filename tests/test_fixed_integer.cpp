@@ -7,9 +7,9 @@
 #include <random>
 #include <string>
 
-#include "filtered.h"
-#include "fixed_integer.h"
-#include "point_table.h"
+#include "exact/filtered.h"
+#include "exact/fixed_integer.h"
+#include "exact/point_table.h"
 
 using namespace morphex;
 

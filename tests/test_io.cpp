@@ -11,8 +11,11 @@
 #include <iterator>
 #include <sstream>
 
+#include "boolean/step1_triangulate.h"
+#include "mesh/io_text.h"
+#include "morphex/internal/files.h"
 #include "morphex/check.h"
-#include "morphex/generators.h"
+#include "morphex/shapes.h"
 #include "morphex/io.h"
 
 #ifdef MORPHEX_HAVE_3MF

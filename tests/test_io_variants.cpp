@@ -10,8 +10,9 @@
 #include <fstream>
 #include <sstream>
 
+#include "morphex/internal/files.h"
 #include "morphex/check.h"
-#include "morphex/generators.h"
+#include "morphex/shapes.h"
 #include "morphex/io.h"
 
 using namespace morphex;

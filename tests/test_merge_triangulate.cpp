@@ -11,8 +11,8 @@
 #include <random>
 #include <vector>
 
-#include "merge_triangulate.h"
-#include "point_table.h"
+#include "boolean/merge_triangulate.h"
+#include "exact/point_table.h"
 
 using namespace morphex;
 

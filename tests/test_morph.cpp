@@ -5,7 +5,7 @@
 
 #include "morphex/boolean.h"
 #include "morphex/check.h"
-#include "morphex/generators.h"
+#include "morphex/shapes.h"
 #include "morphex/minkowski.h"
 #include "morphex/morphology.h"
 #include "morphex/structuring_element.h"

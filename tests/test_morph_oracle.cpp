@@ -9,7 +9,7 @@
 
 #include "morphex/boolean.h"
 #include "morphex/check.h"
-#include "morphex/generators.h"
+#include "morphex/shapes.h"
 #include "morphex/io.h"
 #include "morphex/minkowski.h"
 #include "morphex/morphology.h"

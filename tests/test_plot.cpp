@@ -12,7 +12,7 @@
 
 #include "morphex/boolean.h"
 #include "morphex/descriptors.h"
-#include "morphex/generators.h"
+#include "morphex/shapes.h"
 #include "morphex/plot.h"
 #include "morphex/retrieval.h"
 

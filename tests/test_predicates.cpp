@@ -9,15 +9,15 @@
 #include <random>
 #include <string>
 
-#include "filtered.h"
-#include "fixed_integer.h"
-#include "point_index.h"
-#include "point_table.h"
-#include "projection_traits.h"
+#include "exact/filtered.h"
+#include "exact/fixed_integer.h"
+#include "exact/point_index.h"
+#include "exact/point_table.h"
+#include "exact/projection_traits.h"
 #include "random_points.h"
-#include "stable_vector.h"
-#include "static_filter.h"
-#include "triangle_overlap.h"
+#include "exact/stable_vector.h"
+#include "exact/static_filter.h"
+#include "exact/triangle_overlap.h"
 
 using namespace morphex;
 using test_support::RandomPoints;

@@ -9,7 +9,7 @@
 
 #include "morphex/boolean.h"
 #include "morphex/check.h"
-#include "morphex/generators.h"
+#include "morphex/shapes.h"
 #include "morphex/morphology.h"
 #include "morphex/progress.h"
 #include "morphex/solidify.h"

@@ -10,10 +10,10 @@
 #include <random>
 #include <vector>
 
-#include "facet_lines.h"
-#include "point_table.h"
+#include "boolean/facet_lines.h"
+#include "exact/point_table.h"
 #include "random_points.h"
-#include "static_filter.h"
+#include "exact/static_filter.h"
 
 using namespace morphex;
 using test_support::RandomPoints;

@@ -8,10 +8,10 @@
 #include <random>
 
 #include "morphex/check.h"
-#include "morphex/generators.h"
+#include "morphex/internal/fixtures.h"
 #include "morphex/repair.h"
 #include "peers.h"
-#include "spatial.h"
+#include "tree/box_tree.h"
 
 using namespace morphex;
 

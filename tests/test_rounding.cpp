@@ -13,7 +13,7 @@
 
 #include "morphex/boolean.h"
 #include "morphex/check.h"
-#include "morphex/generators.h"
+#include "morphex/internal/fixtures.h"
 #include "morphex/io.h"
 #include "morphex/rounding.h"
 #include "peers.h"

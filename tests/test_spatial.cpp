@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "spatial.h"
+#include "tree/box_tree.h"
 
 using namespace morphex;
 

@@ -35,9 +35,9 @@
 #include "bench_bool_common.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
-#include "morphex/generators.h"
+#include "morphex/shapes.h"
 #include "morphex/io.h"
-#include "morphex/stopwatch.h"
+#include "morphex/internal/stopwatch.h"
 #include "peers.h"
 
 using namespace morphex;

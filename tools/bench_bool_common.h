@@ -18,7 +18,7 @@
 
 #include "bench_common.h"
 #include "morphex/boolean.h"
-#include "morphex/generators.h"
+#include "morphex/shapes.h"
 #include "morphex/mesh.h"
 
 namespace morphex::bench {

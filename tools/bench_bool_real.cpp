@@ -33,7 +33,7 @@
 #include "morphex/check.h"
 #include "morphex/io.h"
 #include "morphex/repair.h"
-#include "morphex/stopwatch.h"
+#include "morphex/internal/stopwatch.h"
 
 namespace morphex::bench {
 

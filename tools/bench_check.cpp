@@ -30,9 +30,9 @@
 
 #include "bench_common.h"
 #include "morphex/check.h"
-#include "morphex/generators.h"
+#include "morphex/internal/fixtures.h"
 #include "morphex/io.h"
-#include "morphex/stopwatch.h"
+#include "morphex/internal/stopwatch.h"
 #include "peers.h"
 
 using namespace morphex;

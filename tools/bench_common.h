@@ -7,9 +7,9 @@
 #include <cmath>
 #include <vector>
 
-#include "morphex/generators.h"
+#include "morphex/shapes.h"
 #include "morphex/mesh.h"
-#include "morphex/stopwatch.h"
+#include "morphex/internal/stopwatch.h"
 
 namespace morphex::bench {
 

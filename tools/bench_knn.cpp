@@ -20,7 +20,7 @@
 
 #include "morphex/index.h"
 #include "morphex/knn.h"
-#include "morphex/stopwatch.h"
+#include "morphex/internal/stopwatch.h"
 
 namespace {
 

@@ -26,12 +26,12 @@
 #include "bench_common.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
-#include "morphex/generators.h"
+#include "morphex/shapes.h"
 #include "morphex/io.h"
 #include "morphex/minkowski.h"
 #include "morphex/morphology.h"
 #include "morphex/repair.h"
-#include "morphex/stopwatch.h"
+#include "morphex/internal/stopwatch.h"
 #include "peers.h"
 
 using namespace morphex;

@@ -22,7 +22,7 @@
 #include "morphex/check.h"
 #include "morphex/io.h"
 #include "morphex/repair.h"
-#include "morphex/stopwatch.h"
+#include "morphex/internal/stopwatch.h"
 #include "peers.h"
 
 using namespace morphex;

@@ -7,7 +7,7 @@
 #include "morphex/boolean.h"
 #include "morphex/check.h"
 #include "morphex/io.h"
-#include "morphex/stopwatch.h"
+#include "morphex/internal/stopwatch.h"
 
 namespace morphex::cli {
 

@@ -8,7 +8,7 @@
 #include "cli_common.h"
 #include "morphex/check.h"
 #include "morphex/io.h"
-#include "morphex/stopwatch.h"
+#include "morphex/internal/stopwatch.h"
 
 namespace morphex::cli {
 

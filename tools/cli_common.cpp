@@ -10,6 +10,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "morphex/internal/files.h"
 #include "morphex/check.h"
 #include "morphex/io.h"
 

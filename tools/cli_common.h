@@ -13,7 +13,7 @@
 #include "morphex/mesh.h"
 #include "morphex/progress.h"
 #include "morphex/rounding.h"
-#include "morphex/stopwatch.h"
+#include "morphex/internal/stopwatch.h"
 
 namespace morphex::cli {
 

@@ -7,7 +7,7 @@
 #include "morphex/io.h"
 #include "morphex/minkowski.h"
 #include "morphex/morphology.h"
-#include "morphex/stopwatch.h"
+#include "morphex/internal/stopwatch.h"
 
 namespace morphex::cli {
 namespace {

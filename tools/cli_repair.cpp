@@ -8,7 +8,7 @@
 #include "morphex/pipeline.h"
 #include "morphex/repair.h"
 #include "morphex/solidify.h"
-#include "morphex/stopwatch.h"
+#include "morphex/internal/stopwatch.h"
 
 namespace morphex::cli {
 namespace {

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "cli_common.h"
+#include "morphex/internal/files.h"
 #include "morphex/collection.h"
 #include "morphex/descriptors.h"
 #include "morphex/index.h"
@@ -19,7 +20,7 @@
 #include "morphex/plot.h"
 #include "morphex/retrieval.h"
 #include "morphex/solidify.h"
-#include "morphex/stopwatch.h"
+#include "morphex/internal/stopwatch.h"
 
 namespace morphex::cli {
 namespace {

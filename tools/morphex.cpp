@@ -268,7 +268,7 @@ int main(int argc, char** argv) {
           "out of memory: the operation needs more memory than is available (see "
           "--max-memory-mb and --max-faces); no output was written");
       return kFailed;
-    } catch (const morphex::Error& e) {
+    } catch (const morphex::InputError& e) {
       // morphex/error.h: the input is unusable (a file, an option, a structuring element).
       print_error(e.what());
       return kBadInput;

@@ -18,11 +18,11 @@
 
 #include "morphex/boolean.h"
 #include "morphex/check.h"
-#include "morphex/generators.h"
+#include "morphex/shapes.h"
 #include "morphex/io.h"
 #include "morphex/morphology.h"
 #include "morphex/repair.h"
-#include "morphex/stopwatch.h"
+#include "morphex/internal/stopwatch.h"
 #include "morphex/winding.h"
 
 using namespace morphex;

@@ -34,7 +34,7 @@
 
 #include "convolution_internal.h"
 #include "morphex/structuring_element.h"
-#include "morphex/union_find.h"
+#include "morphex/internal/union_find.h"
 
 namespace morphex::detail {
 namespace {

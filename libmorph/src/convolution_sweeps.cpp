@@ -6,7 +6,7 @@
 
 #include "convolution_internal.h"
 #include "morphex/check.h"
-#include "morphex/union_find.h"
+#include "morphex/internal/union_find.h"
 
 namespace morphex::detail {
 

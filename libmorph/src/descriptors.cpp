@@ -12,11 +12,11 @@
 
 #include "descriptor_internal.h"
 #include "morphex/check.h"
-#include "morphex/generators.h"
+#include "morphex/shapes.h"
 #include "morphex/morphology.h"
 #include "morphex/progress.h"
 #include "morphex/simplify.h"
-#include "morphex/union_find.h"
+#include "morphex/internal/union_find.h"
 
 namespace morphex {
 namespace {
@@ -133,7 +133,7 @@ Mesh filtered_copy(const Mesh& solid, const DoubleMesh& dm, double scale,
     Mesh copy = simplified_solid(posed, budget, &report, kGrid);
     d.simplified = report.simplified;
     return copy;
-  } catch (const std::invalid_argument&) {
+  } catch (const InvalidSolid&) {
     // Rounding the turned coordinates made the surface touch itself: turn it exactly instead.
     Mesh exact = s.normalise_pose ? normalise_pose(solid) : solid;
     Mesh out = transformed(exact, Transformation(CGAL::SCALING, FT(1) / FT(scale)));

@@ -2,7 +2,7 @@
 // Minkowski sums as unions of convex pieces (see minkowski.h for the decomposition).
 #include "morphex/minkowski.h"
 #include "morphex/progress.h"
-#include "morphex/stopwatch.h"
+#include "morphex/internal/stopwatch.h"
 
 #include <tbb/parallel_for.h>
 
@@ -14,9 +14,9 @@
 #include "minkowski_internal.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
-#include "morphex/generators.h"
+#include "morphex/shapes.h"
 #include "morphex/structuring_element.h"
-#include "morphex/union_find.h"
+#include "morphex/internal/union_find.h"
 #include "morphex/winding.h"
 
 namespace morphex {

@@ -8,7 +8,7 @@
 
 #include "minkowski_internal.h"
 #include "morphex/boolean.h"
-#include "morphex/generators.h"
+#include "morphex/shapes.h"
 #include "morphex/progress.h"
 
 namespace morphex {

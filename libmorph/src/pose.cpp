@@ -5,7 +5,7 @@
 
 #include "descriptor_internal.h"
 #include "morphex/descriptors.h"
-#include "morphex/generators.h"
+#include "morphex/shapes.h"
 
 namespace morphex {
 namespace detail {

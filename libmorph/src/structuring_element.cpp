@@ -12,7 +12,7 @@
 #include <stdexcept>
 
 #include "morphex/check.h"
-#include "morphex/generators.h"
+#include "morphex/shapes.h"
 #include "morphex/io.h"
 #include "morphex/nearest.h"
 

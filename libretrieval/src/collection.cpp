@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "morphex/boolean.h"
-#include "morphex/generators.h"
+#include "morphex/shapes.h"
 
 namespace morphex {
 namespace {

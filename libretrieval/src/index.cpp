@@ -9,7 +9,7 @@
 
 #include "index_internal.h"
 #include "morphex/knn.h"
-#include "morphex/stopwatch.h"
+#include "morphex/internal/stopwatch.h"
 
 namespace morphex {
 

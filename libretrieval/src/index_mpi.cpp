@@ -16,7 +16,7 @@
 #include <thread>
 
 #include "index_internal.h"
-#include "morphex/stopwatch.h"
+#include "morphex/internal/stopwatch.h"
 
 namespace morphex {
 namespace {

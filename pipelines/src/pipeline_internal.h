@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "morphex/descriptors.h"
-#include "morphex/generators.h"
+#include "morphex/shapes.h"
 #include "morphex/structuring_element.h"
 
 namespace morphex::pipeline::detail {

@@ -14,7 +14,7 @@
 #include <set>
 
 #include "morphex/pipeline.h"
-#include "morphex/stopwatch.h"
+#include "morphex/internal/stopwatch.h"
 
 namespace morphex::pipeline {
 namespace {

@@ -68,7 +68,7 @@ FT exact_number(const nlohmann::json& value) {
   if (value.is_number_integer()) return parse_exact_number(value.dump());
   if (value.is_number()) return FT(value.get<double>());  // the JSON text's nearest double
   if (value.is_string()) return parse_exact_number(value.get<std::string>());
-  throw std::invalid_argument("not a number");
+  throw InputError("", "not a number");
 }
 
 StructuringElement structuring_element(const nlohmann::json& value) {

@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "morphex/internal/files.h"
 #include "morphex/io.h"
 #include "morphex/pipeline.h"
 #include "pipeline_internal.h"
@@ -177,8 +178,8 @@ std::size_t too_deep(const std::string& text) {
 }  // namespace
 
 PipelineError::PipelineError(std::vector<Problem> problems)
-    : Error(problems.empty() ? "" : problems[0].location,
-            problems.empty() ? "" : problems[0].message, join(problems)),
+    : InputError(problems.empty() ? "" : problems[0].location,
+                 problems.empty() ? "" : problems[0].message, join(problems)),
       problems_(std::move(problems)) {}
 
 nlohmann::json parse_document(const std::string& text, const std::string& name) {

@@ -60,7 +60,7 @@ FT to_exact(const py::handle& value) {
   if (py::isinstance(value, real)) {
     const double d = py::float_(py::reinterpret_borrow<py::object>(value));
     if (!std::isfinite(d))
-      throw std::invalid_argument("expected a finite number, got " + std::string(py::repr(value)));
+      throw InputError("", "expected a finite number, got " + std::string(py::repr(value)));
     return FT(d);
   }
   throw py::type_error("expected a number (int, float, Fraction or text such as '1/3'), got " +
@@ -70,7 +70,7 @@ FT to_exact(const py::handle& value) {
 Point to_exact_point(const py::handle& xyz, const char* what) {
   const py::sequence s = py::reinterpret_borrow<py::sequence>(xyz);
   if (!py::isinstance<py::sequence>(xyz) || py::isinstance<py::str>(xyz) || py::len(s) != 3)
-    throw std::invalid_argument(std::string(what) + ": expected three coordinates, got " +
+    throw InputError("", std::string(what) + ": expected three coordinates, got " +
                                 std::string(py::repr(xyz)));
   return Point(to_exact(s[0]), to_exact(s[1]), to_exact(s[2]));
 }
@@ -89,7 +89,7 @@ std::string to_path(const py::handle& path) {
 ThreadLimit::ThreadLimit(const std::optional<int>& threads) {
   if (!threads) return;
   if (*threads < 1)
-    throw std::invalid_argument("threads: expected a positive number, got " +
+    throw InputError("", "threads: expected a positive number, got " +
                                 std::to_string(*threads));
   control_.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(*threads));
 }

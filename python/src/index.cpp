@@ -3,6 +3,8 @@
 // `query` and `evaluate` use it, so that an index built from Python can be queried by the command
 // line and back. What is Python's own: meshes given as Mesh objects (written to a temporary exact
 // OFF file, since pipelines read files) and the conversion of arguments and results.
+#include <cerrno>
+#include <cstring>
 #include <stdlib.h>
 
 #include <algorithm>
@@ -29,7 +31,7 @@ class TemporaryDirectory {
  public:
   TemporaryDirectory() {
     std::string pattern = (fs::temp_directory_path() / "morphex-python-XXXXXX").string();
-    if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary directory");
+    if (!mkdtemp(pattern.data())) throw StorageError("", std::string("cannot create a temporary directory: ") + std::strerror(errno));
     path_ = pattern;
   }
   ~TemporaryDirectory() {
@@ -39,7 +41,7 @@ class TemporaryDirectory {
   // Writes the mesh exactly as <dir>/<name>.off, so that ${stem} is the name.
   std::string write(const Mesh& mesh, const std::string& name) const {
     if (name.empty() || name.find('/') != std::string::npos)
-      throw std::invalid_argument("name: expected a non-empty name without '/', got '" + name +
+      throw InputError("", "name: expected a non-empty name without '/', got '" + name +
                                   "'");
     const std::string path = (path_ / (name + ".off")).string();
     WriteOptions exact;
@@ -106,7 +108,7 @@ class Index {
     return std::unique_lock<std::mutex>(mutex_);
   }
   IndexDb& db() {
-    if (!db_) throw std::invalid_argument(path_ + ": the index is closed");
+    if (!db_) throw InputError("", path_ + ": the index is closed");
     return *db_;
   }
   IndexPipeline pipeline(const py::object& pipeline, const mp::Variables& variables, bool repair);
@@ -137,7 +139,7 @@ IndexPipeline Index::pipeline(const py::object& pipeline, const mp::Variables& v
     }
     return make_index_pipeline(doc ? &*doc : nullptr, name, variables, repair);
   } catch (const mp::PipelineError& e) {
-    throw std::invalid_argument(pipeline_problems(name, e));
+    throw InputError("", pipeline_problems(name, e));
   }
 }
 
@@ -154,7 +156,7 @@ std::vector<IndexItem> Index::items(const py::object& objects, std::vector<std::
   else
     for (const py::handle& h : objects) list.push_back(h);
   if (named && names.size() != list.size())
-    throw std::invalid_argument("names: expected one name per mesh, got " +
+    throw InputError("", "names: expected one name per mesh, got " +
                                 std::to_string(names.size()) + " names for " +
                                 std::to_string(list.size()) + " meshes");
   std::vector<IndexItem> out;
@@ -164,7 +166,7 @@ std::vector<IndexItem> Index::items(const py::object& objects, std::vector<std::
       const PyMesh& m = h.cast<const PyMesh&>();
       const std::string n = named ? names[i] : fs::path(m.source).stem().string();
       if (n.empty())
-        throw std::invalid_argument(
+        throw InputError("", 
             "a Mesh not read from a file needs a name (name= for one mesh, names= for several)");
       out.push_back({temp.write(m.mesh, n), "mesh:" + n, n});
     } else {
@@ -184,7 +186,7 @@ py::dict Index::add(const py::object& objects, const py::object& name,
   const IndexPipeline pipeline = this->pipeline(pipeline_arg, variables, repair);
   // name= is one name, or (as names=) a list of names for a list of meshes.
   std::vector<std::string> given;
-  if (!name.is_none() && names) throw std::invalid_argument("give name= or names=, not both");
+  if (!name.is_none() && names) throw InputError("", "give name= or names=, not both");
   if (names)
     given = *names;
   else if (py::isinstance<py::str>(name))
@@ -203,7 +205,7 @@ py::dict Index::add(const py::object& objects, const py::object& name,
       options.retry_failed = retry_failed;
       summary = index_meshes(db(), pipeline, list, {}, options);
     } catch (const mp::PipelineError& e) {
-      throw std::invalid_argument(pipeline_problems(pipeline.name, e));
+      throw InputError("", pipeline_problems(pipeline.name, e));
     }
   }
   py::dict out;
@@ -221,7 +223,7 @@ py::list Index::query(const py::object& target, std::size_t k, const std::string
   if (std::find(kinds.begin(), kinds.end(), descriptor) == kinds.end()) {
     std::string known;
     for (const std::string& kind : kinds) known += (known.empty() ? "" : ", ") + kind;
-    throw std::invalid_argument("descriptor: expected one of " + known + ", got '" + descriptor +
+    throw InputError("", "descriptor: expected one of " + known + ", got '" + descriptor +
                                 "'");
   }
   const Metric metric = parse_metric(metric_name);

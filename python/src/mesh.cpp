@@ -6,7 +6,7 @@
 
 #include "common.h"
 #include "morphex/check.h"
-#include "morphex/generators.h"
+#include "morphex/shapes.h"
 #include "morphex/io.h"
 #include "morphex/rounding.h"
 
@@ -30,14 +30,14 @@ std::vector<Triangle> faces_from_numpy(const py::object& faces_like, std::size_t
                          std::string(py::str(faces.dtype())));
   const auto f = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(faces);
   if (f.ndim() != 2 || f.shape(1) != 3)
-    throw std::invalid_argument("faces: expected an array of shape (M, 3)");
+    throw InputError("", "faces: expected an array of shape (M, 3)");
   std::vector<Triangle> out(std::size_t(f.shape(0)));
   const auto view = f.unchecked<2>();
   for (py::ssize_t i = 0; i < f.shape(0); ++i)
     for (py::ssize_t j = 0; j < 3; ++j) {
       const long long v = view(i, j);
       if (v < 0 || std::size_t(v) >= vertices)
-        throw std::invalid_argument("faces[" + std::to_string(i) + "][" + std::to_string(j) +
+        throw InputError("", "faces[" + std::to_string(i) + "][" + std::to_string(j) +
                                     "]: vertex index " + std::to_string(v) + " out of range for " +
                                     std::to_string(vertices) + " vertices");
       out[std::size_t(i)][std::size_t(j)] = VertexIndex(v);
@@ -48,14 +48,14 @@ std::vector<Triangle> faces_from_numpy(const py::object& faces_like, std::size_t
 PyMesh mesh_from_numpy(const py::object& vertices, const py::object& faces) {
   const auto v = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(vertices);
   if (!v || (v.size() > 0 && (v.ndim() != 2 || v.shape(1) != 3)))
-    throw std::invalid_argument("vertices: expected an array of shape (N, 3)");
+    throw InputError("", "vertices: expected an array of shape (N, 3)");
   DoubleMesh d;
   const std::size_t n = v.size() == 0 ? 0 : std::size_t(v.shape(0));
   d.points.resize(n);
   const double* data = v.data();
   for (std::size_t i = 0; i < 3 * n; ++i) {
     if (!std::isfinite(data[i]))
-      throw std::invalid_argument("vertices[" + std::to_string(i / 3) + "]: not a finite number");
+      throw InputError("", "vertices[" + std::to_string(i / 3) + "]: not a finite number");
     d.points[i / 3][i % 3] = data[i];
   }
   d.triangles = faces_from_numpy(faces, n);
@@ -298,7 +298,7 @@ Operators: a | b (union), a & b (intersection), a - b (difference).)doc")
       [](const py::object& lo, const py::object& hi) {
         const Point a = to_exact_point(lo, "min"), b = to_exact_point(hi, "max");
         if (!(a.x() < b.x() && a.y() < b.y() && a.z() < b.z()))
-          throw std::invalid_argument("box: min must be below max on every axis");
+          throw InputError("", "box: min must be below max on every axis");
         return PyMesh{make_box(a, b), ""};
       },
       py::arg("min"), py::arg("max"),
@@ -308,7 +308,7 @@ Operators: a | b (union), a & b (intersection), a - b (difference).)doc")
       [](const py::object& half_side, const py::object& centre) {
         const FT r = to_exact(half_side);
         if (r <= 0)
-          throw std::invalid_argument("cube: half_side: expected a positive number, got " +
+          throw InputError("", "cube: half_side: expected a positive number, got " +
                                       to_rational_string(r));
         return PyMesh{make_cube(r, to_exact_point(centre, "centre")), ""};
       },

@@ -38,7 +38,7 @@ StructuringElement structuring_element(const std::string* text, const PyMesh* me
       throw;
     } catch (const std::exception& e) {
       // As the command line's "--se TEXT: ...": the text, then what is wrong with it.
-      throw std::invalid_argument("se " + *text + ": " + e.what());
+      throw InputError("", "se " + *text + ": " + e.what());
     }
   }
   require_valid_solid(*mesh, "se");
@@ -75,7 +75,7 @@ PyMesh morphology(MorphologyOp op, const PyMesh& a, const SeArg& se_arg,
 }
 
 py::object repair(const PyMesh& m, bool merge_coplanar, bool report, double budget) {
-  if (!(budget >= 0)) throw std::invalid_argument("budget: expected 0 or a positive number");
+  if (!(budget >= 0)) throw InputError("", "budget: expected 0 or a positive number");
   RepairResult r;
   {
     py::gil_scoped_release release;
@@ -86,7 +86,7 @@ py::object repair(const PyMesh& m, bool merge_coplanar, bool report, double budg
       r = repair_mesh(m.mesh, options);
     } catch (const InputError& e) {
       // As `morphex repair`: the repair's message has no file name, the caller adds it.
-      throw std::invalid_argument(mesh_prefix(m, "") + "cannot repair: " + e.what());
+      throw InputError("", mesh_prefix(m, "") + "cannot repair: " + e.what());
     }
   }
   PyMesh out{std::move(r.mesh), ""};

@@ -16,7 +16,7 @@ namespace mp = morphex::pipeline;
 
 void require_in(const char* name, double value, double lo, double hi) {
   if (!(value >= lo && value <= hi))
-    throw std::invalid_argument(std::string(name) + ": expected a number in [" +
+    throw InputError("", std::string(name) + ": expected a number in [" +
                                 std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
                                 std::to_string(value));
 }
@@ -30,10 +30,10 @@ void check_settings(const DescriptorSettings& s) {
                                                     {"close_to", s.close_to}};
   for (const auto& [name, v] : numbers)
     if (!(v > 0))
-      throw std::invalid_argument(std::string(name) + ": expected a positive number, got " +
+      throw InputError("", std::string(name) + ": expected a positive number, got " +
                                   std::to_string(v));
   if (s.open_from > s.open_to || s.close_from > s.close_to)
-    throw std::invalid_argument("open_from/close_from must not exceed open_to/close_to");
+    throw InputError("", "open_from/close_from must not exceed open_to/close_to");
   require_in("d2_samples", s.d2_samples, 16, 1e7);
   require_in("d2_bins", s.d2_bins, 4, 4096);
 }
@@ -81,7 +81,7 @@ py::dict describe_mesh(const PyMesh& mesh, const DescriptorSettings& s, bool rep
         repaired = r.report;
         solid = &repaired_mesh;
       } catch (const InputError& e) {
-        throw std::invalid_argument(mesh_prefix(mesh, "") + "cannot repair: " + e.what());
+        throw InputError("", mesh_prefix(mesh, "") + "cannot repair: " + e.what());
       }
     } else {
       require_valid_solid(mesh, "");
@@ -135,7 +135,7 @@ py::object run_pipeline(const py::object& document, const py::object& inputs,
       std::string message;
       for (const mp::Problem& p : e.problems())
         message += (message.empty() ? "" : "\n") + name + ": " + p.text();
-      throw std::invalid_argument(message);
+      throw InputError("", message);
     }
   }
   return from_json(report.to_json());

@@ -7,7 +7,7 @@
 
 #include <utility>
 
-#include "morphex/stopwatch.h"
+#include "morphex/internal/stopwatch.h"
 
 namespace morphex::peers {
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "peers.h"
-#include "morphex/stopwatch.h"
+#include "morphex/internal/stopwatch.h"
 
 #include "nef.h"  // before minkowski_sum_3.h, which needs the Nef headers first
 

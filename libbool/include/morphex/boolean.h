@@ -21,7 +21,7 @@ namespace morphex {
 
 enum class BooleanOp { Union, Intersection, Difference };  // Difference is A minus B
 
-// "union", "intersection", "difference"; throws std::invalid_argument otherwise.
+// "union", "intersection", "difference"; throws InputError otherwise.
 BooleanOp parse_boolean_op(const std::string& name);
 const char* to_string(BooleanOp op);
 

@@ -3,17 +3,20 @@
 // (when built with lib3mf) and glTF binary (.glb, written only, for viewers). The path "-" is
 // standard input or output. Readers triangulate polygons and throw InputError naming the file, the
 // problem and the line, vertex or face. Writers are atomic: a temporary file in the target's
-// directory, then rename; standard output gets the whole file at once, once it is complete.
+// directory, then rename (morphex/atomic_files.h); standard output gets the whole file at once, once
+// it is complete.
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <iosfwd>
 #include <stdexcept>
 #include <string>
 
 #include "morphex/mesh.h"
+#include "morphex/atomic_files.h"
+#include "morphex/error.h"
 #include "morphex/rounding.h"
+#include "morphex/version.h"
 
 namespace morphex {
 
@@ -55,10 +58,6 @@ InputLimits input_limits();
 // `name` is used in error messages in place of a file name.
 Mesh read_mesh_from_string(const std::string& content, MeshFormat format, const std::string& name);
 
-// Removes the temporary files of writes in progress. Async-signal-safe: a SIGINT handler calls it
-// before exiting, so an interrupted run leaves neither a half-written output nor a stray temporary.
-void remove_pending_temporary_files() noexcept;
-
 struct WriteOptions {
   bool exact = false;  // OFF with rational coordinates; only for .off
   // Provenance, one line (what made the file: the command or pipeline stage), written with the
@@ -70,10 +69,6 @@ struct WriteOptions {
   // Measure the volume change of rounding (RoundingReport::volume_change): two exact volumes.
   bool measure_rounding = false;
 };
-// The library's version ("0.1.0").
-const char* version();
-// The comment line a file written with `provenance` carries, without the format's comment marker.
-std::string provenance_line(const std::string& provenance);
 // Plain formats store doubles (OFF, OBJ, PLY), floats (STL, glb) or lib3mf's decimals (3MF):
 // the mesh is rounded to the format's grid as a valid solid (round_mesh, morphex/rounding.h), so
 // that the file read back is a valid solid within a few units in the last place of the exact one;
@@ -86,27 +81,5 @@ RoundingReport write_mesh(const Mesh& mesh, std::ostream& out, MeshFormat format
                           const WriteOptions& options = {});
 // The grid a format's readers see: doubles, floats (STL, glb) or lib3mf's decimals (3MF).
 RoundingGrid grid_of(MeshFormat format);
-
-// A result that the chosen plain format cannot hold at all: a coordinate outside its range (a
-// double beyond 3.4e38 in a float format). Not a morphex::Error: the input was fine and the
-// operation ran; the output format is what fails (exit 1).
-class LossyOutputError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-// Writes through `writer` into a temporary file next to `path`, then renames it over `path`:
-// readers never see a half-written file and a failure leaves the old file untouched.
-void write_file_atomically(const std::string& path,
-                           const std::function<void(std::ostream&)>& writer);
-
-// True when both paths name the same file (existing or not).
-bool same_file(const std::string& a, const std::string& b);
-
-// Triangulates a simple polygon (possibly non-convex, approximately planar) given by vertex
-// indices, by ear clipping in the plane of its exact Newell normal. Throws std::invalid_argument
-// when the polygon is degenerate or cannot be triangulated.
-void triangulate_polygon(const std::vector<Point>& points, const std::vector<VertexIndex>& polygon,
-                         std::vector<Triangle>& out);
 
 }  // namespace morphex

@@ -68,7 +68,7 @@ void make_exact(Mesh& mesh);
 // An exact rational number in lowest terms, "num/den" or "num" when the denominator is 1.
 std::string to_rational_string(const FT& value);
 // Parses "num/den", "num" or a decimal/scientific literal (read as the nearest double).
-// Throws std::invalid_argument on malformed text.
+// Throws InputError on malformed text.
 FT parse_exact_number(std::string_view text);
 
 // Exact signed volume of a closed mesh (positive when outward oriented), summed pairwise so the

@@ -70,7 +70,7 @@ struct Descriptors {
   double seconds_morphology = 0;
 };
 
-// Precondition: a valid solid with positive volume (throws std::invalid_argument otherwise).
+// Precondition: a valid solid with positive volume (throws InvalidSolid otherwise).
 Descriptors describe(const Mesh& solid, const DescriptorSettings& settings = {});
 // The same for a mesh already known to be a valid solid (a pipeline stage's output, a repair's
 // result): the input check, which costs about as much as reading the mesh, is skipped.
@@ -91,10 +91,10 @@ const char* default_descriptor_kind();  // "combined"
 const char* descriptor_version();
 
 enum class Metric { L1, L2, ChiSquare };
-// "l1", "l2", "chi2"; throws std::invalid_argument otherwise.
+// "l1", "l2", "chi2"; throws InputError otherwise.
 Metric parse_metric(const std::string& name);
 const char* to_string(Metric metric);
-// chi2 is sum (a - b)^2 / (|a| + |b|), terms with a = b = 0 omitted. Throws std::invalid_argument
+// chi2 is sum (a - b)^2 / (|a| + |b|), terms with a = b = 0 omitted. Throws InputError
 // for vectors of different lengths (computed with other settings).
 double distance(const std::vector<double>& a, const std::vector<double>& b, Metric metric);
 double l1_distance(const std::vector<double>& a, const std::vector<double>& b);

@@ -25,7 +25,7 @@ struct MinkowskiStats {
   double seconds_pieces = 0, seconds_union = 0;
 };
 
-// A + B for closed solids. Throws std::invalid_argument if either is not a valid solid.
+// A + B for closed solids. Throws InvalidSolid if either is not a valid solid.
 Mesh minkowski_sum(const Mesh& a, const Mesh& b, MinkowskiStats* stats = nullptr);
 
 // How the pieces are united: the balanced tree of binary unions (compute_union, the default:

@@ -16,7 +16,7 @@ namespace morphex {
 
 enum class MorphologyOp { Dilate, Erode, Open, Close };
 
-// "dilate", "erode", "open", "close"; throws std::invalid_argument otherwise.
+// "dilate", "erode", "open", "close"; throws InputError otherwise.
 MorphologyOp parse_morphology_op(const std::string& name);
 const char* to_string(MorphologyOp op);
 

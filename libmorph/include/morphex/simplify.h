@@ -32,7 +32,7 @@ struct SimplifyReport {
 
 // A valid solid with at most about `max_facets` facets (never more than the input's) near the
 // double-precision surface `mesh`. Precondition: `mesh` is a closed oriented 2-manifold whose
-// exact copy is a valid solid; throws std::invalid_argument when even that copy is not one.
+// exact copy is a valid solid; throws InvalidSolid when even that copy is not one.
 // With `grid` (a power of two), every coordinate of the copy is rounded to a multiple of it
 // before the copy is checked: exact arithmetic on the copy and its translates by radii on the same
 // grid then works with short dyadic numbers.

@@ -25,13 +25,13 @@ struct StructuringElement {
 
 using SeParameters = std::vector<std::pair<std::string, std::string>>;  // key, value text
 
-// A bad structuring element (a morphex::Error, morphex/error.h): what() reads "ball: r: expected
+// A bad structuring element (a morphex::InputError, morphex/error.h): what() reads "ball: r: expected
 // a positive number, got -1"; key() is the parameter at fault ("shape" for the shape itself) and
 // problem() the rest, so callers can point at their own location (a JSON path, an option).
-class StructuringElementError : public Error {
+class StructuringElementError : public InputError {
  public:
   StructuringElementError(const std::string& shape, std::string key, std::string problem)
-      : Error(shape.empty() ? "" : shape + ": " + key, std::move(problem)), key_(std::move(key)) {}
+      : InputError(shape.empty() ? "" : shape + ": " + key, std::move(problem)), key_(std::move(key)) {}
   const std::string& key() const { return key_; }
 
  private:

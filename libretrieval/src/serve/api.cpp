@@ -16,7 +16,7 @@
 #include "morphex/io.h"
 #include "morphex/pipeline.h"
 #include "morphex/retrieval.h"
-#include "morphex/stopwatch.h"
+#include "morphex/internal/stopwatch.h"
 #include "thumbnail.h"
 
 namespace morphex::serve {

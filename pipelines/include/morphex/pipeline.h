@@ -87,9 +87,9 @@ struct Problem {
   std::string text() const { return location.empty() ? message : location + ": " + message; }
 };
 
-// Thrown by load/validate with every problem found (a morphex::Error, morphex/error.h: where()
+// Thrown by load/validate with every problem found (a morphex::InputError, morphex/error.h: where()
 // and problem() are the first problem's location and message; what() lists them all).
-class PipelineError : public Error {
+class PipelineError : public InputError {
  public:
   explicit PipelineError(std::vector<Problem> problems);
   const std::vector<Problem>& problems() const { return problems_; }

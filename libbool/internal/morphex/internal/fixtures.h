@@ -1,0 +1,25 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Meshes for tests and benchmarks only (not installed): shapes that stress particular cases of the
+// check and the Boolean. Defined in libbool (mesh/shapes.cpp) beside the public shapes.
+#pragma once
+
+#include <utility>
+
+#include "morphex/shapes.h"
+
+namespace morphex {
+
+// A prism over the regular `segments`-gon of `radius` in z = 0, height `height`, whose caps are
+// fans from the polygon's first vertex, as CAD exporters triangulate flat faces: long thin facets
+// that all meet at one vertex.
+Mesh make_fan_prism(int segments, double radius, double height);
+// A cone over the same polygon with its apex at height `height` above the centre, the base a fan
+// from the polygon's first vertex: long thin facets on the side too, all meeting at the apex.
+Mesh make_fan_cone(int segments, double radius, double height);
+
+// Unit cubes [0,1]^3 and a translated copy touching it along a face, an edge, a vertex.
+std::pair<Mesh, Mesh> make_cubes_sharing_face();
+std::pair<Mesh, Mesh> make_cubes_sharing_edge();
+std::pair<Mesh, Mesh> make_cubes_sharing_vertex();
+
+}  // namespace morphex

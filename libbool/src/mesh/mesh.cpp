@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "morphex/mesh.h"
+
+#include <gmpxx.h>
+#include <tbb/parallel_for.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <type_traits>
+
+namespace morphex {
+
+using ExactFT = std::decay_t<decltype(CGAL::exact(std::declval<FT>()))>;
+
+DoubleMesh to_double(const Mesh& mesh) {
+  DoubleMesh out;
+  out.points.reserve(mesh.points.size());
+  for (const Point& p : mesh.points)
+    out.points.push_back({CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
+  out.triangles = mesh.triangles;
+  return out;
+}
+
+Mesh from_double(const DoubleMesh& mesh) {
+  Mesh out;
+  out.points.reserve(mesh.points.size());
+  for (const auto& p : mesh.points) out.points.emplace_back(p[0], p[1], p[2]);
+  out.triangles = mesh.triangles;
+  return out;
+}
+
+Point point_from_exact(Kernel::Exact_kernel::Point_3 exact) {
+  return Point(Point::Rep(std::move(exact)));
+}
+
+bool has_double_coordinates(const Point& p) {
+  // The interval approximation encloses the exact value: a zero-width interval is that value.
+  const auto& a = CGAL::approx(p);
+  return a.x().is_point() && a.y().is_point() && a.z().is_point();
+}
+
+void make_exact(Mesh& mesh) {
+  for (Point& p : mesh.points) {
+    if (has_double_coordinates(p)) {
+      // A point made of doubles needs no rational at all, and may still carry a history.
+      const auto& a = CGAL::approx(p);
+      p = Point(a.x().inf(), a.y().inf(), a.z().inf());
+      continue;
+    }
+    // Evaluating a lazy point stores its exact value, tightens its interval and cuts the
+    // construction graph below it; an already evaluated point returns at once.
+    CGAL::exact(p);
+  }
+}
+
+std::string to_rational_string(const FT& value) {
+  // The exact type keeps lowest terms; normalise "n/1" in case a backend prints it.
+  std::ostringstream out;
+  out << CGAL::exact(value);
+  std::string text = out.str();
+  if (text.size() > 2 && text.compare(text.size() - 2, 2, "/1") == 0) text.resize(text.size() - 2);
+  return text;
+}
+
+FT parse_exact_number(std::string_view text) {
+  if (text.empty()) throw InputError("", "empty number");
+  const std::string_view digits = text[0] == '+' ? text.substr(1) : text;  // GMP rejects '+'
+  auto malformed = [&] {
+    std::string shown(text.substr(0, 40));
+    for (char& c : shown)
+      if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
+    return InputError("", "malformed number '" + shown + (text.size() > 40 ? "...'" : "'"));
+  };
+  // Integers and fractions are exact; decimal literals mean the nearest double, as in any mesh
+  // file written by floating-point software.
+  if (digits.find_first_of(".eEnNiI") == std::string_view::npos) {
+    // Short integers are doubles exactly: no rational arithmetic for the commonest coordinates.
+    if (!digits.empty() && digits.size() <= 15 && digits.find('/') == std::string_view::npos) {
+      long long value = 0;
+      const auto r = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+      if (r.ec == std::errc() && r.ptr == digits.data() + digits.size()) return FT(double(value));
+    }
+    mpq_class q;
+    const std::string copy(digits);
+    if (copy.empty() || copy[0] == '+' || q.set_str(copy, 10) != 0 || q.get_den() == 0)
+      throw malformed();
+    q.canonicalize();
+    return FT(ExactFT(q.get_str()));
+  }
+  double d = 0;
+  const auto r = std::from_chars(digits.data(), digits.data() + digits.size(), d);
+  if (r.ec != std::errc() || r.ptr != digits.data() + digits.size()) {
+    // Forms from_chars does not take (hexadecimal floats): strtod decides.
+    const std::string copy(text);
+    char* end = nullptr;
+    d = std::strtod(copy.c_str(), &end);
+    if (end == copy.c_str() || *end != '\0') throw malformed();
+  }
+  if (!std::isfinite(d)) {
+    std::string shown(text.substr(0, 40));
+    throw InputError("", "non-finite number '" + shown + "'");
+  }
+  return FT(d);
+}
+
+}  // namespace morphex
