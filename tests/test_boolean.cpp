@@ -10,6 +10,7 @@
 #include "morphex/boolean.h"
 #include "morphex/check.h"
 #include "morphex/internal/fixtures.h"
+#include "morphex/internal/solid_access.h"
 #include "morphex/winding.h"
 
 using namespace morphex;
@@ -46,12 +47,11 @@ Box shifted(const Box& b, FT dx, FT dy, FT dz) {
 
 // Runs op, requires a valid solid, returns its exact volume.
 FT checked_volume(const Mesh& a, const Mesh& b, BooleanOp op, Mesh* out = nullptr) {
-  const BooleanResult r = compute_boolean(a, b, op);
-  EXPECT_TRUE(r.ok()) << r.message;
+  const BooleanResult r = compute_boolean(check_solid(a), check_solid(b), op);
   EXPECT_EQ(r.stats.orientation_conflicts, 0u);
-  const MeshReport report = check_mesh(r.mesh);
+  const MeshReport report = check_mesh(r.solid);
   EXPECT_TRUE(report.valid_solid()) << to_string(op) << ": " << describe_problems(report);
-  if (out) *out = r.mesh;
+  if (out) *out = r.solid;
   return report.volume;
 }
 
@@ -123,16 +123,18 @@ TEST(Boolean, MergeCoplanarFacesOfAnUnmergedResult) {
   BooleanOptions unmerged;
   unmerged.merge_coplanar = false;
   const Mesh a = box_mesh(kUnit), b = box_mesh(shifted(kUnit, 1, 0, 0));
-  const BooleanResult raw = compute_boolean(a, b, BooleanOp::Union, unmerged);
-  ASSERT_TRUE(raw.ok()) << raw.message;
-  EXPECT_GT(raw.mesh.num_triangles(), 12u);
-  const Mesh merged = merge_coplanar_faces(raw.mesh);
+  const BooleanResult raw =
+      compute_boolean(check_solid(a), check_solid(b), BooleanOp::Union, unmerged);
+  EXPECT_GT(raw.solid.num_triangles(), 12u);
+  const Mesh merged = merge_coplanar_faces(check_solid(raw.solid));
   const MeshReport report = check_mesh(merged);
   EXPECT_TRUE(report.valid_solid()) << describe_problems(report);
   EXPECT_EQ(report.volume, FT(2));
   EXPECT_EQ(merged.num_triangles(), 12u);
-  EXPECT_EQ(merged.num_triangles(), compute_boolean(a, b, BooleanOp::Union).mesh.num_triangles());
-  EXPECT_EQ(merge_coplanar_faces(Mesh{}).num_triangles(), 0u);
+  EXPECT_EQ(
+      merged.num_triangles(),
+      compute_boolean(check_solid(a), check_solid(b), BooleanOp::Union).solid.num_triangles());
+  EXPECT_EQ(merge_coplanar_faces(check_solid(Mesh{})).num_triangles(), 0u);
 }
 
 TEST(Boolean, CubesSharingAnEdgeGiveASeparatedValidResult) {
@@ -196,8 +198,7 @@ TEST(Boolean, RotatedCubesWithRationalRotation) {
 TEST(Boolean, TransversalCrossingsAreLabelledByTheSeedsOrientationRule) {
   const Mesh a = make_icosphere(2, FT(1));
   const Mesh b = translated(a, Kernel::Vector_3(FT(1) / 2, FT(1) / 3, FT(1) / 5));
-  const BooleanResult r = compute_boolean(a, b, BooleanOp::Union);
-  ASSERT_TRUE(r.ok());
+  const BooleanResult r = compute_boolean(check_solid(a), check_solid(b), BooleanOp::Union);
   EXPECT_GT(r.stats.patches_by_orientation_rule, 0u);
   EXPECT_EQ(r.stats.orientation_conflicts, 0u);
   EXPECT_EQ(r.stats.patches, r.stats.patches_by_orientation_rule + r.stats.patches_by_ray_cast);
@@ -219,28 +220,36 @@ TEST(Boolean, ChainOfTenOperationsStaysValidAndExact) {
     const FT x = FT(step) / 10;
     const Box slab{{x, FT(-1) / 2, FT(1) / 4}, {x + FT(1) / 20, FT(3) / 2, FT(3) / 4}};
     const BooleanOp op = step % 2 == 0 ? BooleanOp::Union : BooleanOp::Difference;
-    const BooleanResult r = compute_boolean(current, box_mesh(slab), op);
-    ASSERT_TRUE(r.ok()) << "step " << step << ": " << r.message;
-    const MeshReport report = check_mesh(r.mesh);
+    const BooleanResult r = compute_boolean(check_solid(current), check_solid(box_mesh(slab)), op);
+    const MeshReport report = check_mesh(r.solid);
     ASSERT_TRUE(report.valid_solid()) << "step " << step << ": " << describe_problems(report);
     const FT inside = overlap_volume(kUnit, slab);
     // union adds the part of the slab outside the cube; difference removes the part inside
     expected += op == BooleanOp::Union ? box_volume(slab) - inside : -inside;
     EXPECT_EQ(report.volume, expected) << "step " << step;
-    current = r.mesh;
+    current = r.solid;
   }
 }
 
 TEST(Boolean, InvalidInputIsRefusedWithAReason) {
   Mesh open = make_cube(FT(1));
   open.triangles.pop_back();
-  const BooleanResult r = compute_boolean(open, make_cube(FT(1)), BooleanOp::Union);
-  EXPECT_EQ(r.status, BooleanStatus::InvalidInputA);
-  EXPECT_NE(r.message.find("not closed"), std::string::npos) << r.message;
+  // A Boolean takes Solids: the check that makes them refuses the operand, naming it.
+  try {
+    check_solids(open, "first operand", make_cube(FT(1)), "second operand");
+    ADD_FAILURE() << "an open operand was accepted";
+  } catch (const InvalidSolid& e) {
+    EXPECT_EQ(e.where(), "first operand");
+    EXPECT_NE(e.problem().find("not closed"), std::string::npos) << e.what();
+  }
   Mesh inverted = make_cube(FT(1));
   for (Triangle& t : inverted.triangles) std::swap(t[1], t[2]);
-  EXPECT_EQ(compute_boolean(make_cube(FT(1)), inverted, BooleanOp::Union).status,
-            BooleanStatus::InvalidInputB);
+  try {
+    check_solids(make_cube(FT(1)), "first operand", inverted, "second operand");
+    ADD_FAILURE() << "an inward operand was accepted";
+  } catch (const InvalidSolid& e) {
+    EXPECT_EQ(e.where(), "second operand");
+  }
 }
 
 TEST(Boolean, EmptyOperands) {
@@ -254,8 +263,9 @@ TEST(Boolean, ProvenanceNamesTheInputFaces) {
   BooleanOptions options;
   options.provenance = true;
   const Mesh a = box_mesh(kUnit), b = box_mesh(shifted(kUnit, FT(1) / 2, FT(1) / 3, FT(1) / 5));
-  const BooleanResult r = compute_boolean(a, b, BooleanOp::Union, options);
-  ASSERT_EQ(r.provenance.size(), r.mesh.num_triangles());
+  const BooleanResult r =
+      compute_boolean(check_solid(a), check_solid(b), BooleanOp::Union, options);
+  ASSERT_EQ(r.provenance.size(), r.solid.num_triangles());
   bool from_a = false, from_b = false;
   for (const FaceOrigin& o : r.provenance) {
     (o.mesh == 0 ? from_a : from_b) = true;
@@ -392,13 +402,13 @@ TEST(Boolean, LazyAndEvaluatedOutputsAreTheSameSolid) {
   BooleanOptions evaluated;
   evaluated.exact_output = true;
   for (BooleanOp op : {BooleanOp::Union, BooleanOp::Intersection, BooleanOp::Difference}) {
-    const BooleanResult lazy = compute_boolean(a, b, op),
-                        exact = compute_boolean(a, b, op, evaluated);
-    ASSERT_TRUE(lazy.ok() && exact.ok());
-    EXPECT_EQ(lazy.mesh.triangles, exact.mesh.triangles);
-    ASSERT_EQ(lazy.mesh.points.size(), exact.mesh.points.size());
-    for (std::size_t i = 0; i < lazy.mesh.points.size(); ++i)
-      EXPECT_EQ(CGAL::exact(lazy.mesh.points[i]), CGAL::exact(exact.mesh.points[i])) << i;
+    const BooleanResult lazy = compute_boolean(check_solid(a), check_solid(b), op),
+                        exact = compute_boolean(check_solid(a), check_solid(b), op, evaluated);
+    EXPECT_EQ(lazy.solid.mesh().triangles, exact.solid.mesh().triangles);
+    ASSERT_EQ(lazy.solid.mesh().points.size(), exact.solid.mesh().points.size());
+    for (std::size_t i = 0; i < lazy.solid.mesh().points.size(); ++i)
+      EXPECT_EQ(CGAL::exact(lazy.solid.mesh().points[i]), CGAL::exact(exact.solid.mesh().points[i]))
+          << i;
   }
 }
 
@@ -416,7 +426,7 @@ TEST(ManySolids, TreeUnionAndOneWindingArrangementAgreeExactly) {
       make_icosphere(1, FT(1)),
       translated(make_icosphere(1, FT(1)), Vector(FT(1) / 3, FT(1) / 5, FT(1) / 7))};
   UnionStats tree_stats;
-  const Mesh by_tree = compute_union(solids, &tree_stats);
+  const Mesh by_tree = compute_union(solids_of(solids), &tree_stats);
   // The same union as one winding arrangement of all the boundaries (w >= 1).
   Mesh chain;
   for (const Mesh& s : solids) chain = concatenate(chain, s);
@@ -429,7 +439,7 @@ TEST(ManySolids, TreeUnionAndOneWindingArrangementAgreeExactly) {
   EXPECT_EQ(tree_report.components, arrangement_report.components);
   EXPECT_GT(tree_stats.binary_unions, 0u);
   // an independent closed form for the disjoint parts: the two touching cubes and the far cube
-  const Mesh far_part = compute_union({solids[3], solids[4], solids[5], solids[6]});
+  const Mesh far_part = compute_union(solids_of({solids[3], solids[4], solids[5], solids[6]}));
   EXPECT_EQ(signed_volume(far_part), FT(2) + FT(8));
 }
 
@@ -444,8 +454,8 @@ TEST(Parallel, ResultsAreIdenticalForAnyNumberOfThreads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
     std::vector<Mesh> out;
     for (BooleanOp op : {BooleanOp::Union, BooleanOp::Intersection, BooleanOp::Difference})
-      out.push_back(compute_boolean(a, b, op).mesh);
-    out.push_back(compute_union(pieces));
+      out.push_back(compute_boolean(check_solid(a), check_solid(b), op).solid);
+    out.push_back(compute_union(solids_of(pieces)));
     return out;
   };
   const std::vector<Mesh> one = run(1), two = run(2), four = run(4);
@@ -465,16 +475,13 @@ namespace {
 // The Boolean of a and b with the input check (which hands the operation its trees) and on inputs
 // taken as valid: the same candidate pairs and the same result, triangle for triangle.
 void expect_checked_as_trusted(const Mesh& a, const Mesh& b, BooleanOp op) {
-  BooleanOptions trusted;
-  trusted.validate_inputs = false;
-  const BooleanResult checked = compute_boolean(a, b, op),
-                      plain = compute_boolean(a, b, op, trusted);
-  ASSERT_TRUE(checked.ok()) << checked.message;
-  ASSERT_TRUE(plain.ok()) << plain.message;
+  const BooleanResult checked = compute_boolean(check_solid(a), check_solid(b), op),
+                      plain =
+                          compute_boolean(detail::trusted_solid(a), detail::trusted_solid(b), op);
   EXPECT_GT(checked.stats.intersecting_pairs, 0u);
   EXPECT_EQ(checked.stats.candidate_pairs, plain.stats.candidate_pairs);
-  EXPECT_EQ(checked.mesh.triangles, plain.mesh.triangles);
-  EXPECT_EQ(checked.mesh.points, plain.mesh.points);
+  EXPECT_EQ(checked.solid.mesh().triangles, plain.solid.mesh().triangles);
+  EXPECT_EQ(checked.solid.mesh().points, plain.solid.mesh().points);
 }
 
 }  // namespace
@@ -525,23 +532,22 @@ TEST(Parallel, LargeResultsAreIdenticalForAnyNumberOfThreads) {
   // A sphere against a copy turned by a small angle: every facet is cut (the dense case).
   const Mesh a = make_icosphere(4, FT(1));
   const Mesh b = transformed(a, quaternion_rotation(200, 1, 2, 3));
-  BooleanOptions trusted;
-  trusted.validate_inputs = false;
+  const Solid sa = detail::trusted_solid(a), sb = detail::trusted_solid(b);
   auto run = [&](int threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    return compute_boolean(a, b, BooleanOp::Union, trusted);
+    return compute_boolean(sa, sb, BooleanOp::Union);
   };
   const BooleanResult one = run(1), two = run(2);
   EXPECT_GT(one.stats.candidate_pairs, 16384u);
-  EXPECT_GT(one.mesh.num_vertices(), 16384u);
-  EXPECT_EQ(one.mesh.triangles, two.mesh.triangles);
-  ASSERT_EQ(one.mesh.points.size(), two.mesh.points.size());
+  EXPECT_GT(one.solid.mesh().num_vertices(), 16384u);
+  EXPECT_EQ(one.solid.mesh().triangles, two.solid.mesh().triangles);
+  ASSERT_EQ(one.solid.mesh().points.size(), two.solid.mesh().points.size());
   // The points by their interval approximations (the same recipes give the same bounds): an exact
   // comparison of 25,000 constructed points would evaluate each one, for seconds.
-  for (std::size_t p = 0; p < one.mesh.points.size(); ++p)
+  for (std::size_t p = 0; p < one.solid.mesh().points.size(); ++p)
     for (int k = 0; k < 3; ++k) {
-      const auto &x = CGAL::approx(one.mesh.points[p]).cartesian(k),
-                 &y = CGAL::approx(two.mesh.points[p]).cartesian(k);
+      const auto &x = CGAL::approx(one.solid.mesh().points[p]).cartesian(k),
+                 &y = CGAL::approx(two.solid.mesh().points[p]).cartesian(k);
       ASSERT_TRUE(x.inf() == y.inf() && x.sup() == y.sup()) << "point " << p;
     }
 }

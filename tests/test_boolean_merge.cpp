@@ -40,22 +40,21 @@ std::pair<BooleanResult, BooleanResult> merged_and_unmerged(const Mesh& a, const
                                                             BooleanOp op) {
   BooleanOptions unmerged_options;
   unmerged_options.merge_coplanar = false;
-  return {compute_boolean(a, b, op), compute_boolean(a, b, op, unmerged_options)};
+  return {compute_boolean(check_solid(a), check_solid(b), op),
+          compute_boolean(check_solid(a), check_solid(b), op, unmerged_options)};
 }
 
 // The Boolean merged and unmerged: both valid with one exact volume, the merged one with no flat
 // vertex and no more faces (`flat`: the unmerged one has flat vertices). Returns the merged one.
 Mesh merged_checked(const Mesh& a, const Mesh& b, BooleanOp op, bool flat) {
   const auto [merged, unmerged] = merged_and_unmerged(a, b, op);
-  EXPECT_TRUE(merged.ok()) << merged.message;
-  EXPECT_TRUE(unmerged.ok()) << unmerged.message;
-  const MeshReport report = check_mesh(merged.mesh), raw = check_mesh(unmerged.mesh);
+  const MeshReport report = check_mesh(merged.solid), raw = check_mesh(unmerged.solid);
   EXPECT_TRUE(report.valid_solid()) << describe_problems(report);
   EXPECT_EQ(report.volume, raw.volume);
-  EXPECT_LE(merged.mesh.num_triangles(), unmerged.mesh.num_triangles());
-  if (flat) EXPECT_GT(flat_vertices(unmerged.mesh), 0u);
-  EXPECT_EQ(flat_vertices(merged.mesh), 0u);
-  return merged.mesh;
+  EXPECT_LE(merged.solid.num_triangles(), unmerged.solid.num_triangles());
+  if (flat) EXPECT_GT(flat_vertices(unmerged.solid), 0u);
+  EXPECT_EQ(flat_vertices(merged.solid), 0u);
+  return merged.solid;
 }
 
 // A turn by a rational quaternion: coordinates no longer doubles.
@@ -152,15 +151,13 @@ TEST(BooleanMerge, UntouchedFacesKeepTheirVertices) {
     auto place = [&](const Point& p) { return turned ? kTurn(p) : p; };
     const Mesh pa = turned ? transformed(a, kTurn) : a, pb = turned ? transformed(b, kTurn) : b;
     const auto [merged, unmerged] = merged_and_unmerged(pa, pb, BooleanOp::Union);
-    ASSERT_TRUE(merged.ok()) << merged.message;
-    ASSERT_TRUE(unmerged.ok()) << unmerged.message;
-    const MeshReport report = check_mesh(merged.mesh);
+    const MeshReport report = check_mesh(merged.solid);
     EXPECT_TRUE(report.valid_solid()) << describe_problems(report);
-    EXPECT_EQ(report.volume, check_mesh(unmerged.mesh).volume);
-    EXPECT_TRUE(has_vertex(unmerged.mesh, place(Point(0, 0, 0))));
-    EXPECT_FALSE(has_vertex(merged.mesh, place(Point(0, 0, 0))));
-    EXPECT_TRUE(has_vertex(merged.mesh, place(Point(0, 0, -1))));
-    EXPECT_EQ(flat_vertices(merged.mesh), 1u);
+    EXPECT_EQ(report.volume, check_mesh(unmerged.solid).volume);
+    EXPECT_TRUE(has_vertex(unmerged.solid, place(Point(0, 0, 0))));
+    EXPECT_FALSE(has_vertex(merged.solid, place(Point(0, 0, 0))));
+    EXPECT_TRUE(has_vertex(merged.solid, place(Point(0, 0, -1))));
+    EXPECT_EQ(flat_vertices(merged.solid), 1u);
   }
 }
 
@@ -184,13 +181,11 @@ TEST(BooleanMerge, AroundTheCutAsOverTheWholeSurface) {
             SCOPED_TRACE(::testing::Message() << to_string(op) << " box at " << dx << "/2 " << dy
                                               << "/2 " << dz << "/2" << (turned ? " turned" : ""));
             const auto [merged, unmerged] = merged_and_unmerged(a, b, op);
-            ASSERT_TRUE(merged.ok()) << merged.message;
-            ASSERT_TRUE(unmerged.ok()) << unmerged.message;
-            const Mesh whole = merge_coplanar_faces(unmerged.mesh);
-            EXPECT_EQ(merged.mesh.num_triangles(), whole.num_triangles());
-            EXPECT_EQ(merged.mesh.num_vertices(), whole.num_vertices());
-            EXPECT_EQ(check_mesh(merged.mesh).volume, check_mesh(whole).volume);
-            merged_somewhere += merged.mesh.num_triangles() < unmerged.mesh.num_triangles();
+            const Mesh whole = merge_coplanar_faces(check_solid(unmerged.solid));
+            EXPECT_EQ(merged.solid.num_triangles(), whole.num_triangles());
+            EXPECT_EQ(merged.solid.mesh().num_vertices(), whole.num_vertices());
+            EXPECT_EQ(check_mesh(merged.solid).volume, check_mesh(whole).volume);
+            merged_somewhere += merged.solid.num_triangles() < unmerged.solid.num_triangles();
           }
         }
       }

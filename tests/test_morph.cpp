@@ -5,9 +5,9 @@
 
 #include "morphex/boolean.h"
 #include "morphex/check.h"
-#include "morphex/shapes.h"
 #include "morphex/minkowski.h"
 #include "morphex/morphology.h"
+#include "morphex/shapes.h"
 #include "morphex/structuring_element.h"
 
 using namespace morphex;
@@ -22,16 +22,15 @@ FT valid_volume(const Mesh& mesh, const std::string& what) {
 
 // vol(a minus b): zero exactly when a is inside b (up to a null set).
 FT volume_outside(const Mesh& a, const Mesh& b) {
-  const BooleanResult r = compute_boolean(a, b, BooleanOp::Difference);
-  EXPECT_TRUE(r.ok()) << r.message;
-  return valid_volume(r.mesh, "difference");
+  const BooleanResult r = compute_boolean(check_solid(a), check_solid(b), BooleanOp::Difference);
+  return valid_volume(r.solid, "difference");
 }
 
 Mesh l_shape() {
   const BooleanResult r =
-      compute_boolean(make_box(Point(0, 0, 0), Point(2, 1, 1)),
-                      make_box(Point(0, 0, 0), Point(1, 2, 1)), BooleanOp::Union);
-  return r.mesh;
+      compute_boolean(check_solid(make_box(Point(0, 0, 0), Point(2, 1, 1))),
+                      check_solid(make_box(Point(0, 0, 0), Point(1, 2, 1))), BooleanOp::Union);
+  return r.solid;
 }
 
 std::string error_of(const std::string& spec) {
@@ -108,7 +107,7 @@ TEST(StructuringElement, BadSpecificationsAreClearErrors) {
 TEST(Minkowski, BoxPlusBoxIsTheBoxWithSummedHalfSizes) {
   const Mesh a = make_box(Point(-1, -2, -3), Point(1, 2, 3));
   const StructuringElement b = parse_structuring_element("box:x=1/2,y=1/4,z=1/8");
-  const Mesh sum = minkowski_sum(a, b.mesh);
+  const Mesh sum = minkowski_sum(check_solid(a), check_solid(b.mesh));
   const Mesh expected =
       make_box(Point(FT(-3) / 2, FT(-9) / 4, FT(-25) / 8), Point(FT(3) / 2, FT(9) / 4, FT(25) / 8));
   EXPECT_EQ(valid_volume(sum, "box + box"), valid_volume(expected, "expected"));
@@ -119,7 +118,7 @@ TEST(Minkowski, BoxPlusBoxIsTheBoxWithSummedHalfSizes) {
 TEST(Minkowski, CubePlusOctahedronHasTheMixedVolumeClosedForm) {
   // [-a,a]^3 + octahedron(r): 8a^3 + 24a^2 r + 12 a r^2 + 4r^3/3 (Steiner formula, L1 ball)
   const FT a = FT(1) / 2, r = FT(1) / 3;
-  const Mesh sum = minkowski_sum(make_cube(a), make_octahedron(r));
+  const Mesh sum = minkowski_sum(check_solid(make_cube(a)), check_solid(make_octahedron(r)));
   EXPECT_EQ(valid_volume(sum, "cube + octahedron"),
             8 * a * a * a + 24 * a * a * r + 12 * a * r * r + 4 * r * r * r / 3);
 }
@@ -130,15 +129,17 @@ TEST(Minkowski, ConvexPlusConvexIsTheHullOfTheVertexSums) {
   std::vector<Point> sums;
   for (const Point& p : a.points)
     for (const Point& q : b.points) sums.push_back(p + (q - CGAL::ORIGIN));
-  EXPECT_EQ(valid_volume(minkowski_sum(a, b), "sum"), signed_volume(convex_hull(sums)));
+  EXPECT_EQ(valid_volume(minkowski_sum(check_solid(a), check_solid(b)), "sum"),
+            signed_volume(convex_hull(sums)));
 }
 
 TEST(Minkowski, NonConvexSecondOperandMatchesTheSwappedSum) {
   // A + B = B + A: the convex route (cube second) and the pair route (L-shape second) agree.
   const Mesh l = l_shape(), cube = make_cube(FT(1) / 4);
   MinkowskiStats stats;
-  const FT pairs = valid_volume(minkowski_sum(cube, l, &stats), "cube + L");
-  EXPECT_EQ(pairs, valid_volume(minkowski_sum(l, cube), "L + cube"));
+  const FT pairs =
+      valid_volume(minkowski_sum(check_solid(cube), check_solid(l), &stats), "cube + L");
+  EXPECT_EQ(pairs, valid_volume(minkowski_sum(check_solid(l), check_solid(cube)), "L + cube"));
   EXPECT_EQ(stats.pieces, cube.triangles.size() * l.triangles.size() + cube.points.size());
   // the L is two 2x1x1 boxes overlapping in a unit cube; each grows by 1/2 along every axis
   const FT arm = FT(5) / 2 * FT(3) / 2 * FT(3) / 2, overlap = FT(3) / 2 * FT(3) / 2 * FT(3) / 2;
@@ -160,26 +161,27 @@ TEST(Minkowski, ReducedConvolutionGivesTheFacetHullSolid) {
   const Mesh torus = make_torus(8, 6, 1.0, 0.4);
   const Mesh tilted_torus = transformed(torus, quaternion_rotation(3, 1, 2, 1));
   const BooleanResult dented =
-      compute_boolean(make_icosphere(1, FT(1)), make_cube(FT(1) / 2), BooleanOp::Difference);
-  ASSERT_TRUE(dented.ok());
+      compute_boolean(check_solid(make_icosphere(1, FT(1))), check_solid(make_cube(FT(1) / 2)),
+                      BooleanOp::Difference);
   const std::vector<std::pair<std::string, Mesh>> inputs = {
-      {"torus", torus}, {"tilted torus", tilted_torus}, {"L", l_shape()}, {"dented", dented.mesh}};
+      {"torus", torus}, {"tilted torus", tilted_torus}, {"L", l_shape()}, {"dented", dented.solid}};
   for (const std::string spec :
        {"cube:r=1/10", "octahedron:r=1/8", "ball:r=1/10,level=0", "cube:r=1/8,oz=1/8"}) {
     const StructuringElement se = parse_structuring_element(spec);
     for (const auto& [name, a] : inputs) {
       SCOPED_TRACE(name + " by " + spec);
-      const Mesh dilated = dilation(a, se);
-      const Mesh by_hulls = compute_union({boundary_sum(a, se.mesh, true), a});
+      const Mesh dilated = dilation(check_solid(a), se);
+      const Mesh by_hulls =
+          compute_union({check_solid(boundary_sum(a, se.mesh, true)), check_solid(a)});
       EXPECT_EQ(valid_volume(dilated, "dilation"), valid_volume(by_hulls, "hull dilation"));
       EXPECT_EQ(volume_outside(dilated, by_hulls), 0);
-      const Mesh eroded = erosion(a, se);
+      const Mesh eroded = erosion(check_solid(a), se);
       const BooleanResult eroded_by_hulls =
-          compute_boolean(a, boundary_sum(a, reflected(se.mesh), true), BooleanOp::Difference);
-      ASSERT_TRUE(eroded_by_hulls.ok());
+          compute_boolean(check_solid(a), check_solid(boundary_sum(a, reflected(se.mesh), true)),
+                          BooleanOp::Difference);
       EXPECT_EQ(valid_volume(eroded, "erosion"),
-                valid_volume(eroded_by_hulls.mesh, "hull erosion"));
-      EXPECT_EQ(volume_outside(eroded_by_hulls.mesh, eroded), 0);
+                valid_volume(eroded_by_hulls.solid, "hull erosion"));
+      EXPECT_EQ(volume_outside(eroded_by_hulls.solid, eroded), 0);
     }
   }
 }
@@ -207,29 +209,33 @@ TEST(Minkowski, GluedPiecesGiveTheFacetHullSolidOnABumpySurface) {
   for (const std::string spec : {"cube:r=1/10", "octahedron:r=1/6"}) {
     SCOPED_TRACE(spec);
     const StructuringElement se = parse_structuring_element(spec);
-    const Mesh dilated = dilation(a, se);
-    const Mesh by_hulls = compute_union({boundary_sum(a, se.mesh, true), a});
+    const Mesh dilated = dilation(check_solid(a), se);
+    const Mesh by_hulls =
+        compute_union({check_solid(boundary_sum(a, se.mesh, true)), check_solid(a)});
     EXPECT_EQ(valid_volume(dilated, "dilation"), valid_volume(by_hulls, "hull dilation"));
     EXPECT_EQ(volume_outside(dilated, by_hulls), 0);
-    const Mesh eroded = erosion(a, se);
+    const Mesh eroded = erosion(check_solid(a), se);
     const BooleanResult eroded_by_hulls =
-        compute_boolean(a, boundary_sum(a, reflected(se.mesh), true), BooleanOp::Difference);
-    ASSERT_TRUE(eroded_by_hulls.ok());
-    EXPECT_EQ(valid_volume(eroded, "erosion"), valid_volume(eroded_by_hulls.mesh, "hull erosion"));
-    EXPECT_EQ(volume_outside(eroded_by_hulls.mesh, eroded), 0);
+        compute_boolean(check_solid(a), check_solid(boundary_sum(a, reflected(se.mesh), true)),
+                        BooleanOp::Difference);
+    EXPECT_EQ(valid_volume(eroded, "erosion"), valid_volume(eroded_by_hulls.solid, "hull erosion"));
+    EXPECT_EQ(volume_outside(eroded_by_hulls.solid, eroded), 0);
   }
 }
 
 TEST(Morphology, ErosionToNothingIsAValidEmptyMesh) {
   const Mesh small = make_cube(FT(1) / 10);
-  const Mesh eroded = erosion(small, parse_structuring_element("cube:r=1/5"));
+  const Mesh eroded = erosion(check_solid(small), parse_structuring_element("cube:r=1/5"));
   EXPECT_TRUE(eroded.empty());
-  EXPECT_EQ(opening(small, parse_structuring_element("octahedron:r=1")).triangles.size(), 0u);
+  EXPECT_EQ(opening(check_solid(small), parse_structuring_element("octahedron:r=1"))
+                .mesh()
+                .triangles.size(),
+            0u);
 }
 
 TEST(Morphology, ErosionOfABoxByABoxShrinksItsHalfSizes) {
   const Mesh a = make_box(Point(0, 0, 0), Point(4, 3, 2));
-  const Mesh eroded = erosion(a, parse_structuring_element("box:x=1,y=1/2,z=1/4"));
+  const Mesh eroded = erosion(check_solid(a), parse_structuring_element("box:x=1,y=1/2,z=1/4"));
   EXPECT_EQ(valid_volume(eroded, "eroded box"), FT(2) * 2 * FT(3) / 2);
   EXPECT_EQ(volume_outside(
                 eroded, make_box(Point(1, FT(1) / 2, FT(1) / 4), Point(3, FT(5) / 2, FT(7) / 4))),
@@ -240,14 +246,14 @@ TEST(Morphology, OpeningIsInsideAndClosingContainsTheInputAndBothAreIdempotent) 
   const Mesh a = l_shape();
   for (const char* spec : {"cube:r=1/4", "octahedron:r=1/3", "ball:r=1/4,level=0"}) {
     const StructuringElement se = parse_structuring_element(spec);
-    const Mesh opened = opening(a, se), closed = closing(a, se);
+    const Mesh opened = opening(check_solid(a), se), closed = closing(check_solid(a), se);
     const FT v_open = valid_volume(opened, "opening"), v_close = valid_volume(closed, "closing");
     EXPECT_EQ(volume_outside(opened, a), 0) << spec;
     EXPECT_EQ(volume_outside(a, closed), 0) << spec;
     EXPECT_LE(v_open, signed_volume(a));
     EXPECT_GE(v_close, signed_volume(a));
-    EXPECT_EQ(valid_volume(opening(opened, se), "open twice"), v_open) << spec;
-    EXPECT_EQ(valid_volume(closing(closed, se), "close twice"), v_close) << spec;
+    EXPECT_EQ(valid_volume(opening(check_solid(opened), se), "open twice"), v_open) << spec;
+    EXPECT_EQ(valid_volume(closing(check_solid(closed), se), "close twice"), v_close) << spec;
   }
 }
 
@@ -255,9 +261,10 @@ TEST(Morphology, DilationAndErosionAreIncreasing) {
   const Mesh small = make_box(Point(0, 0, 0), Point(2, 1, 1));
   const Mesh large = l_shape();  // contains `small`
   const StructuringElement se = parse_structuring_element("octahedron:r=1/4");
-  EXPECT_EQ(volume_outside(dilation(small, se), dilation(large, se)), 0);
-  EXPECT_EQ(volume_outside(erosion(small, se), erosion(large, se)), 0);
-  EXPECT_GT(signed_volume(dilation(large, se)), signed_volume(dilation(small, se)));
+  EXPECT_EQ(volume_outside(dilation(check_solid(small), se), dilation(check_solid(large), se)), 0);
+  EXPECT_EQ(volume_outside(erosion(check_solid(small), se), erosion(check_solid(large), se)), 0);
+  EXPECT_GT(signed_volume(dilation(check_solid(large), se)),
+            signed_volume(dilation(check_solid(small), se)));
 }
 
 TEST(Morphology, ErosionIsTheComplementOfTheDilationOfTheComplement) {
@@ -265,17 +272,17 @@ TEST(Morphology, ErosionIsTheComplementOfTheDilationOfTheComplement) {
   const Mesh a = l_shape();
   const StructuringElement se = parse_structuring_element("box:x=1/4,y=1/8,z=1/8,ox=1/16");
   const Mesh frame = make_box(Point(-3, -3, -3), Point(5, 5, 5));
-  const BooleanResult complement = compute_boolean(frame, a, BooleanOp::Difference);
-  ASSERT_TRUE(complement.ok());
+  const BooleanResult complement =
+      compute_boolean(check_solid(frame), check_solid(a), BooleanOp::Difference);
   StructuringElement minus_se = se;
   minus_se.mesh = reflected(se.mesh);
-  const Mesh grown = dilation(complement.mesh, minus_se);
-  const BooleanResult dual = compute_boolean(a, grown, BooleanOp::Difference);
-  ASSERT_TRUE(dual.ok());
-  const Mesh eroded = erosion(a, se);
-  EXPECT_EQ(valid_volume(dual.mesh, "dual"), valid_volume(eroded, "erosion"));
-  EXPECT_EQ(volume_outside(dual.mesh, eroded), 0);
-  EXPECT_EQ(volume_outside(eroded, dual.mesh), 0);
+  const Mesh grown = dilation(check_solid(complement.solid), minus_se);
+  const BooleanResult dual =
+      compute_boolean(check_solid(a), check_solid(grown), BooleanOp::Difference);
+  const Mesh eroded = erosion(check_solid(a), se);
+  EXPECT_EQ(valid_volume(dual.solid, "dual"), valid_volume(eroded, "erosion"));
+  EXPECT_EQ(volume_outside(dual.solid, eroded), 0);
+  EXPECT_EQ(volume_outside(eroded, dual.solid), 0);
 }
 
 TEST(Morphology, OffCentreStructuringElementTranslatesTheResult) {
@@ -283,30 +290,32 @@ TEST(Morphology, OffCentreStructuringElementTranslatesTheResult) {
   const Mesh a = make_cube(FT(1));
   const StructuringElement far = parse_structuring_element("cube:r=1/4,ox=3");
   const StructuringElement centred = parse_structuring_element("cube:r=1/4");
-  const Mesh d_far = dilation(a, far);
-  const Mesh d_moved = translated(dilation(a, centred), Vector(3, 0, 0));
+  const Mesh d_far = dilation(check_solid(a), far);
+  const Mesh d_moved = translated(dilation(check_solid(a), centred), Vector(3, 0, 0));
   EXPECT_EQ(valid_volume(d_far, "off-centre dilation"), FT(125) / 8);
   EXPECT_EQ(volume_outside(d_far, d_moved), 0);
-  const Mesh e_far = erosion(a, far);
+  const Mesh e_far = erosion(check_solid(a), far);
   EXPECT_EQ(valid_volume(e_far, "off-centre erosion"), FT(27) / 8);
-  EXPECT_EQ(volume_outside(e_far, translated(erosion(a, centred), Vector(-3, 0, 0))), 0);
+  EXPECT_EQ(volume_outside(e_far, translated(erosion(check_solid(a), centred), Vector(-3, 0, 0))),
+            0);
 }
 
 TEST(Morphology, SeveralComponentsAndGenusOne) {
   const Mesh two = concatenate(make_cube(FT(1)), translated(make_cube(FT(1)), Vector(5, 0, 0)));
   const StructuringElement se = parse_structuring_element("cube:r=1/2");
-  EXPECT_EQ(valid_volume(dilation(two, se), "two cubes dilated"), 2 * FT(27));
-  EXPECT_EQ(valid_volume(erosion(two, se), "two cubes eroded"), 2 * FT(1));
+  EXPECT_EQ(valid_volume(dilation(check_solid(two), se), "two cubes dilated"), 2 * FT(27));
+  EXPECT_EQ(valid_volume(erosion(check_solid(two), se), "two cubes eroded"), 2 * FT(1));
   // a square ring (genus 1) dilated until its hole closes, eroded back: the closing fills it
-  const BooleanResult ring =
-      compute_boolean(make_box(Point(0, 0, 0), Point(3, 3, 1)),
-                      make_box(Point(1, 1, -1), Point(2, 2, 2)), BooleanOp::Difference);
-  ASSERT_TRUE(ring.ok());
-  EXPECT_EQ(check_mesh(ring.mesh).genus, 1);
-  const Mesh closed = closing(ring.mesh, parse_structuring_element("box:x=1/2,y=1/2,z=1/8"));
+  const BooleanResult ring = compute_boolean(check_solid(make_box(Point(0, 0, 0), Point(3, 3, 1))),
+                                             check_solid(make_box(Point(1, 1, -1), Point(2, 2, 2))),
+                                             BooleanOp::Difference);
+  EXPECT_EQ(check_mesh(ring.solid).genus, 1);
+  const Mesh closed =
+      closing(check_solid(ring.solid), parse_structuring_element("box:x=1/2,y=1/2,z=1/8"));
   EXPECT_EQ(valid_volume(closed, "closed ring"), FT(9));
   EXPECT_EQ(check_mesh(closed).genus, 0);
-  const Mesh thin = opening(ring.mesh, parse_structuring_element("box:x=1/4,y=1/4,z=1/4"));
+  const Mesh thin =
+      opening(check_solid(ring.solid), parse_structuring_element("box:x=1/4,y=1/4,z=1/4"));
   EXPECT_EQ(valid_volume(thin, "opened ring"), FT(8));
 }
 
@@ -317,9 +326,10 @@ TEST(Morphology, NonConvexStructuringElement) {
   l.shape = "mesh";
   l.mesh = translated(l_shape(), Vector(-1, -1, 0));
   l.convex = false;
-  const Mesh dilated = dilation(a, l);
-  EXPECT_EQ(valid_volume(dilated, "dilated by L"), signed_volume(minkowski_sum(l.mesh, a)));
-  const Mesh eroded = erosion(make_box(Point(-2, -2, -1), Point(2, 2, 2)), l);
+  const Mesh dilated = dilation(check_solid(a), l);
+  EXPECT_EQ(valid_volume(dilated, "dilated by L"),
+            signed_volume(minkowski_sum(check_solid(l.mesh), check_solid(a))));
+  const Mesh eroded = erosion(check_solid(make_box(Point(-2, -2, -1), Point(2, 2, 2))), l);
   // {x : x + L inside [-2,2]x[-2,2]x[-1,2]}: L spans [-1,1]^2 x [0,1] -> [-1,1]^2 x [-1,1]
   EXPECT_EQ(valid_volume(eroded, "eroded by L"), FT(8));
 }

@@ -9,10 +9,10 @@
 
 #include "morphex/boolean.h"
 #include "morphex/check.h"
-#include "morphex/shapes.h"
 #include "morphex/io.h"
 #include "morphex/minkowski.h"
 #include "morphex/morphology.h"
+#include "morphex/shapes.h"
 #include "peers.h"
 
 using namespace morphex;
@@ -26,7 +26,7 @@ FT cgal_minkowski_volume(const Mesh& a, const Mesh& b) {
 void expect_same_dilation(const Mesh& a, const std::string& name) {
   for (const char* spec : {"cube:r=1/10", "octahedron:r=1/7", "ball:r=1/8,level=0"}) {
     const StructuringElement se = parse_structuring_element(spec);
-    const Mesh ours = dilation(a, se);
+    const Mesh ours = dilation(check_solid(a), se);
     const MeshReport report = check_mesh(ours);
     EXPECT_TRUE(report.valid_solid()) << name << " + " << spec << ": " << describe_problems(report);
     EXPECT_EQ(report.volume, cgal_minkowski_volume(a, se.mesh)) << name << " + " << spec;
@@ -40,9 +40,9 @@ std::string demo_dir() {
 }
 
 Mesh l_shape() {
-  return compute_boolean(make_box(Point(0, 0, 0), Point(2, 1, 1)),
-                         make_box(Point(0, 0, 0), Point(1, 2, 1)), BooleanOp::Union)
-      .mesh;
+  return compute_boolean(check_solid(make_box(Point(0, 0, 0), Point(2, 1, 1))),
+                         check_solid(make_box(Point(0, 0, 0), Point(1, 2, 1))), BooleanOp::Union)
+      .solid;
 }
 
 }  // namespace
@@ -68,7 +68,7 @@ TEST(MinkowskiOracle, NonConvexPlusNonConvex) {
   const Mesh l = l_shape();
   const Mesh small_l =
       transformed(l, Transformation(FT(1) / 5, 0, 0, 0, FT(1) / 7, 0, 0, 0, FT(1) / 3));
-  const Mesh ours = minkowski_sum(l, small_l);
+  const Mesh ours = minkowski_sum(check_solid(l), check_solid(small_l));
   const MeshReport report = check_mesh(ours);
   EXPECT_TRUE(report.valid_solid()) << describe_problems(report);
   EXPECT_EQ(report.volume, cgal_minkowski_volume(l, small_l));

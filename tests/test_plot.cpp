@@ -12,9 +12,9 @@
 
 #include "morphex/boolean.h"
 #include "morphex/descriptors.h"
-#include "morphex/shapes.h"
 #include "morphex/plot.h"
 #include "morphex/retrieval.h"
+#include "morphex/shapes.h"
 
 using namespace morphex;
 
@@ -64,7 +64,7 @@ TEST(DescriptorCurves, ExactCubeGranulometryIsOneStepAtItsHalfSide) {
   s.scales = 6;
   s.open_from = 0.1;  // radii 0.05 to 0.8, in units of L: across h = 1/2, none on it
   s.open_to = 1.6;
-  const Descriptors d = describe(make_cube(FT(1) / 2), s);
+  const Descriptors d = describe(check_solid(make_cube(FT(1) / 2)), s);
   EXPECT_DOUBLE_EQ(d.scale_length, 1);
   EXPECT_NEAR(d.thickness, 0.5, 1e-12);
   ASSERT_EQ(d.open_radii.size(), 6u);
@@ -92,7 +92,7 @@ TEST(DescriptorCurves, ExactCubeGranulometryIsOneStepAtItsHalfSide) {
 TEST(DescriptorCurves, TwoBoxesGiveATwoStepGranulometryAndAOneStepClosing) {
   const Mesh block = make_box(Point(0, 0, 0), Point(1, 1, FT(1) / 2));
   const Mesh plate = make_box(Point(0, 0, FT(3) / 4), Point(2, 2, FT(7) / 8));
-  const Mesh a = compute_boolean(block, plate, BooleanOp::Union).mesh;
+  const Mesh a = compute_boolean(check_solid(block), check_solid(plate), BooleanOp::Union).solid;
   DescriptorSettings s = few_samples();
   s.normalise_pose = false;  // keep the boxes on the cube's axes
   s.facet_budget = 0;        // and exactly these boxes
@@ -101,7 +101,7 @@ TEST(DescriptorCurves, TwoBoxesGiveATwoStepGranulometryAndAOneStepClosing) {
   s.open_to = 2;
   s.close_from = 0.05;  // 0.05 to 0.4, across 1/8
   s.close_to = 0.4;
-  const Descriptors d = describe(a, s);
+  const Descriptors d = describe(check_solid(a), s);
   EXPECT_NEAR(d.thickness, 3.0 / 13, 1e-9);
   std::set<double> levels;
   for (std::size_t k = 0; k < d.open_radii.size(); ++k) {
@@ -140,7 +140,7 @@ TEST(DescriptorCurves, WithoutClosingsTheFigureHasNoAntiGranulometry) {
   DescriptorSettings s = few_samples();
   s.scales = 2;
   s.closings = false;
-  const Figure figure = descriptor_figure(describe(make_cube(1), s), "cube");
+  const Figure figure = descriptor_figure(describe(check_solid(make_cube(1)), s), "cube");
   ASSERT_EQ(figure.charts.size(), 3u);
   EXPECT_EQ(figure.charts[1].title.rfind("Pattern spectrum", 0), 0u);
 }

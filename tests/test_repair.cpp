@@ -78,7 +78,7 @@ void expect_positive_winding_region(const Mesh& input, const Mesh& output, int r
 
 RepairResult repaired(const Mesh& m) {
   RepairResult r = repair_mesh(m);
-  const MeshReport report = check_mesh(r.mesh);
+  const MeshReport report = check_mesh(r.solid);
   EXPECT_TRUE(report.valid_solid()) << describe_problems(report);
   return r;
 }
@@ -89,7 +89,7 @@ TEST(Repair, ValidSolidComesBackUnchanged) {
   const Mesh sphere = make_icosphere(2, 1);
   const RepairResult r = repaired(sphere);
   EXPECT_FALSE(r.report.changed);
-  EXPECT_EQ(r.mesh.triangles, sphere.triangles);
+  EXPECT_EQ(r.solid.mesh().triangles, sphere.triangles);
 }
 
 TEST(Repair, TwoOverlappingCubesWrittenAsOneMesh) {
@@ -97,11 +97,11 @@ TEST(Repair, TwoOverlappingCubesWrittenAsOneMesh) {
   const RepairResult r = repaired(concatenate(a, b));
   EXPECT_TRUE(r.report.changed);
   EXPECT_GT(r.report.intersecting_pairs, 0u);
-  EXPECT_EQ(signed_volume(r.mesh), 15);
-  EXPECT_EQ(signed_volume(r.mesh), peers::nef_boolean(a, b, BooleanOp::Union).volume);
+  EXPECT_EQ(signed_volume(r.solid), 15);
+  EXPECT_EQ(signed_volume(r.solid), peers::nef_boolean(a, b, BooleanOp::Union).volume);
   EXPECT_EQ(r.report.components_in, 2u);
   EXPECT_EQ(r.report.components_out, 1u);
-  expect_positive_winding_region(concatenate(a, b), r.mesh, 200);
+  expect_positive_winding_region(concatenate(a, b), r.solid, 200);
 }
 
 TEST(Repair, TouchingAlongAnEdgeAndAtAVertex) {
@@ -110,8 +110,8 @@ TEST(Repair, TouchingAlongAnEdgeAndAtAVertex) {
     const Mesh touching = welded(concatenate(a, b));
     EXPECT_FALSE(check_mesh(touching).valid_solid());
     const RepairResult r = repaired(touching);
-    EXPECT_EQ(signed_volume(r.mesh), 2);
-    EXPECT_EQ(signed_volume(r.mesh), peers::nef_boolean(a, b, BooleanOp::Union).volume);
+    EXPECT_EQ(signed_volume(r.solid), 2);
+    EXPECT_EQ(signed_volume(r.solid), peers::nef_boolean(a, b, BooleanOp::Union).volume);
     EXPECT_GT(r.report.merged_vertices + r.report.components_in, 0u);
   }
 }
@@ -123,18 +123,18 @@ TEST(Repair, FoldOver) {
     if (p == Point(1, 1, 1)) p = Point(FT(1) / 3, FT(1) / 4, -2);
   ASSERT_GT(check_mesh(folded).self_intersections, 0u);
   const RepairResult r = repaired(folded);
-  expect_positive_winding_region(folded, r.mesh, 400);
+  expect_positive_winding_region(folded, r.solid, 400);
 }
 
 TEST(Repair, CoincidentDuplicateShells) {
   const Mesh cube = make_cube(1);
   const RepairResult r = repaired(concatenate(cube, cube));
-  EXPECT_EQ(signed_volume(r.mesh), 8);
+  EXPECT_EQ(signed_volume(r.solid), 8);
   EXPECT_EQ(r.report.duplicate_faces, 12u);
   // The same shell twice with its own vertices: winding 2 inside, the same solid.
   const Mesh shifted = translated(cube, Vector(FT(1) / 2, 0, 0));
   const RepairResult s = repaired(concatenate(concatenate(cube, cube), shifted));
-  EXPECT_EQ(signed_volume(s.mesh), 8 + 2);  // [-1, 1]^3 and its copy shifted by 1/2 along x
+  EXPECT_EQ(signed_volume(s.solid), 8 + 2);  // [-1, 1]^3 and its copy shifted by 1/2 along x
 }
 
 TEST(Repair, DegenerateAndDuplicateFaces) {
@@ -152,7 +152,7 @@ TEST(Repair, DegenerateAndDuplicateFaces) {
   const MeshReport before = check_mesh(cube);
   EXPECT_GT(before.degenerate_faces, 0u);
   const RepairResult r = repaired(cube);
-  EXPECT_EQ(signed_volume(r.mesh), 1);
+  EXPECT_EQ(signed_volume(r.solid), 1);
   EXPECT_EQ(r.report.degenerate_faces, 1u);
   EXPECT_EQ(r.report.duplicate_faces, 1u);
 }
@@ -160,7 +160,7 @@ TEST(Repair, DegenerateAndDuplicateFaces) {
 TEST(Repair, InsideOutIsTurned) {
   const RepairResult r = repaired(reversed(make_cube(1)));
   EXPECT_TRUE(r.report.reversed);
-  EXPECT_EQ(signed_volume(r.mesh), 8);
+  EXPECT_EQ(signed_volume(r.solid), 8);
 }
 
 TEST(Repair, RefusesOpenAndInconsistentMeshes) {
@@ -193,7 +193,7 @@ TEST(Repair, RandomOverlapsAgreeWithNef) {
                               Vector(FT(offset(random)) / 2, FT(offset(random)) / 2, FT(1) / 3));
     SCOPED_TRACE(round);
     const RepairResult r = repaired(concatenate(a, b));
-    EXPECT_EQ(signed_volume(r.mesh), peers::nef_boolean(a, b, BooleanOp::Union).volume);
+    EXPECT_EQ(signed_volume(r.solid), peers::nef_boolean(a, b, BooleanOp::Union).volume);
   }
 }
 
@@ -242,7 +242,7 @@ TEST(Repair, SoupOfCrossingTetrahedraExceedsTheBudget) {
   RepairOptions tight;
   tight.budget = 1;  // the minimum work still lets small meshes through
   EXPECT_TRUE(
-      check_mesh(repair_mesh(tetrahedron_soup(40, 7), tight).mesh, kValidityOnly).valid_solid());
+      check_mesh(repair_mesh(tetrahedron_soup(40, 7), tight).solid, kValidityOnly).valid_solid());
 }
 
 TEST(Repair, BudgetCanBeRaisedOrRemoved) {
@@ -251,8 +251,8 @@ TEST(Repair, BudgetCanBeRaisedOrRemoved) {
   EXPECT_THROW(repair_mesh(soup), InputError);
   RepairOptions raised;
   raised.budget = 10000;
-  EXPECT_TRUE(check_mesh(repair_mesh(soup, raised).mesh, kValidityOnly).valid_solid());
+  EXPECT_TRUE(check_mesh(repair_mesh(soup, raised).solid, kValidityOnly).valid_solid());
   RepairOptions none;
   none.budget = 0;
-  EXPECT_TRUE(check_mesh(repair_mesh(soup, none).mesh, kValidityOnly).valid_solid());
+  EXPECT_TRUE(check_mesh(repair_mesh(soup, none).solid, kValidityOnly).valid_solid());
 }

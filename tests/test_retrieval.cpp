@@ -15,11 +15,11 @@
 #include "morphex/check.h"
 #include "morphex/collection.h"
 #include "morphex/descriptors.h"
-#include "morphex/shapes.h"
 #include "morphex/index.h"
 #include "morphex/io.h"
 #include "morphex/knn.h"
 #include "morphex/retrieval.h"
+#include "morphex/shapes.h"
 #include "morphex/simplify.h"
 
 using namespace morphex;
@@ -27,9 +27,10 @@ using namespace morphex;
 namespace {
 
 Mesh l_shape() {
-  return compute_boolean(make_box(Point(0, 0, 0), Point(2, FT(1) / 2, FT(1) / 2)),
-                         make_box(Point(0, 0, 0), Point(FT(1) / 2, 3, FT(1) / 2)), BooleanOp::Union)
-      .mesh;
+  return compute_boolean(check_solid(make_box(Point(0, 0, 0), Point(2, FT(1) / 2, FT(1) / 2))),
+                         check_solid(make_box(Point(0, 0, 0), Point(FT(1) / 2, 3, FT(1) / 2))),
+                         BooleanOp::Union)
+      .solid;
 }
 
 DescriptorSettings quick() {
@@ -141,7 +142,7 @@ void expect_same_descriptors(const Descriptors& a, const Descriptors& b, double 
 TEST(Descriptors, ScaledCopyHasTheSameGranulometry) {
   const Mesh a = l_shape();
   const Mesh b = transformed(a, Transformation(CGAL::SCALING, FT(5) / 2));
-  const Descriptors da = describe(a, quick()), db = describe(b, quick());
+  const Descriptors da = describe(check_solid(a), quick()), db = describe(check_solid(b), quick());
   ASSERT_EQ(da.granulometry.size(), 2u);
   EXPECT_NEAR(db.scale_length / da.scale_length, 2.5, 1e-12);
   for (std::size_t i = 0; i < 2; ++i) EXPECT_NEAR(da.granulometry[i], db.granulometry[i], 1e-9);
@@ -153,9 +154,10 @@ TEST(Descriptors, ScaledCopyHasTheSameGranulometry) {
 // An asymmetric solid (three distinct principal moments, non-zero skew on the first two axes)
 // under an exact similarity: scale 5/2, a rational rotation, a rational shift.
 TEST(Descriptors, InvariantUnderExactScaleRotationAndTranslation) {
-  const Mesh a =
-      compute_boolean(l_shape(), make_box(Point(FT(3) / 2, 0, 0), Point(2, 1, 1)), BooleanOp::Union)
-          .mesh;
+  const Mesh a = compute_boolean(check_solid(l_shape()),
+                                 check_solid(make_box(Point(FT(3) / 2, 0, 0), Point(2, 1, 1))),
+                                 BooleanOp::Union)
+                     .solid;
   const Transformation similarity = Transformation(CGAL::TRANSLATION, Vector(FT(7) / 3, -1, 2)) *
                                     Transformation(CGAL::SCALING, FT(5) / 2) *
                                     quaternion_rotation(3, 1, -2, 5);
@@ -164,7 +166,7 @@ TEST(Descriptors, InvariantUnderExactScaleRotationAndTranslation) {
   DescriptorSettings s;
   s.scales = 3;
   s.d2_samples = 2000;
-  const Descriptors da = describe(a, s), db = describe(b, s);
+  const Descriptors da = describe(check_solid(a), s), db = describe(check_solid(b), s);
   EXPECT_NEAR(db.scale_length / da.scale_length, 2.5, 1e-12);
   ASSERT_EQ(da.granulometry.size(), 3u);
   ASSERT_EQ(da.anti_granulometry.size(), 3u);
@@ -181,12 +183,13 @@ TEST(Descriptors, InvariantUnderExactScaleRotationAndTranslation) {
 TEST(Descriptors, PoseNormalisationMakesRotatedCopiesAgree) {
   const Mesh a = l_shape();
   const Mesh turned = transformed(a, quaternion_rotation(3, 1, -2, 5));
-  const Descriptors da = describe(a, quick()), dt = describe(turned, quick());
+  const Descriptors da = describe(check_solid(a), quick()),
+                    dt = describe(check_solid(turned), quick());
   for (std::size_t i = 0; i < 2; ++i) EXPECT_NEAR(da.granulometry[i], dt.granulometry[i], 1e-3);
   // Documented: without pose normalisation the cube SE sees the rotation.
   DescriptorSettings raw = quick();
   raw.normalise_pose = false;
-  const Descriptors ra = describe(a, raw), rt = describe(turned, raw);
+  const Descriptors ra = describe(check_solid(a), raw), rt = describe(check_solid(turned), raw);
   EXPECT_GT(l1_distance(ra.granulometry, rt.granulometry), 1e-3);
 }
 
@@ -200,7 +203,7 @@ TEST(Descriptors, ScalesFollowTheThicknessSoFewAreEmptyOrFull) {
     DescriptorSettings s;
     s.closings = false;
     s.d2_samples = 64;
-    const Descriptors d = describe(m, s);
+    const Descriptors d = describe(check_solid(m), s);
     ASSERT_EQ(d.granulometry.size(), std::size_t(s.scales));
     const auto full = std::count_if(d.granulometry.begin(), d.granulometry.end(),
                                     [](double g) { return g > 0.999; });
@@ -242,7 +245,7 @@ TEST(Simplify, CopyIsAValidSolidWithinTheBudgetAndCloseInVolume) {
 TEST(Descriptors, InvalidInputIsRefused) {
   Mesh open = make_cube(FT(1));
   open.triangles.pop_back();
-  EXPECT_THROW(describe(open), InvalidSolid);
+  EXPECT_THROW(describe(check_solid(open)), InvalidSolid);
 }
 
 TEST(Collection, EveryShapeIsAValidSolidWithItsLabel) {

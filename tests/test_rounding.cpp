@@ -37,9 +37,7 @@ class TempDir {
 };
 
 Mesh boolean(const Mesh& a, const Mesh& b, BooleanOp op) {
-  BooleanResult r = compute_boolean(a, b, op);
-  EXPECT_EQ(r.status, BooleanStatus::Ok) << r.message;
-  return std::move(r.mesh);
+  return compute_boolean(check_solid(a), check_solid(b), op).solid.mesh();
 }
 
 MeshReport checked(const Mesh& m) {

@@ -23,7 +23,7 @@ const Mesh& sphere() {
 // The solidified mesh: a valid solid, and its exact volume.
 FT solid_volume(const Mesh& damaged, SolidifyReport* report = nullptr) {
   const SolidifyResult r = solidify(damaged);
-  const MeshReport check = check_mesh(r.mesh);
+  const MeshReport check = check_mesh(r.solid);
   EXPECT_TRUE(check.valid_solid()) << describe_problems(check) << " (" << describe(r.report) << ")";
   if (report) *report = r.report;
   return check.volume;
@@ -50,8 +50,8 @@ TEST(Solidify, ValidSolidsAreUnchanged) {
   const SolidifyResult r = solidify(sphere());
   EXPECT_FALSE(r.report.changed);
   EXPECT_EQ(describe(r.report), "unchanged");
-  EXPECT_EQ(r.mesh.points, sphere().points);
-  EXPECT_EQ(r.mesh.triangles, sphere().triangles);
+  EXPECT_EQ(r.solid.mesh().points, sphere().points);
+  EXPECT_EQ(r.solid.mesh().triangles, sphere().triangles);
 }
 
 TEST(Solidify, FlippedFacesAreTurnedBack) {
@@ -109,7 +109,8 @@ TEST(Solidify, CracksAreWelded) {
 TEST(Solidify, OverlappingPartsAreUnited) {
   const Mesh box =
       make_box(Point(FT(1) / 2, FT(-1) / 8, FT(-1) / 8), Point(2, FT(1) / 8, FT(1) / 8));
-  const FT united = signed_volume(compute_boolean(sphere(), box, BooleanOp::Union).mesh);
+  const FT united = signed_volume(
+      compute_boolean(check_solid(sphere()), check_solid(box), BooleanOp::Union).solid);
   EXPECT_EQ(solid_volume(concatenate(sphere(), box)), united);
   // The box turned inward as well, and the sphere's faces unwelded: the same union.
   SolidifyReport report;
@@ -145,6 +146,7 @@ TEST(Solidify, AllDamageTogether) {
   m.triangles = kept;
   const Mesh box =
       make_box(Point(FT(1) / 2, FT(-1) / 8, FT(-1) / 8), Point(2, FT(1) / 8, FT(1) / 8));
-  const FT united = signed_volume(compute_boolean(sphere(), box, BooleanOp::Union).mesh);
+  const FT united = signed_volume(
+      compute_boolean(check_solid(sphere()), check_solid(box), BooleanOp::Union).solid);
   EXPECT_EQ(solid_volume(concatenate(m, box)), united);
 }

@@ -35,9 +35,10 @@
 #include "bench_bool_common.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
-#include "morphex/shapes.h"
-#include "morphex/io.h"
+#include "morphex/internal/solid_access.h"
 #include "morphex/internal/stopwatch.h"
+#include "morphex/io.h"
+#include "morphex/shapes.h"
 #include "peers.h"
 
 using namespace morphex;
@@ -188,30 +189,29 @@ std::string phase_note(const PhaseSeconds& p, const BooleanStats& s) {
   return note.str();
 }
 
-// The operation is timed on inputs taken as valid, as corefinement takes them; the validity
-// check that compute_boolean runs by default is timed on its own (run_check).
+// The operation is timed on inputs taken as valid, as corefinement takes them (Solids made
+// without the check, so without the check's trees); the validity check is timed on its own
+// (run_check).
 Run run_morphex(const Case& c, BooleanOp op, const Warmup& warm) {
   return in_child([&]() -> Result {
-    BooleanOptions trusted;
-    trusted.validate_inputs = false;
-    compute_boolean(warm.a, warm.b, op, trusted);
+    compute_boolean(detail::trusted_solid(warm.a), detail::trusted_solid(warm.b), op);
     own_inputs(c);
+    const Solid a = detail::trusted_solid(c.a), b = detail::trusted_solid(c.b);
     BooleanResult r;
     std::vector<std::pair<double, PhaseSeconds>> runs;
     const double seconds = median_seconds([&] {
       r = BooleanResult{};  // the previous run's result is freed off the clock, as the peers'
       const Stopwatch start;
-      r = compute_boolean(c.a, c.b, op, trusted);
+      r = compute_boolean(a, b, op);
       runs.emplace_back(start.seconds(), r.stats.seconds);
       return runs.back().first;
     });
-    if (!r.ok()) return std::nullopt;
     // Phases are measured in the timed runs themselves (the median one): a parent that ran TBB
     // would hand its children a thread pool whose workers were not forked with them.
     std::sort(runs.begin(), runs.end(),
               [](const auto& x, const auto& y) { return x.first < y.first; });
     child_note = phase_note(runs[runs.size() / 2].second, r.stats);
-    return std::make_pair(seconds, signed_volume(r.mesh));
+    return std::make_pair(seconds, signed_volume(r.solid));
   });
 }
 

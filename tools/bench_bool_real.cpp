@@ -31,9 +31,10 @@
 #include "bench_common.h"
 #include "manifold_peer.h"
 #include "morphex/check.h"
+#include "morphex/internal/solid_access.h"
+#include "morphex/internal/stopwatch.h"
 #include "morphex/io.h"
 #include "morphex/repair.h"
-#include "morphex/internal/stopwatch.h"
 
 namespace morphex::bench {
 
@@ -188,7 +189,7 @@ Input prepare_input(const std::string& path, const std::string& prepared_path,
     if (!report.valid_solid()) {
       try {
         const RepairResult repaired = repair_mesh(read);
-        valid = repaired.mesh;
+        valid = repaired.solid;
         child_note = "repaired (" + describe_problems(report) + ") to " +
                      std::to_string(valid.num_triangles()) + " facets";
       } catch (const std::exception& e) {
@@ -238,22 +239,28 @@ Run run_morphex_at(const Case& c, BooleanOp op, std::size_t threads, bool as_cli
                    const Warmup& warm) {
   return in_child([&]() -> Result {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    BooleanOptions options;
-    options.validate_inputs = as_cli;
-    compute_boolean(warm.a, warm.b, op, options);
+    // As the command line: both inputs checked (check_solids), then the operation; otherwise the
+    // inputs are taken as valid, as the peers take them.
+    const auto run = [&](const Mesh& a, const Mesh& b) {
+      if (!as_cli) return compute_boolean(detail::trusted_solid(a), detail::trusted_solid(b), op);
+      const auto [sa, sb] = check_solids(a, "A", b, "B");
+      return compute_boolean(sa, sb, op);
+    };
+    run(warm.a, warm.b);
     own_inputs(c);
     BooleanResult r;
-    const double seconds = median_seconds([&] {
-      r = BooleanResult{};  // the previous run's result is freed off the clock
-      const Stopwatch start;
-      r = compute_boolean(c.a, c.b, op, options);
-      return start.seconds();
-    });
-    if (!r.ok()) {
-      child_note = r.message;
+    try {
+      const double seconds = median_seconds([&] {
+        r = BooleanResult{};  // the previous run's result is freed off the clock
+        const Stopwatch start;
+        r = run(c.a, c.b);
+        return start.seconds();
+      });
+      return std::make_pair(seconds, signed_volume(r.solid));
+    } catch (const InvalidSolid& e) {
+      child_note = e.what();
       return std::nullopt;
     }
-    return std::make_pair(seconds, signed_volume(r.mesh));
   });
 }
 

@@ -20,9 +20,9 @@
 
 #include "bench_common.h"
 #include "morphex/check.h"
+#include "morphex/internal/stopwatch.h"
 #include "morphex/io.h"
 #include "morphex/repair.h"
-#include "morphex/internal/stopwatch.h"
 #include "peers.h"
 
 using namespace morphex;
@@ -82,13 +82,14 @@ int main(int argc, char** argv) {
     double repair_seconds = 0;
     try {
       repair_seconds = median_of_runs(runs, [&] { repaired = repair_mesh(mesh); });
-      outcome = check_mesh(repaired.mesh, kValidityOnly).valid_solid() ? "valid" : "INVALID";
+      outcome = check_mesh(repaired.solid, kValidityOnly).valid_solid() ? "valid" : "INVALID";
     } catch (const InputError& e) {
       outcome = std::string("refused: ") + e.what();
     }
     all_valid = all_valid && outcome != "INVALID";
     const double v_in = CGAL::to_double(signed_volume(mesh));
-    const double v_out = repaired.mesh.empty() ? 0 : CGAL::to_double(signed_volume(repaired.mesh));
+    const double v_out =
+        repaired.solid.empty() ? 0 : CGAL::to_double(signed_volume(repaired.solid));
     const double change = v_in != 0 ? (v_out - std::abs(v_in)) / std::abs(v_in) : 0;
     std::cout << std::left << std::setw(33)
               << input.substr(input.size() > 33 ? input.size() - 33 : 0) << ' ' << std::right

@@ -26,6 +26,7 @@
 #include "bench_common.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
+#include "morphex/internal/solid_access.h"
 #include "morphex/io.h"
 #include "morphex/morphology.h"
 #include "morphex/rounding.h"
@@ -184,13 +185,14 @@ std::vector<Row> boolean_rows(const Options& o, const fs::path& dir) {
   std::sort(firsts.begin(), firsts.end());
   for (const fs::path& a_path : firsts) {
     const std::string stem = a_path.string().substr(0, a_path.string().size() - 6);
-    const Mesh a = read_mesh(a_path.string()), b = read_mesh(stem + ".b.off");
+    // The cases are results of bench_bool's valid pairs: taken as valid, the operation alone,
+    // as bench_bool's "m" column.
+    const Solid a = detail::trusted_solid(read_mesh(a_path.string())),
+                b = detail::trusted_solid(read_mesh(stem + ".b.off"));
     for (const std::string& op : o.ops) {
-      BooleanOptions options;
-      options.validate_inputs = false;  // the operation alone, as bench_bool's "m" column
       const Row row = measure(
           fs::path(stem).filename().string(), op, o.runs,
-          [&] { return compute_boolean(a, b, parse_boolean_op(op), options).mesh; }, dir);
+          [&] { return compute_boolean(a, b, parse_boolean_op(op)).solid.mesh(); }, dir);
       print(row);
       rows.push_back(row);
     }
@@ -201,9 +203,10 @@ std::vector<Row> boolean_rows(const Options& o, const fs::path& dir) {
 std::vector<Row> morphology_rows(const Options& o, const fs::path& dir) {
   std::vector<Row> rows;
   for (const std::string& path : o.morph) {
-    Mesh m = read_mesh(path);
-    const double scale = bench::unit_diagonal_scale(m);
-    for (Point& p : m.points) p = Point(p.x() * scale, p.y() * scale, p.z() * scale);
+    Mesh read = read_mesh(path);
+    const double scale = bench::unit_diagonal_scale(read);
+    for (Point& p : read.points) p = Point(p.x() * scale, p.y() * scale, p.z() * scale);
+    const Solid m = check_solid(std::move(read), path);
     for (const std::string& shape : o.shapes)
       for (const std::string& radius : o.radii) {
         // "ball:level=1" takes its extra parameters after the radius.
@@ -213,7 +216,7 @@ std::vector<Row> morphology_rows(const Options& o, const fs::path& dir) {
         const StructuringElement se = parse_structuring_element(spec);
         const Row row = measure(
             fs::path(path).stem().string(), "dilate " + spec, 1,
-            [&] { return apply_morphology(MorphologyOp::Dilate, m, se); }, dir);
+            [&] { return apply_morphology(MorphologyOp::Dilate, m, se).mesh(); }, dir);
         print(row);
         rows.push_back(row);
       }

@@ -10,8 +10,8 @@
 #include <iostream>
 #include <sstream>
 
-#include "morphex/internal/files.h"
 #include "morphex/check.h"
+#include "morphex/internal/files.h"
 #include "morphex/io.h"
 
 namespace morphex::cli {
@@ -72,19 +72,16 @@ std::string solid_problem(const std::string& file, const std::string& problem) {
   return text;
 }
 
-std::optional<Mesh> read_solid(const std::string& path) {
+std::optional<Solid> read_solid(const std::string& path) {
   try {
     Mesh mesh = read_mesh(path);
-    MeshReport report;
-    {
+    try {
       const OperationProgress progress("check");
-      report = check_mesh(mesh, kValidityOnly);
-    }
-    if (!report.valid_solid()) {
-      print_error(solid_problem(path, describe_problems(report)));
+      return check_solid(std::move(mesh), path);
+    } catch (const InvalidSolid& e) {
+      print_error(solid_problem(path, e.problem()));
       return std::nullopt;
     }
-    return mesh;
   } catch (const std::bad_alloc&) {
     throw;  // reported once, by main, as out of memory
   } catch (const std::exception& e) {

@@ -10,10 +10,11 @@
 #include <string>
 #include <vector>
 
+#include "morphex/internal/stopwatch.h"
 #include "morphex/mesh.h"
 #include "morphex/progress.h"
 #include "morphex/rounding.h"
-#include "morphex/internal/stopwatch.h"
+#include "morphex/solid.h"
 
 namespace morphex::cli {
 
@@ -36,7 +37,7 @@ nlohmann::json rounding_json(const RoundingReport& report);
 std::string shown_output(const std::string& path);
 
 // Reads an operand; a read error or an invalid solid is reported as "FILE: problem" and nullopt.
-std::optional<Mesh> read_solid(const std::string& path);
+std::optional<Solid> read_solid(const std::string& path);
 
 // Refuses an output path that names one of the inputs, and standard input ("-") named twice.
 bool output_overwrites_input(const std::string& output, const std::vector<std::string>& inputs);

@@ -4,10 +4,10 @@
 #include <chrono>
 
 #include "cli_common.h"
+#include "morphex/internal/stopwatch.h"
 #include "morphex/io.h"
 #include "morphex/minkowski.h"
 #include "morphex/morphology.h"
-#include "morphex/internal/stopwatch.h"
 
 namespace morphex::cli {
 namespace {
@@ -57,10 +57,10 @@ Command add_morphology_command(CLI::App& app, MorphologyOp op, const std::string
             }
             const Stopwatch start;
             MorphologyStats stats;
-            Mesh result;
+            Solid result;
             {
               const OperationProgress progress(to_string(op));
-              result = apply_morphology_of_valid(op, *a, se, &stats);  // read_solid checked it
+              result = apply_morphology(op, *a, se, &stats);
             }
             const double seconds = start.seconds();
             write_result(result, args->output, [&] {
@@ -94,7 +94,7 @@ Command add_minkowski_command(CLI::App& app) {
             if (!b) return kBadInput;
             const Stopwatch start;
             MinkowskiStats stats;
-            Mesh result;
+            Solid result;
             {
               const OperationProgress progress("minkowski");
               result = minkowski_sum(*a, *b, &stats);

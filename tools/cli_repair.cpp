@@ -4,11 +4,11 @@
 #include <chrono>
 
 #include "cli_common.h"
+#include "morphex/internal/stopwatch.h"
 #include "morphex/io.h"
 #include "morphex/pipeline.h"
 #include "morphex/repair.h"
 #include "morphex/solidify.h"
-#include "morphex/internal/stopwatch.h"
 
 namespace morphex::cli {
 namespace {
@@ -61,8 +61,8 @@ Command add_repair_command(CLI::App& app) {
               return kBadInput;
             }
             const double seconds = start.seconds();
-            write_result(result.mesh, args->output, [&] {
-              nlohmann::json stats = result_stats(result.mesh, seconds);
+            write_result(result.solid, args->output, [&] {
+              nlohmann::json stats = result_stats(result.solid, seconds);
               stats["operation"] = "repair";
               stats["input_faces"] = result.report.input_faces;
               stats["repair"] = pipeline::to_json(result.report);
@@ -111,8 +111,8 @@ Command add_solidify_command(CLI::App& app) {
               return kFailed;
             }
             const double seconds = start.seconds();
-            write_result(result.mesh, args->output, [&] {
-              nlohmann::json stats = result_stats(result.mesh, seconds);
+            write_result(result.solid, args->output, [&] {
+              nlohmann::json stats = result_stats(result.solid, seconds);
               const SolidifyReport& r = result.report;
               stats["operation"] = "solidify";
               stats["input_faces"] = r.input_faces;

@@ -11,16 +11,16 @@
 #include <sstream>
 
 #include "cli_common.h"
-#include "morphex/internal/files.h"
 #include "morphex/collection.h"
 #include "morphex/descriptors.h"
 #include "morphex/index.h"
+#include "morphex/internal/files.h"
+#include "morphex/internal/stopwatch.h"
 #include "morphex/io.h"
 #include "morphex/pipeline.h"
 #include "morphex/plot.h"
 #include "morphex/retrieval.h"
 #include "morphex/solidify.h"
-#include "morphex/internal/stopwatch.h"
 
 namespace morphex::cli {
 namespace {
@@ -125,12 +125,12 @@ Command add_describe_command(CLI::App& app) {
               return kBadInput;
             }
             if (!plot_usable(args->plot, args->json, {{args->mesh, "the input"}})) return kBadInput;
-            std::optional<Mesh> mesh;
+            std::optional<Solid> mesh;
             std::optional<SolidifyReport> repaired;
             if (args->repair) {
               try {
                 SolidifyResult r = solidify(read_mesh(args->mesh));
-                mesh = std::move(r.mesh);
+                mesh = std::move(r.solid);
                 repaired = r.report;
               } catch (const InputError& e) {
                 // A reader's error names the file; solidify's says why there is no solid.
@@ -146,7 +146,7 @@ Command add_describe_command(CLI::App& app) {
             Descriptors d;
             {
               const OperationProgress progress("describe");
-              d = describe_valid(*mesh, s);  // read_solid or repair checked it
+              d = describe(*mesh, s);
             }
             nlohmann::json j = descriptors_json(d);
             if (repaired && repaired->changed) j["solidify"] = mp::to_json(*repaired);

@@ -18,11 +18,12 @@
 
 #include "morphex/boolean.h"
 #include "morphex/check.h"
-#include "morphex/shapes.h"
+#include "morphex/internal/stopwatch.h"
 #include "morphex/io.h"
 #include "morphex/morphology.h"
 #include "morphex/repair.h"
-#include "morphex/internal/stopwatch.h"
+#include "morphex/shapes.h"
+#include "morphex/solid.h"
 #include "morphex/winding.h"
 
 using namespace morphex;
@@ -51,17 +52,18 @@ class RandomSolids {
       case 4:
         return make_icosphere(1, FT(1));
       case 5:
-        return compute_boolean(make_box(Point(0, 0, 0), Point(2, 1, 1)),
-                               make_box(Point(0, 0, 0), Point(1, 2, 1)), BooleanOp::Union)
-            .mesh;
+        return compute_boolean(check_solid(make_box(Point(0, 0, 0), Point(2, 1, 1))),
+                               check_solid(make_box(Point(0, 0, 0), Point(1, 2, 1))),
+                               BooleanOp::Union)
+            .solid.mesh();
       default: {
         // Two cubes sharing only an edge or only a vertex: a solid whose non-manifold feature is
         // separated into coincident vertices (and edges).
         const FT s = grid(2, 4), z = pick(6, 7) == 6 ? FT(0) : s;
-        return compute_boolean(make_box(Point(0, 0, 0), Point(s, s, s)),
-                               make_box(Point(s, s, z), Point(2 * s, 2 * s, z + s)),
+        return compute_boolean(check_solid(make_box(Point(0, 0, 0), Point(s, s, s))),
+                               check_solid(make_box(Point(s, s, z), Point(2 * s, 2 * s, z + s))),
                                BooleanOp::Union)
-            .mesh;
+            .solid.mesh();
       }
     }
   }
@@ -112,20 +114,24 @@ int main(int argc, char** argv) {
   RandomSolids random(seed);
   long failures = 0;
   for (long c = 0; c < count; ++c) {
-    const Mesh a = random.moved(random.shape()), b = random.moved(random.shape());
+    const Mesh am = random.moved(random.shape()), bm = random.moved(random.shape());
     std::string failure;
+    Solid a, b;
+    try {
+      std::tie(a, b) = check_solids(am, "A", bm, "B");
+    } catch (const InvalidSolid& e) {
+      failure = std::string("an operand is not a valid solid: ") + e.what();
+    }
     BooleanResult r[3];
     const BooleanOp ops[3] = {BooleanOp::Union, BooleanOp::Intersection, BooleanOp::Difference};
     for (int k = 0; k < 3 && failure.empty(); ++k) {
       r[k] = compute_boolean(a, b, ops[k]);
-      if (!r[k].ok())
-        failure = std::string(to_string(ops[k])) + " refused: " + r[k].message;
-      else if (const std::string p = problem_with(r[k].mesh); !p.empty())
+      if (const std::string p = problem_with(r[k].solid); !p.empty())
         failure = std::string(to_string(ops[k])) + " is not a valid solid: " + p;
     }
     if (failure.empty()) {
-      const FT va = signed_volume(a), vb = signed_volume(b), vu = signed_volume(r[0].mesh),
-               vi = signed_volume(r[1].mesh), vd = signed_volume(r[2].mesh);
+      const FT va = signed_volume(a), vb = signed_volume(b), vu = signed_volume(r[0].solid),
+               vi = signed_volume(r[1].solid), vd = signed_volume(r[2].solid);
       if (vu + vi != va + vb)
         failure = "vol(A u B) + vol(A n B) != vol(A) + vol(B)";
       else if (vd != va - vi)
@@ -142,14 +148,14 @@ int main(int argc, char** argv) {
         const Mesh common = winding_solid(both, {}, twice);
         const Mesh minus = winding_solid(concatenate(a, reversed(b)));
         if (const std::string p =
-                problem_with(joined.mesh) + problem_with(common) + problem_with(minus);
+                problem_with(joined.solid) + problem_with(common) + problem_with(minus);
             !p.empty())
           failure = "a winding solid of A and B as one mesh is not a valid solid: " + p;
-        else if (signed_volume(joined.mesh) != signed_volume(r[0].mesh))
+        else if (signed_volume(joined.solid) != signed_volume(r[0].solid))
           failure = "repair of A and B as one mesh != A u B";
-        else if (signed_volume(common) != signed_volume(r[1].mesh))
+        else if (signed_volume(common) != signed_volume(r[1].solid))
           failure = "{w >= 2} of A and B as one mesh != A n B";
-        else if (signed_volume(minus) != signed_volume(r[2].mesh))
+        else if (signed_volume(minus) != signed_volume(r[2].solid))
           failure = "{w >= 1} of A and reversed B != A - B";
       } catch (const std::exception& e) {
         failure = std::string("repair of A and B as one mesh failed: ") + e.what();
@@ -159,12 +165,12 @@ int main(int argc, char** argv) {
       StructuringElement se;
       se.shape = "cube";
       se.mesh = make_cube(FT(1) / 8);
-      const Mesh opened = opening(a, se), closed = closing(a, se);
+      const Solid opened = opening(a, se), closed = closing(a, se);
       const BooleanResult outside = compute_boolean(opened, a, BooleanOp::Difference);
       const BooleanResult missing = compute_boolean(a, closed, BooleanOp::Difference);
       if (const std::string p = problem_with(opened) + problem_with(closed); !p.empty())
         failure = "opening or closing is not a valid solid: " + p;
-      else if (signed_volume(outside.mesh) != 0 || signed_volume(missing.mesh) != 0)
+      else if (signed_volume(outside.solid) != 0 || signed_volume(missing.solid) != 0)
         failure = "opening not inside A or closing not containing A";
     }
     if (!failure.empty()) {
@@ -173,8 +179,8 @@ int main(int argc, char** argv) {
       const std::string stem = out_dir + "/case-" + std::to_string(seed) + "-" + std::to_string(c);
       WriteOptions exact;
       exact.exact = true;
-      write_mesh(a, stem + "-a.off", exact);
-      write_mesh(b, stem + "-b.off", exact);
+      write_mesh(am, stem + "-a.off", exact);
+      write_mesh(bm, stem + "-b.off", exact);
       std::ofstream(stem + ".txt")
           << failure << "\nreplay: morphex bool union|intersection|"
           << "difference " << stem << "-a.off " << stem << "-b.off -o r.off\n";

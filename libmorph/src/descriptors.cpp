@@ -12,11 +12,12 @@
 
 #include "descriptor_internal.h"
 #include "morphex/check.h"
-#include "morphex/shapes.h"
+#include "morphex/internal/union_find.h"
 #include "morphex/morphology.h"
 #include "morphex/progress.h"
+#include "morphex/shapes.h"
 #include "morphex/simplify.h"
-#include "morphex/internal/union_find.h"
+#include "morphology_internal.h"
 
 namespace morphex {
 namespace {
@@ -162,7 +163,7 @@ void filter_by_cubes(const Mesh& a, const DescriptorSettings& s, Descriptors& d)
     const ProgressPhase phase(finished / steps, (finished + 1) / steps, "opening");
     Mesh opened;
     if (!vanished) {
-      opened = opening_of_valid(a, cube);
+      opened = detail::morphology_of_valid(MorphologyOp::Open, a, cube);
       vanished = opened.empty();  // the erosion was empty
     }
     const Moments m = opened.empty() ? Moments{} : moments_of(opened);
@@ -178,7 +179,7 @@ void filter_by_cubes(const Mesh& a, const DescriptorSettings& s, Descriptors& d)
   for (double r : d.close_radii) {
     const StructuringElement cube = cube_of(FT(r));
     const ProgressPhase phase(finished / steps, (finished + 1) / steps, "closing");
-    const Moments m = moments_of(closing_of_valid(a, cube));
+    const Moments m = moments_of(detail::morphology_of_valid(MorphologyOp::Close, a, cube));
     d.anti_granulometry.push_back(std::max(0.0, m.volume / whole.volume - 1));
     append_placement(d.closing_residue, m - whole, whole);
     advanced();
@@ -196,13 +197,8 @@ std::string DescriptorSettings::to_string() const {
   return out.str();
 }
 
-Descriptors describe(const Mesh& solid, const DescriptorSettings& settings) {
-  const MeshReport report = check_mesh(solid, kValidityOnly);
-  if (!report.valid_solid()) throw InvalidSolid("cannot describe", describe_problems(report));
-  return describe_valid(solid, settings);
-}
-
-Descriptors describe_valid(const Mesh& solid, const DescriptorSettings& settings) {
+Descriptors describe(const Solid& input, const DescriptorSettings& settings) {
+  const Mesh& solid = input.mesh();
   if (settings.scales < 1 || !(settings.open_from > 0 && settings.open_from <= settings.open_to) ||
       !(settings.close_from > 0 && settings.close_from <= settings.close_to))
     throw InputError("cannot describe", "scales must be at least 1 and radii positive and growing");

@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Minkowski sums as unions of convex pieces (see minkowski.h for the decomposition).
 #include "morphex/minkowski.h"
-#include "morphex/progress.h"
+#include "morphex/internal/solid_access.h"
 #include "morphex/internal/stopwatch.h"
+#include "morphex/internal/valid_operations.h"
+#include "morphex/progress.h"
 
 #include <tbb/parallel_for.h>
 
@@ -14,9 +16,9 @@
 #include "minkowski_internal.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
-#include "morphex/shapes.h"
-#include "morphex/structuring_element.h"
+#include "morphex/convex_hull.h"
 #include "morphex/internal/union_find.h"
+#include "morphex/shapes.h"
 #include "morphex/winding.h"
 
 namespace morphex {
@@ -167,7 +169,7 @@ std::optional<std::vector<Mesh>> timed_convolution_pieces(const Mesh& surface, c
 Mesh timed_union(std::vector<Mesh> solids, MinkowskiStats* stats) {
   const Stopwatch start;
   UnionStats union_stats;
-  Mesh united = compute_union(std::move(solids), &union_stats);
+  Mesh united = detail::union_of_valid(std::move(solids), &union_stats);
   if (stats) {
     stats->seconds_union += start.seconds();
     stats->binary_unions += union_stats.binary_unions;
@@ -207,19 +209,12 @@ Mesh sum_with_component(const Mesh& a, const Mesh& b, bool b_convex, MinkowskiSt
   const bool origin_inside = b_convex && convex_contains_origin(b);
   Mesh moved = origin_inside ? a : translated(a, b.points.front() - CGAL::ORIGIN);
   const Stopwatch start;
-  Mesh sum = compute_union({std::move(shell), std::move(moved)});
+  Mesh sum = detail::union_of_valid({std::move(shell), std::move(moved)});
   if (stats) {
     stats->seconds_union += start.seconds();
     ++stats->binary_unions;
   }
   return sum;
-}
-
-void require_valid(const Mesh& mesh, const char* which) {
-  const MeshReport report = check_mesh(mesh, kValidityOnly);
-  if (!report.valid_solid())
-    throw InvalidSolid("",
-                       std::string(which) + " is not a valid solid: " + describe_problems(report));
 }
 
 }  // namespace detail
@@ -270,7 +265,7 @@ Mesh boundary_sum(const Mesh& surface, const Mesh& b, bool b_convex, MinkowskiSt
     }
     shell = winding_solid(chain);
   } else {
-    shell = compute_union(std::move(pieces), &union_stats);
+    shell = detail::union_of_valid(std::move(pieces), &union_stats);
   }
   if (stats) {
     stats->pieces += count;
@@ -282,14 +277,13 @@ Mesh boundary_sum(const Mesh& surface, const Mesh& b, bool b_convex, MinkowskiSt
   return shell;
 }
 
-Mesh minkowski_sum(const Mesh& a, const Mesh& b, MinkowskiStats* stats) {
-  detail::require_valid(a, "first operand");
-  detail::require_valid(b, "second operand");
+Solid minkowski_sum(const Solid& a, const Solid& b, MinkowskiStats* stats) {
   if (a.empty() || b.empty()) return {};
   std::vector<Mesh> sums;
   for (const Mesh& component : detail::connected_components(b))
     sums.push_back(detail::sum_with_component(a, component, is_convex(component), stats));
-  return sums.size() == 1 ? std::move(sums.front()) : compute_union(std::move(sums));
+  return detail::trusted_solid(sums.size() == 1 ? std::move(sums.front())
+                                                : detail::union_of_valid(std::move(sums)));
 }
 
 }  // namespace morphex

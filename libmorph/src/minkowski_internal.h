@@ -91,7 +91,4 @@ Mesh box_morphology(const Mesh& a, const AxisBox& box, bool erode);
 // A + B for one connected B whose convexity is known.
 Mesh sum_with_component(const Mesh& a, const Mesh& b, bool b_convex, MinkowskiStats* stats);
 
-// Throws InvalidSolid("<which> is not a valid solid: ...").
-void require_valid(const Mesh& mesh, const char* which);
-
 }  // namespace morphex::detail

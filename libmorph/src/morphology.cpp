@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Dilation, erosion, opening and closing from Minkowski shells and exact Booleans.
 #include "morphex/morphology.h"
+#include "morphex/internal/solid_access.h"
+#include "morphex/internal/valid_operations.h"
+#include "morphology_internal.h"
 
 #include <chrono>
 #include <optional>
@@ -8,8 +11,8 @@
 
 #include "minkowski_internal.h"
 #include "morphex/boolean.h"
-#include "morphex/shapes.h"
 #include "morphex/progress.h"
+#include "morphex/shapes.h"
 
 namespace morphex {
 
@@ -54,12 +57,9 @@ std::vector<SePart> parts_of(const StructuringElement& se) {
   return parts;
 }
 
+// Both operands are results of exact operations, valid by construction.
 Mesh binary(const Mesh& a, const Mesh& b, BooleanOp op) {
-  BooleanOptions options;
-  options.validate_inputs = false;  // both operands are results of exact operations
-  BooleanResult r = compute_boolean(a, b, op, options);
-  if (!r.ok()) throw std::logic_error(r.message);
-  return std::move(r.mesh);
+  return detail::boolean_of_valid(a, b, op).mesh;
 }
 
 Mesh dilate_valid(const Mesh& a, const std::vector<SePart>& parts, MinkowskiStats& stats) {
@@ -145,71 +145,7 @@ Mesh close_valid(const Mesh& a, const std::vector<SePart>& parts, MinkowskiStats
   return erode_valid(dilated, parts, s);
 }
 
-template <class Body>
-Mesh timed(const Mesh& a, const StructuringElement& se, MorphologyStats* stats, Body&& body,
-           bool validate = true) {
-  const auto start = std::chrono::steady_clock::now();
-  // The input check costs about as much as a small operation.
-  const double checked = validate ? 0.1 : 0;
-  if (validate) {
-    const ProgressPhase phase(0, checked, "checking input");
-    detail::require_valid(a, "input");
-    check_structuring_element_scale(se, a);
-  }
-  MinkowskiStats minkowski;
-  const ProgressPhase phase(checked, 1);
-  Mesh result = body(minkowski);
-  make_exact(result);
-  if (stats) {
-    stats->pieces += minkowski.pieces;
-    stats->binary_unions += minkowski.binary_unions;
-    stats->seconds +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  }
-  return result;
-}
-
-}  // namespace
-
-Mesh dilation(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
-  return timed(a, se, stats, [&](MinkowskiStats& s) { return dilate_valid(a, parts_of(se), s); });
-}
-
-Mesh erosion(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
-  return timed(a, se, stats, [&](MinkowskiStats& s) { return erode_valid(a, parts_of(se), s); });
-}
-
-Mesh dilation_of_valid(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
-  return timed(
-      a, se, stats, [&](MinkowskiStats& s) { return dilate_valid(a, parts_of(se), s); }, false);
-}
-
-Mesh erosion_of_valid(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
-  return timed(
-      a, se, stats, [&](MinkowskiStats& s) { return erode_valid(a, parts_of(se), s); }, false);
-}
-
-Mesh opening(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
-  return timed(a, se, stats, [&](MinkowskiStats& s) { return open_valid(a, parts_of(se), s); });
-}
-
-Mesh closing(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
-  return timed(a, se, stats, [&](MinkowskiStats& s) { return close_valid(a, parts_of(se), s); });
-}
-
-Mesh opening_of_valid(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
-  return timed(
-      a, se, stats, [&](MinkowskiStats& s) { return open_valid(a, parts_of(se), s); }, false);
-}
-
-Mesh closing_of_valid(const Mesh& a, const StructuringElement& se, MorphologyStats* stats) {
-  return timed(
-      a, se, stats, [&](MinkowskiStats& s) { return close_valid(a, parts_of(se), s); }, false);
-}
-
-namespace {
-Mesh dispatch(MorphologyOp op, const Mesh& a, const std::vector<SePart>& parts,
-              MinkowskiStats& s) {
+Mesh dispatch(MorphologyOp op, const Mesh& a, const std::vector<SePart>& parts, MinkowskiStats& s) {
   switch (op) {
     case MorphologyOp::Dilate:
       return dilate_valid(a, parts, s);
@@ -222,17 +158,44 @@ Mesh dispatch(MorphologyOp op, const Mesh& a, const std::vector<SePart>& parts,
   }
   throw std::logic_error("unknown morphological operation");
 }
+
 }  // namespace
 
-Mesh apply_morphology(MorphologyOp op, const Mesh& a, const StructuringElement& se,
-                      MorphologyStats* stats) {
-  return timed(a, se, stats, [&](MinkowskiStats& s) { return dispatch(op, a, parts_of(se), s); });
+Mesh detail::morphology_of_valid(MorphologyOp op, const Mesh& a, const StructuringElement& se,
+                                 MorphologyStats* stats) {
+  const auto start = std::chrono::steady_clock::now();
+  MinkowskiStats minkowski;
+  Mesh result = dispatch(op, a, parts_of(se), minkowski);
+  make_exact(result);  // chains of operations would otherwise grow lazy-evaluation graphs
+  if (stats) {
+    stats->pieces += minkowski.pieces;
+    stats->binary_unions += minkowski.binary_unions;
+    stats->seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  return result;
 }
 
-Mesh apply_morphology_of_valid(MorphologyOp op, const Mesh& a, const StructuringElement& se,
-                               MorphologyStats* stats) {
-  return timed(
-      a, se, stats, [&](MinkowskiStats& s) { return dispatch(op, a, parts_of(se), s); }, false);
+Solid apply_morphology(MorphologyOp op, const Solid& a, const StructuringElement& se,
+                       MorphologyStats* stats) {
+  check_structuring_element_scale(se, a);
+  return detail::trusted_solid(detail::morphology_of_valid(op, a, se, stats));
+}
+
+Solid dilation(const Solid& a, const StructuringElement& se, MorphologyStats* stats) {
+  return apply_morphology(MorphologyOp::Dilate, a, se, stats);
+}
+
+Solid erosion(const Solid& a, const StructuringElement& se, MorphologyStats* stats) {
+  return apply_morphology(MorphologyOp::Erode, a, se, stats);
+}
+
+Solid opening(const Solid& a, const StructuringElement& se, MorphologyStats* stats) {
+  return apply_morphology(MorphologyOp::Open, a, se, stats);
+}
+
+Solid closing(const Solid& a, const StructuringElement& se, MorphologyStats* stats) {
+  return apply_morphology(MorphologyOp::Close, a, se, stats);
 }
 
 }  // namespace morphex

@@ -22,15 +22,15 @@ class Shapes {
     return FT(pick(rng_)) / 20;
   }
 
-  Mesh box(const FT& x0, const FT& y0, const FT& z0, const FT& x1, const FT& y1, const FT& z1) {
-    return make_box(Point(x0, y0, z0), Point(x1, y1, z1));
+  Solid box(const FT& x0, const FT& y0, const FT& z0, const FT& x1, const FT& y1, const FT& z1) {
+    return check_solid(make_box(Point(x0, y0, z0), Point(x1, y1, z1)));
   }
 
-  Mesh unite(const std::vector<Mesh>& parts) {
-    Mesh out = parts.front();
+  Mesh unite(const std::vector<Solid>& parts) {
+    Solid out = parts.front();
     for (std::size_t i = 1; i < parts.size(); ++i)
-      out = compute_boolean(out, parts[i], BooleanOp::Union).mesh;
-    return out;
+      out = compute_boolean(out, parts[i], BooleanOp::Union).solid;
+    return out.mesh();
   }
 
   Mesh family(const std::string& name) {
@@ -52,7 +52,7 @@ class Shapes {
       const FT a = between(1.2, 2), b = between(1.2, 2);
       const BooleanResult r = compute_boolean(box(0, 0, 0, a, b, t), box(t, t, -1, a - t, b - t, 1),
                                               BooleanOp::Difference);
-      return r.mesh;
+      return r.solid.mesh();
     }
     if (name == "steps") {
       const FT w = between(0.6, 1), d = between(0.4, 0.6);

@@ -13,8 +13,8 @@
 #include <optional>
 #include <set>
 
-#include "morphex/pipeline.h"
 #include "morphex/internal/stopwatch.h"
+#include "morphex/pipeline.h"
 
 namespace morphex::pipeline {
 namespace {
@@ -55,7 +55,7 @@ InputReport run_one(const Pipeline& pipeline, const std::string& input, Progress
   InputReport report;
   report.input = input;
   const std::size_t n = pipeline.stages.size();
-  std::vector<std::optional<Mesh>> results(n);
+  std::vector<std::optional<StageValue>> results(n);
   std::vector<StageReport> stage_reports(n);
   std::vector<char> done(n, 0);
   std::mutex failure_mutex;
@@ -90,9 +90,11 @@ InputReport run_one(const Pipeline& pipeline, const std::string& input, Progress
       r.index = s;
       r.type = stage.type;
       r.tag = stage.tag;
-      r.faces = results[s]->num_triangles();
-      r.vertices = results[s]->num_vertices();
-      const FT volume = signed_volume(*results[s]);
+      const Mesh& mesh = results[s]->index() == 0 ? std::get<Solid>(*results[s]).mesh()
+                                                  : std::get<Mesh>(*results[s]);
+      r.faces = mesh.num_triangles();
+      r.vertices = mesh.num_vertices();
+      const FT volume = signed_volume(mesh);
       r.volume = to_rational_string(volume);
       r.volume_approx = CGAL::to_double(volume);
       r.extra = std::move(context.extra);

@@ -12,6 +12,7 @@
 #include "morphex/morphology.h"
 #include "morphex/pipeline.h"
 #include "morphex/simplify.h"
+#include "morphex/solid.h"
 #include "morphex/solidify.h"
 #include "pipeline_internal.h"
 
@@ -145,21 +146,17 @@ OptionInfo optional(std::string name, OptionType type, nlohmann::json value,
   return o;
 }
 
-Mesh boolean_stage(StageContext& c, BooleanOp op) {
-  BooleanOptions options;
-  options.validate_inputs = false;  // stage outputs and read meshes are valid solids already
-  BooleanResult r = compute_boolean(*c.inputs[0], *c.inputs[1], op, options);
-  if (!r.ok()) throw InvalidSolid("", r.message);
-  return std::move(r.mesh);
+StageValue boolean_stage(StageContext& c, BooleanOp op) {
+  return compute_boolean(c.solid(0), c.solid(1), op).solid;
 }
 
-Mesh morphology_stage(StageContext& c, MorphologyOp op) {
+StageValue morphology_stage(StageContext& c, MorphologyOp op) {
   const StructuringElement& se = c.element("se");  // built once, by validation
   MorphologyStats stats;
-  Mesh result = apply_morphology(op, *c.inputs[0], se, &stats);
+  Solid result = apply_morphology(op, c.solid(0), se, &stats);
   c.extra["se"] = se.spec;
   c.extra["pieces"] = stats.pieces;
-  return result;
+  return StageValue(std::move(result));
 }
 
 // The describe stage's options, with DescriptorSettings' defaults (descriptors.h explains them).
@@ -215,12 +212,12 @@ void add_io_stages(StageRegistry& r) {
        [](StageContext& c) {
          const std::string path = c.option("path").get<std::string>();
          Mesh mesh = read_mesh(path);
-         if (c.stage.unchecked) return mesh;
+         if (c.stage.unchecked) return StageValue(std::move(mesh));
          const MeshReport report = check_mesh(mesh, kValidityOnly);
          if (!report.valid_solid())
            throw InputError(
                path, describe_problems(report) + " (a repair stage after the read repairs it)");
-         return mesh;
+         return StageValue(check_solid(std::move(mesh), path));
        }});
   r.add({"repair",
          "exact repair: the valid solid a closed mesh bounds where it crosses or touches itself, "
@@ -230,9 +227,9 @@ void add_io_stages(StageRegistry& r) {
          [](StageContext& c) {
            RepairOptions options;
            options.budget = c.option("budget").get<double>();
-           RepairResult r = repair_mesh(*c.inputs[0], options);
+           RepairResult r = repair_mesh(c.mesh(0), options);
            c.extra["repair"] = to_json(r.report);
-           return std::move(r.mesh);
+           return StageValue(std::move(r.solid));
          }});
   r.add(
       {"solidify",
@@ -250,9 +247,9 @@ void add_io_stages(StageRegistry& r) {
          options.weld_tolerance = c.option("weld_tolerance").get<double>();
          options.fill_holes = c.option("fill_holes").get<bool>();
          options.repair.budget = c.option("budget").get<double>();
-         SolidifyResult r = solidify(*c.inputs[0], options);
+         SolidifyResult r = solidify(c.mesh(0), options);
          c.extra["solidify"] = to_json(r.report);
-         return std::move(r.mesh);
+         return StageValue(std::move(r.solid));
        }});
   r.add({"write",
          "write the mesh atomically (format from the extension); passes it on",
@@ -267,7 +264,7 @@ void add_io_stages(StageRegistry& r) {
            WriteOptions options;
            options.exact = c.option("exact").get<bool>();
            options.provenance = "pipeline stage " + c.stage.tag;
-           const RoundingReport r = write_mesh(*c.inputs[0], path, options);
+           const RoundingReport r = write_mesh(c.solid(0), path, options);
            c.extra["path"] = path;
            // What rounding to the format did (plain formats: the file is a valid solid).
            if (!options.exact)
@@ -276,7 +273,7 @@ void add_io_stages(StageRegistry& r) {
                                     {"resolved_pairs", r.broken_pairs},
                                     {"max_displacement", r.max_displacement},
                                     {"collapsed", r.collapsed}};
-           return *c.inputs[0];
+           return StageValue(c.solid(0));
          }});
 }
 
@@ -305,9 +302,9 @@ void add_operation_stages(StageRegistry& r) {
            [op](StageContext& c) { return boolean_stage(c, op); }});
   r.add({"minkowski", "exact Minkowski sum of two inputs", 2, {}, [](StageContext& c) {
            MinkowskiStats stats;
-           Mesh sum = minkowski_sum(*c.inputs[0], *c.inputs[1], &stats);
+           Solid sum = minkowski_sum(c.solid(0), c.solid(1), &stats);
            c.extra["pieces"] = stats.pieces;
-           return sum;
+           return StageValue(std::move(sum));
          }});
   OptionInfo facets = required("facets", OptionType::Integer,
                                "facet budget: the copy has about this many facets, never more "
@@ -321,11 +318,12 @@ void add_operation_stages(StageRegistry& r) {
          {facets},
          [](StageContext& c) {
            SimplifyReport report;
-           Mesh copy = simplified_solid(to_double(*c.inputs[0]),
+           Mesh copy = simplified_solid(to_double(c.solid(0)),
                                         c.option("facets").get<std::size_t>(), &report);
            c.extra["simplified"] = report.simplified;
            c.extra["attempts"] = report.attempts;
-           return copy;
+           // simplified_solid checks its copy (its contract: a valid solid or InvalidSolid).
+           return StageValue(check_solid(std::move(copy), "simplify"));
          }});
 }
 
@@ -337,17 +335,16 @@ void add_transform_stages(StageRegistry& r) {
          {required("offset", OptionType::Vector3, "[x, y, z]")},
          [](StageContext& c) {
            const auto& v = c.option("offset");
-           return translated(*c.inputs[0],
-                             Vector(detail::exact_number(v[0]), detail::exact_number(v[1]),
-                                    detail::exact_number(v[2])));
+           return StageValue(transformed(
+               c.solid(0), Transformation(CGAL::TRANSLATION, Vector(detail::exact_number(v[0]),
+                                                                    detail::exact_number(v[1]),
+                                                                    detail::exact_number(v[2])))));
          }});
   OptionInfo factor = required("factor", OptionType::Number, "uniform scale factor");
   factor.positive = true;
   r.add({"scale", "scale the mesh about the origin", 1, {factor}, [](StageContext& c) {
            const FT f = detail::exact_number(c.option("factor"));
-           Mesh m = transformed(*c.inputs[0], Transformation(CGAL::SCALING, f));
-           make_exact(m);
-           return m;
+           return StageValue(transformed(c.solid(0), Transformation(CGAL::SCALING, f)));
          }});
   OptionInfo axis = optional("axis", OptionType::String, "z", "rotation axis: x, y or z");
   axis.choices = {"x", "y", "z"};
@@ -357,11 +354,9 @@ void add_transform_stages(StageRegistry& r) {
          1,
          {axis, required("degrees", OptionType::Number, "angle, counter-clockwise")},
          [](StageContext& c) {
-           Mesh m = transformed(*c.inputs[0],
-                                detail::rotation(c.option("axis").get<std::string>(),
-                                                 detail::exact_number(c.option("degrees"))));
-           make_exact(m);
-           return m;
+           return StageValue(transformed(
+               c.solid(0), detail::rotation(c.option("axis").get<std::string>(),
+                                            detail::exact_number(c.option("degrees")))));
          }});
 }
 
@@ -373,8 +368,7 @@ void add_report_stages(StageRegistry& r) {
          1, describe_options(), [](StageContext& c) {
            DescriptorSettings settings = detail::descriptor_settings(c.stage.options);
            settings.on_progress = c.progress;
-           // Stage outputs are valid solids (read checks, repair and every operation make them).
-           const Descriptors d = describe_valid(*c.inputs[0], settings);
+           const Descriptors d = describe(c.solid(0), settings);
            nlohmann::json vectors;
            for (const std::string& kind : descriptor_kinds())
              vectors[kind] = descriptor_vector(d, kind);
@@ -383,7 +377,7 @@ void add_report_stages(StageRegistry& r) {
            c.extra["scale_length"] = d.scale_length;
            c.extra["filtered_facets"] = d.facets;
            c.extra["simplified"] = d.simplified;
-           return *c.inputs[0];
+           return StageValue(c.solid(0));
          }});
   r.add({"check",
          "report validity, volume, genus and components; passes the mesh on",
@@ -391,13 +385,13 @@ void add_report_stages(StageRegistry& r) {
          {optional("require_valid", OptionType::Bool, true,
                    "fail this input when the mesh is not a valid solid")},
          [](StageContext& c) {
-           const MeshReport report = check_mesh(*c.inputs[0], kValidityOnly);
+           const MeshReport report = check_mesh(c.mesh(0), kValidityOnly);
            c.extra["valid"] = report.valid_solid();
            c.extra["genus"] = report.genus;
            c.extra["components"] = report.components;
            if (c.option("require_valid").get<bool>() && !report.valid_solid())
              throw InvalidSolid("", describe_problems(report));
-           return *c.inputs[0];
+           return StageValue(c.solid(0));
          }});
 }
 

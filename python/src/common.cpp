@@ -38,10 +38,14 @@ std::string mesh_prefix(const PyMesh& m, const std::string& role) {
   return role.empty() ? std::string() : role + ": ";
 }
 
-void require_valid_solid(const PyMesh& m, const std::string& role) {
-  const MeshReport report = check_mesh(m.mesh, kValidityOnly);
-  if (!report.valid_solid())
-    throw InvalidSolid("", mesh_prefix(m, role) + describe_problems(report));
+Solid PyMesh::solid(const std::string& role, const std::string& what) const {
+  if (value_.index() == 1) return std::get<Solid>(value_);
+  // Not cached: a Python Mesh may be used from several threads at once.
+  try {
+    return check_solid(std::get<Mesh>(value_));
+  } catch (const InvalidSolid& e) {
+    throw InvalidSolid("", mesh_prefix(*this, role) + what + e.problem());
+  }
 }
 
 FT to_exact(const py::handle& value) {
@@ -70,8 +74,8 @@ FT to_exact(const py::handle& value) {
 Point to_exact_point(const py::handle& xyz, const char* what) {
   const py::sequence s = py::reinterpret_borrow<py::sequence>(xyz);
   if (!py::isinstance<py::sequence>(xyz) || py::isinstance<py::str>(xyz) || py::len(s) != 3)
-    throw InputError("", std::string(what) + ": expected three coordinates, got " +
-                                std::string(py::repr(xyz)));
+    throw InputError(
+        "", std::string(what) + ": expected three coordinates, got " + std::string(py::repr(xyz)));
   return Point(to_exact(s[0]), to_exact(s[1]), to_exact(s[2]));
 }
 
@@ -89,8 +93,7 @@ std::string to_path(const py::handle& path) {
 ThreadLimit::ThreadLimit(const std::optional<int>& threads) {
   if (!threads) return;
   if (*threads < 1)
-    throw InputError("", "threads: expected a positive number, got " +
-                                std::to_string(*threads));
+    throw InputError("", "threads: expected a positive number, got " + std::to_string(*threads));
   control_.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(*threads));
 }
 

@@ -12,26 +12,41 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "morphex/mesh.h"
 #include "morphex/retrieval.h"
+#include "morphex/solid.h"
 
 namespace morphex::python {
 
 namespace py = pybind11;
 
-// A mesh as Python sees it: the exact mesh and, when it was read from a file, that file's path, so
-// that errors name the file as the command line does ("cube.off: mesh is not closed: ...").
-struct PyMesh {
-  Mesh mesh;
+// A mesh as Python sees it: the exact mesh, a Solid when an operation made it (so that chains
+// check nothing again), and, when it was read from a file, that file's path, so that errors name
+// the file as the command line does ("cube.off: mesh is not closed: ...").
+class PyMesh {
+ public:
+  PyMesh(Mesh mesh = {}, std::string source = "")
+      : value_(std::move(mesh)), source(std::move(source)) {}
+  PyMesh(Solid solid, std::string source = "")
+      : value_(std::move(solid)), source(std::move(source)) {}
+  const Mesh& mesh() const {
+    return value_.index() == 1 ? std::get<Solid>(value_).mesh() : std::get<Mesh>(value_);
+  }
+  // The mesh as a valid solid: itself when an operation made it, else checked now (InvalidSolid,
+  // raised as morphex.InvalidSolid, a ValueError, its message starting with the mesh's file, else
+  // with `role`, the parameter name, when not empty, then `what`, then the problem).
+  Solid solid(const std::string& role, const std::string& what = "") const;
+
+ private:
+  std::variant<Mesh, Solid> value_;
+
+ public:
   std::string source;
 };
 
-// Throws morphex::InvalidSolid (raised as morphex.InvalidSolid, a ValueError) when `m` is not a
-// valid solid. The message starts with the mesh's file, else with `role` (the parameter name, "se",
-// "b"...) when it is not empty.
-void require_valid_solid(const PyMesh& m, const std::string& role);
 // "<file or role>: " or "" when neither is known.
 std::string mesh_prefix(const PyMesh& m, const std::string& role);
 

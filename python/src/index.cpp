@@ -3,9 +3,9 @@
 // `query` and `evaluate` use it, so that an index built from Python can be queried by the command
 // line and back. What is Python's own: meshes given as Mesh objects (written to a temporary exact
 // OFF file, since pipelines read files) and the conversion of arguments and results.
+#include <stdlib.h>
 #include <cerrno>
 #include <cstring>
-#include <stdlib.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -31,7 +31,9 @@ class TemporaryDirectory {
  public:
   TemporaryDirectory() {
     std::string pattern = (fs::temp_directory_path() / "morphex-python-XXXXXX").string();
-    if (!mkdtemp(pattern.data())) throw StorageError("", std::string("cannot create a temporary directory: ") + std::strerror(errno));
+    if (!mkdtemp(pattern.data()))
+      throw StorageError(
+          "", std::string("cannot create a temporary directory: ") + std::strerror(errno));
     path_ = pattern;
   }
   ~TemporaryDirectory() {
@@ -41,8 +43,7 @@ class TemporaryDirectory {
   // Writes the mesh exactly as <dir>/<name>.off, so that ${stem} is the name.
   std::string write(const Mesh& mesh, const std::string& name) const {
     if (name.empty() || name.find('/') != std::string::npos)
-      throw InputError("", "name: expected a non-empty name without '/', got '" + name +
-                                  "'");
+      throw InputError("", "name: expected a non-empty name without '/', got '" + name + "'");
     const std::string path = (path_ / (name + ".off")).string();
     WriteOptions exact;
     exact.exact = true;
@@ -156,9 +157,8 @@ std::vector<IndexItem> Index::items(const py::object& objects, std::vector<std::
   else
     for (const py::handle& h : objects) list.push_back(h);
   if (named && names.size() != list.size())
-    throw InputError("", "names: expected one name per mesh, got " +
-                                std::to_string(names.size()) + " names for " +
-                                std::to_string(list.size()) + " meshes");
+    throw InputError("", "names: expected one name per mesh, got " + std::to_string(names.size()) +
+                             " names for " + std::to_string(list.size()) + " meshes");
   std::vector<IndexItem> out;
   for (std::size_t i = 0; i < list.size(); ++i) {
     const py::handle h = list[i];
@@ -166,9 +166,10 @@ std::vector<IndexItem> Index::items(const py::object& objects, std::vector<std::
       const PyMesh& m = h.cast<const PyMesh&>();
       const std::string n = named ? names[i] : fs::path(m.source).stem().string();
       if (n.empty())
-        throw InputError("", 
+        throw InputError(
+            "",
             "a Mesh not read from a file needs a name (name= for one mesh, names= for several)");
-      out.push_back({temp.write(m.mesh, n), "mesh:" + n, n});
+      out.push_back({temp.write(m.mesh(), n), "mesh:" + n, n});
     } else {
       IndexItem item = index_item(to_path(h));  // recorded by absolute path, as `morphex index`
       if (named) item.name = names[i];
@@ -223,8 +224,7 @@ py::list Index::query(const py::object& target, std::size_t k, const std::string
   if (std::find(kinds.begin(), kinds.end(), descriptor) == kinds.end()) {
     std::string known;
     for (const std::string& kind : kinds) known += (known.empty() ? "" : ", ") + kind;
-    throw InputError("", "descriptor: expected one of " + known + ", got '" + descriptor +
-                                "'");
+    throw InputError("", "descriptor: expected one of " + known + ", got '" + descriptor + "'");
   }
   const Metric metric = parse_metric(metric_name);
   TemporaryDirectory temp;
@@ -235,7 +235,7 @@ py::list Index::query(const py::object& target, std::size_t k, const std::string
   if (is_mesh) {
     const PyMesh& m = target.cast<const PyMesh&>();
     const std::string stem = fs::path(m.source).stem().string();
-    file = temp.write(m.mesh, stem.empty() ? "query" : stem);
+    file = temp.write(m.mesh(), stem.empty() ? "query" : stem);
     label = m.source.empty() ? "query mesh" : m.source;
   } else {
     file = label = to_path(target);

@@ -6,9 +6,9 @@
 
 #include "common.h"
 #include "morphex/check.h"
-#include "morphex/shapes.h"
 #include "morphex/io.h"
 #include "morphex/rounding.h"
+#include "morphex/shapes.h"
 
 namespace morphex::python {
 namespace {
@@ -38,8 +38,8 @@ std::vector<Triangle> faces_from_numpy(const py::object& faces_like, std::size_t
       const long long v = view(i, j);
       if (v < 0 || std::size_t(v) >= vertices)
         throw InputError("", "faces[" + std::to_string(i) + "][" + std::to_string(j) +
-                                    "]: vertex index " + std::to_string(v) + " out of range for " +
-                                    std::to_string(vertices) + " vertices");
+                                 "]: vertex index " + std::to_string(v) + " out of range for " +
+                                 std::to_string(vertices) + " vertices");
       out[std::size_t(i)][std::size_t(j)] = VertexIndex(v);
     }
   return out;
@@ -63,10 +63,10 @@ PyMesh mesh_from_numpy(const py::object& vertices, const py::object& faces) {
 }
 
 PyMesh mesh_from_exact(const py::iterable& vertices, const py::object& faces) {
-  PyMesh out;
-  for (const py::handle& p : vertices) out.mesh.points.push_back(to_exact_point(p, "vertices"));
-  out.mesh.triangles = faces_from_numpy(faces, out.mesh.points.size());
-  return out;
+  Mesh out;
+  for (const py::handle& p : vertices) out.points.push_back(to_exact_point(p, "vertices"));
+  out.triangles = faces_from_numpy(faces, out.points.size());
+  return PyMesh(std::move(out));
 }
 
 // The double nearest to an exact coordinate (ties to even), rounded once from the exact value
@@ -76,29 +76,29 @@ double nearest_double(const FT& value) {
 }
 
 py::array_t<double> vertices_to_numpy(const PyMesh& m) {
-  py::array_t<double> out({py::ssize_t(m.mesh.points.size()), py::ssize_t(3)});
+  py::array_t<double> out({py::ssize_t(m.mesh().points.size()), py::ssize_t(3)});
   auto view = out.mutable_unchecked<2>();
   {
     py::gil_scoped_release release;  // exact evaluation of constructed points may take a while
-    for (std::size_t i = 0; i < m.mesh.points.size(); ++i)
+    for (std::size_t i = 0; i < m.mesh().points.size(); ++i)
       for (int j = 0; j < 3; ++j)
-        view(py::ssize_t(i), py::ssize_t(j)) = nearest_double(m.mesh.points[i][j]);
+        view(py::ssize_t(i), py::ssize_t(j)) = nearest_double(m.mesh().points[i][j]);
   }
   return out;
 }
 
 py::array_t<long long> faces_to_numpy(const PyMesh& m) {
-  py::array_t<long long> out({py::ssize_t(m.mesh.triangles.size()), py::ssize_t(3)});
+  py::array_t<long long> out({py::ssize_t(m.mesh().triangles.size()), py::ssize_t(3)});
   auto view = out.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < m.mesh.triangles.size(); ++i)
+  for (std::size_t i = 0; i < m.mesh().triangles.size(); ++i)
     for (std::size_t j = 0; j < 3; ++j)
-      view(py::ssize_t(i), py::ssize_t(j)) = m.mesh.triangles[i][j];
+      view(py::ssize_t(i), py::ssize_t(j)) = m.mesh().triangles[i][j];
   return out;
 }
 
 py::list exact_vertices(const PyMesh& m) {
   py::list out;
-  for (const Point& p : m.mesh.points)
+  for (const Point& p : m.mesh().points)
     out.append(py::make_tuple(to_rational_string(p.x()), to_rational_string(p.y()),
                               to_rational_string(p.z())));
   return out;
@@ -106,7 +106,7 @@ py::list exact_vertices(const PyMesh& m) {
 
 std::string mesh_repr(const PyMesh& m) {
   std::ostringstream out;
-  out << "<morphex.Mesh " << m.mesh.num_triangles() << " faces, " << m.mesh.num_vertices()
+  out << "<morphex.Mesh " << m.mesh().num_triangles() << " faces, " << m.mesh().num_vertices()
       << " vertices" << (m.source.empty() ? "" : ", from " + m.source) << ">";
   return out.str();
 }
@@ -168,7 +168,7 @@ CheckReport check(const PyMesh& m, bool self_intersections, const std::optional<
   ThreadLimit limit(threads);
   CheckOptions options;
   options.self_intersections = self_intersections;
-  CheckReport r{check_mesh(m.mesh, options), ""};
+  CheckReport r{check_mesh(m.mesh(), options), ""};
   r.problems = describe_problems(r.report);
   return r;
 }
@@ -203,7 +203,7 @@ py::object write(const PyMesh& m, const py::object& path, bool exact) {
   RoundingReport report;
   {
     py::gil_scoped_release release;
-    report = write_mesh(m.mesh, p, options);
+    report = write_mesh(m.mesh(), p, options);
   }
   if (exact) return py::none();
   return rounding_dict(report);
@@ -218,7 +218,7 @@ RoundingGrid grid_named(const std::string& precision) {
 PyMesh rounded(const PyMesh& m, const std::string& precision) {
   const RoundingGrid grid = grid_named(precision);
   py::gil_scoped_release release;
-  return {from_double(round_mesh(m.mesh, {grid}).mesh), m.source};
+  return {from_double(round_mesh(m.mesh(), {grid}).mesh), m.source};
 }
 
 }  // namespace
@@ -258,8 +258,9 @@ Operators: a | b (union), a & b (intersection), a - b (difference).)doc")
       .def("exact_vertices", &exact_vertices,
            "Exact coordinates: a list of (x, y, z) strings such as '1/3', each accepted by "
            "fractions.Fraction.")
-      .def_property_readonly("num_vertices", [](const PyMesh& p) { return p.mesh.num_vertices(); })
-      .def_property_readonly("num_faces", [](const PyMesh& p) { return p.mesh.num_triangles(); })
+      .def_property_readonly("num_vertices",
+                             [](const PyMesh& p) { return p.mesh().num_vertices(); })
+      .def_property_readonly("num_faces", [](const PyMesh& p) { return p.mesh().num_triangles(); })
       .def_property_readonly(
           "source",
           [](const PyMesh& p) -> py::object {
@@ -267,14 +268,14 @@ Operators: a | b (union), a & b (intersection), a - b (difference).)doc")
             return py::str(p.source);
           },
           "The file the mesh was read from (named in error messages), or None.")
-      .def("__len__", [](const PyMesh& p) { return p.mesh.num_triangles(); })
+      .def("__len__", [](const PyMesh& p) { return p.mesh().num_triangles(); })
       .def(
           "volume",
           [](const PyMesh& p) {
             FT v;
             {
               py::gil_scoped_release release;
-              v = signed_volume(p.mesh);
+              v = signed_volume(p.mesh());
             }
             return to_fraction(v);
           },
@@ -285,7 +286,8 @@ Operators: a | b (union), a & b (intersection), a - b (difference).)doc")
       .def(
           "translated",
           [](const PyMesh& p, const py::object& offset) {
-            return PyMesh{translated(p.mesh, to_exact_point(offset, "offset") - CGAL::ORIGIN), ""};
+            return PyMesh{translated(p.mesh(), to_exact_point(offset, "offset") - CGAL::ORIGIN),
+                          ""};
           },
           py::arg("offset"), "The mesh moved by an exact (dx, dy, dz) (numbers or '1/3' text).")
       .def("__repr__", &mesh_repr)
@@ -308,8 +310,8 @@ Operators: a | b (union), a & b (intersection), a - b (difference).)doc")
       [](const py::object& half_side, const py::object& centre) {
         const FT r = to_exact(half_side);
         if (r <= 0)
-          throw InputError("", "cube: half_side: expected a positive number, got " +
-                                      to_rational_string(r));
+          throw InputError(
+              "", "cube: half_side: expected a positive number, got " + to_rational_string(r));
         return PyMesh{make_cube(r, to_exact_point(centre, "centre")), ""};
       },
       py::arg("half_side"), py::arg("centre") = py::make_tuple(0, 0, 0),

@@ -19,13 +19,10 @@ PyMesh boolean(const PyMesh& a, const PyMesh& b, BooleanOp op, bool merge_coplan
   ThreadLimit limit(threads);
   BooleanOptions options;
   options.merge_coplanar = merge_coplanar;
-  BooleanResult r = compute_boolean(a.mesh, b.mesh, op, options);
-  if (!r.ok()) {
-    // As `morphex bool`: "FILE: first operand is not a valid solid: ..." (no file: no prefix).
-    const PyMesh& bad = r.status == BooleanStatus::InvalidInputA ? a : b;
-    throw InvalidSolid("", mesh_prefix(bad, "") + r.message);
-  }
-  return {std::move(r.mesh), ""};
+  // As `morphex bool`: "FILE: first operand is not a valid solid: ..." (no file: no prefix).
+  const Solid first = a.solid("", "first operand is not a valid solid: ");
+  const Solid second = b.solid("", "second operand is not a valid solid: ");
+  return PyMesh(compute_boolean(first, second, op, options).solid);
 }
 
 // A structuring element from its text form ("cube:r=1/10") or from a Mesh (a valid solid in its
@@ -41,11 +38,11 @@ StructuringElement structuring_element(const std::string* text, const PyMesh* me
       throw InputError("", "se " + *text + ": " + e.what());
     }
   }
-  require_valid_solid(*mesh, "se");
+  mesh->solid("se");  // the element must be a valid solid
   StructuringElement se;
   se.shape = "mesh";
   se.spec = mesh->source.empty() ? "mesh" : "mesh:path=" + mesh->source;
-  se.mesh = mesh->mesh;
+  se.mesh = mesh->mesh();
   make_exact(se.mesh);  // the morphology's pieces are built from these points many times
   se.convex = is_convex(se.mesh);
   return se;
@@ -60,18 +57,7 @@ PyMesh morphology(MorphologyOp op, const PyMesh& a, const SeArg& se_arg,
   py::gil_scoped_release release;
   ThreadLimit limit(threads);
   const StructuringElement se = structuring_element(text, se_mesh);
-  require_valid_solid(a, "");
-  switch (op) {  // checked above: the _of_valid forms skip a second check
-    case MorphologyOp::Dilate:
-      return {dilation_of_valid(a.mesh, se), ""};
-    case MorphologyOp::Erode:
-      return {erosion_of_valid(a.mesh, se), ""};
-    case MorphologyOp::Open:
-      return {opening_of_valid(a.mesh, se), ""};
-    case MorphologyOp::Close:
-      return {closing_of_valid(a.mesh, se), ""};
-  }
-  throw std::logic_error("unknown morphological operation");
+  return PyMesh(apply_morphology(op, a.solid(""), se));
 }
 
 py::object repair(const PyMesh& m, bool merge_coplanar, bool report, double budget) {
@@ -83,13 +69,13 @@ py::object repair(const PyMesh& m, bool merge_coplanar, bool report, double budg
     options.merge_coplanar = merge_coplanar;
     options.budget = budget;
     try {
-      r = repair_mesh(m.mesh, options);
+      r = repair_mesh(m.mesh(), options);
     } catch (const InputError& e) {
       // As `morphex repair`: the repair's message has no file name, the caller adds it.
       throw InputError("", mesh_prefix(m, "") + "cannot repair: " + e.what());
     }
   }
-  PyMesh out{std::move(r.mesh), ""};
+  PyMesh out(std::move(r.solid));
   if (!report) return py::cast(std::move(out));
   return py::make_tuple(std::move(out), from_json(pipeline::to_json(r.report)));
 }
@@ -158,9 +144,7 @@ void register_operations(py::module_& m) {
       [](const PyMesh& a, const PyMesh& b, const std::optional<int>& threads) {
         py::gil_scoped_release release;
         ThreadLimit limit(threads);
-        require_valid_solid(a, "a");
-        require_valid_solid(b, "b");
-        return PyMesh{minkowski_sum(a.mesh, b.mesh), ""};
+        return PyMesh(minkowski_sum(a.solid("a"), b.solid("b")));
       },
       py::arg("a"), py::arg("b"), py::kw_only(), py::arg("threads") = py::none(),
       (std::string("Exact Minkowski sum A + B of two valid solids (B convex or not).\n") +

@@ -16,9 +16,8 @@ namespace mp = morphex::pipeline;
 
 void require_in(const char* name, double value, double lo, double hi) {
   if (!(value >= lo && value <= hi))
-    throw InputError("", std::string(name) + ": expected a number in [" +
-                                std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
-                                std::to_string(value));
+    throw InputError("", std::string(name) + ": expected a number in [" + std::to_string(lo) +
+                             ", " + std::to_string(hi) + "], got " + std::to_string(value));
 }
 
 // The command line's checks of `morphex describe`'s options, with the keyword names.
@@ -30,8 +29,8 @@ void check_settings(const DescriptorSettings& s) {
                                                     {"close_to", s.close_to}};
   for (const auto& [name, v] : numbers)
     if (!(v > 0))
-      throw InputError("", std::string(name) + ": expected a positive number, got " +
-                                  std::to_string(v));
+      throw InputError(
+          "", std::string(name) + ": expected a positive number, got " + std::to_string(v));
   if (s.open_from > s.open_to || s.close_from > s.close_to)
     throw InputError("", "open_from/close_from must not exceed open_to/close_to");
   require_in("d2_samples", s.d2_samples, 16, 1e7);
@@ -72,22 +71,20 @@ py::dict describe_mesh(const PyMesh& mesh, const DescriptorSettings& s, bool rep
   {
     py::gil_scoped_release release;
     ThreadLimit limit(threads);
-    Mesh repaired_mesh;
-    const Mesh* solid = &mesh.mesh;
+    std::optional<Solid> solid;
     if (repair) {
       try {
-        RepairResult r = repair_mesh(mesh.mesh);
-        repaired_mesh = std::move(r.mesh);
+        RepairResult r = repair_mesh(mesh.mesh());
+        solid = std::move(r.solid);
         repaired = r.report;
-        solid = &repaired_mesh;
       } catch (const InputError& e) {
         throw InputError("", mesh_prefix(mesh, "") + "cannot repair: " + e.what());
       }
     } else {
-      require_valid_solid(mesh, "");
+      solid = mesh.solid("");
     }
     const auto start = std::chrono::steady_clock::now();
-    d = describe_valid(*solid, s);  // checked or repaired above
+    d = describe(*solid, s);
     seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   py::dict out = descriptors_dict(d);

@@ -20,7 +20,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const Mesh mesh = read_mesh_from_string(content, MeshFormat::Off, "fuzz");
     if (mesh.num_triangles() > 2000) return;  // the arrangement of big soups is not a reader bug
     const RepairResult r = repair_mesh(mesh);
-    if (!check_mesh(r.mesh, kValidityOnly).valid_solid())
+    if (!check_mesh(r.solid, kValidityOnly).valid_solid())
       morphex::fuzz::finding("repair_mesh returned a mesh that is not a valid solid");
   });
   return 0;

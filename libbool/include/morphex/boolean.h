@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "morphex/mesh.h"
+#include "morphex/solid.h"
 
 namespace morphex {
 
@@ -26,8 +27,7 @@ BooleanOp parse_boolean_op(const std::string& name);
 const char* to_string(BooleanOp op);
 
 struct BooleanOptions {
-  bool validate_inputs = true;  // refuse invalid solids before any work
-  bool provenance = false;      // fill BooleanResult::provenance
+  bool provenance = false;  // fill BooleanResult::provenance
   // Merge neighbouring coplanar result triangles and drop the vertices that are not corners
   // (merge_coplanar_faces): no new coordinates, far fewer faces after coplanar overlaps.
   bool merge_coplanar = true;
@@ -39,7 +39,7 @@ struct BooleanOptions {
 };
 
 struct PhaseSeconds {
-  double validate = 0, pairs = 0, segments = 0, retriangulate = 0, classify = 0, assemble = 0;
+  double pairs = 0, segments = 0, retriangulate = 0, classify = 0, assemble = 0;
 };
 
 struct BooleanStats {
@@ -55,30 +55,27 @@ struct BooleanStats {
   PhaseSeconds seconds;
 };
 
-enum class BooleanStatus { Ok, InvalidInputA, InvalidInputB };
-
 struct FaceOrigin {
   std::uint8_t mesh;   // 0 for A, 1 for B
   std::uint32_t face;  // triangle index in that input
 };
 
 struct BooleanResult {
-  BooleanStatus status = BooleanStatus::Ok;
-  std::string message;  // why an input was refused, empty when Ok
-  Mesh mesh;            // a valid closed solid (possibly empty) when Ok
+  Solid solid;  // possibly empty
   BooleanStats stats;
   std::vector<FaceOrigin> provenance;  // one per output triangle when requested
-  bool ok() const { return status == BooleanStatus::Ok; }
 };
 
-BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
+// The operands are Solids (morphex/solid.h): checked once where they entered, so the operation
+// has nothing to refuse. When check_solid made them, the Boolean reuses the check's box trees.
+BooleanResult compute_boolean(const Solid& a, const Solid& b, BooleanOp op,
                               const BooleanOptions& options = {});
 
 // Re-triangulates every maximal region of neighbouring coplanar, equally oriented triangles of a
 // valid solid without its removable vertices: those inside a region, and those on a straight crease
 // between two regions. Exact (only existing points are used); the solid is unchanged as a set.
 // Regions where two distinct vertices share a position (separated non-manifold features) are kept.
-Mesh merge_coplanar_faces(const Mesh& solid);
+Solid merge_coplanar_faces(const Solid& solid);
 
 struct UnionStats {
   std::size_t binary_unions = 0;    // compute_boolean calls made
@@ -89,9 +86,9 @@ struct UnionStats {
 // The solids are sorted along a space-filling curve and united in a balanced binary tree, so each
 // binary union meets neighbouring pieces and intermediate results stay small; independent subtrees
 // run in parallel with TBB. The tree depends only on the input, so the result is identical for any
-// number of threads. Inputs are trusted to be valid solids (they are not re-checked). The other
-// way to unite many solids at once is winding_solid on their concatenated boundaries
-// (morphex/winding.h): one arrangement of every piece, kept where the winding number is >= 1.
-Mesh compute_union(std::vector<Mesh> solids, UnionStats* stats = nullptr);
+// number of threads. The other way to unite many solids at once is winding_solid on their
+// concatenated boundaries (morphex/winding.h): one arrangement of every piece, kept where the
+// winding number is >= 1.
+Solid compute_union(const std::vector<Solid>& solids, UnionStats* stats = nullptr);
 
 }  // namespace morphex

@@ -20,6 +20,7 @@
 #include <cstddef>
 
 #include "morphex/mesh.h"
+#include "morphex/solid.h"
 
 namespace morphex {
 
@@ -49,7 +50,7 @@ struct RepairReport {
 };
 
 struct RepairResult {
-  Mesh mesh;  // a valid solid
+  Solid solid;
   RepairReport report;
 };
 

@@ -30,6 +30,7 @@
 
 #include "morphex/mesh.h"
 #include "morphex/repair.h"
+#include "morphex/solid.h"
 
 namespace morphex {
 
@@ -54,7 +55,7 @@ struct SolidifyReport {
 };
 
 struct SolidifyResult {
-  Mesh mesh;  // a valid solid
+  Solid solid;
   SolidifyReport report;
 };
 

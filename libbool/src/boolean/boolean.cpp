@@ -1,17 +1,16 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The Boolean driver: validation, then the phases in order, each timed.
+// The Boolean driver: the steps of docs/boolean-design.md in order, each timed (step 1 ran when
+// the operands were read: boolean/step1_triangulate.h).
 #include "morphex/boolean.h"
 
 #include <tbb/parallel_invoke.h>
 
-#include <chrono>
-#include <stdexcept>
-
 #include "boolean/boolean_internal.h"
-#include "check/check_internal.h"
-#include "morphex/check.h"
-#include "morphex/progress.h"
+#include "boolean/segments_internal.h"
+#include "morphex/internal/solid_access.h"
 #include "morphex/internal/stopwatch.h"
+#include "morphex/internal/valid_operations.h"
+#include "morphex/progress.h"
 
 namespace morphex {
 
@@ -35,59 +34,41 @@ const char* to_string(BooleanOp op) {
   return "?";
 }
 
-BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
-                              const BooleanOptions& options) {
-  BooleanResult result;
+namespace detail {
+
+MeshBoolean boolean_of_valid(const Mesh& a, const Mesh& b, BooleanOp op,
+                             const BooleanOptions& options,
+                             std::shared_ptr<const TriangleTree> tree_a,
+                             std::shared_ptr<const TriangleTree> tree_b) {
+  MeshBoolean result;
   Stopwatch clock;
   // The input check's trees, when it built them over whole meshes, serve step 2 and step 6.
-  detail::OperandTrees trees;
+  OperandTrees trees;
+  trees.adopt(0, std::move(tree_a));
+  trees.adopt(1, std::move(tree_b));
   // Each step's share of the bar, roughly its share of a Boolean's time on bench_bool's real
-  // pairs, so that the bar moves evenly; the check takes the first part when it runs.
-  const double checked = options.validate_inputs ? 0.4 : 0;
-  ProgressSteps steps;
-  const auto step = [&](double end, const char* name) {
-    steps.next(checked + (1 - checked) * end, name);
-  };
-  steps.next(checked, "checking inputs");
-  if (options.validate_inputs) {
-    // Both operands at once: each check is parallel inside, but its sequential parts (edge
-    // records, patch proofs) leave threads idle that the other check can use.
-    MeshReport reports[2];
-    std::optional<TriangleTree> checked[2];
-    tbb::parallel_invoke(
-        [&] { reports[0] = detail::check_mesh_keeping_tree(a, kValidityOnly, checked[0]); },
-        [&] { reports[1] = detail::check_mesh_keeping_tree(b, kValidityOnly, checked[1]); });
-    for (int side = 0; side < 2; ++side) trees.adopt(side, std::move(checked[side]));
-    for (int side = 0; side < 2; ++side) {
-      const MeshReport& report = reports[side];
-      if (!report.valid_solid()) {
-        result.status = side == 0 ? BooleanStatus::InvalidInputA : BooleanStatus::InvalidInputB;
-        result.message = std::string(side == 0 ? "first" : "second") +
-                         " operand is not a valid solid: " + describe_problems(report);
-        return result;
-      }
-    }
-  }
+  // pairs, so that the bar moves evenly.
+  ProgressSteps step;
   BooleanStats& stats = result.stats;
-  stats.seconds.validate = clock.lap();
-  step(0.1, "pairing triangles");
+  step.next(0.1, "pairing triangles");
 
-  // The exact point table of both operands (step 3's), first: the trees step 2 builds box the
-  // vertices from its contiguous copy of their intervals.
-  detail::PointTable points(a, b);
+  // Step 2. The exact point table of both operands (step 3's) comes first: the trees step 2
+  // builds box the vertices from its contiguous copy of their intervals.
+  PointTable points(a, b);
   trees.use_points(&points);
   // Turned CAD parts are paired along their own axes, where their long thin facets' boxes are
   // tight (box_frame.h).
   if (const auto& xyz = points.input_near_doubles(); !xyz.empty())
-    trees.use_frame(detail::choose_box_frame(a, xyz.data(), b, xyz.data() + points.vertex(1, 0)));
-  const auto pairs = detail::candidate_pairs(a, b, trees);
+    trees.use_frame(choose_box_frame(a, xyz.data(), b, xyz.data() + points.vertex(1, 0)));
+  const Pairs pairs = candidate_pairs(a, b, trees);
   stats.candidate_pairs = pairs.size();
   stats.seconds.pairs = clock.lap();
-  step(0.45, "intersecting");
+  step.next(0.45, "intersecting");
 
-  detail::IntersectOptions intersect_options;
+  // Steps 3 and 4: the segments, then oriented and gathered per facet.
+  IntersectOptions intersect_options;
   intersect_options.points = &points;
-  detail::Intersection x = detail::intersect(a, b, pairs, intersect_options);
+  Intersection x = orient_segments(intersect(a, b, pairs, intersect_options));
   trees.use_points(&x.points);  // the table moved; step 6 may build the tree step 2 did not
   stats.intersecting_pairs = x.intersecting_pairs;
   stats.intersection_points = x.constructed_points;
@@ -96,32 +77,41 @@ BooleanResult compute_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
   for (int side = 0; side < 2; ++side)
     for (const auto& [facet, cut] : x.cuts[side]) stats.segments += cut.segments.size();
   stats.seconds.segments = clock.lap();
-  step(0.7, "retriangulating");
+  step.next(0.7, "retriangulating");
 
-  const detail::Refined refined[2] = {detail::retriangulate(a, 0, x),
-                                      detail::retriangulate(b, 1, x)};
+  // Step 5.
+  const Refined refined[2] = {retriangulate(a, 0, x), retriangulate(b, 1, x)};
   stats.seconds.retriangulate = clock.lap();
-  step(0.8, "classifying");
+  step.next(0.8, "classifying");
 
-  detail::ClassifyCounts counts[2];
-  // The two sides at once: a side's patch flood fill is sequential.
-  detail::Labels labels[2];
-  tbb::parallel_invoke(
-      [&] { labels[0] = detail::classify(a, b, 0, refined[0], x, trees, counts[0]); },
-      [&] { labels[1] = detail::classify(b, a, 1, refined[1], x, trees, counts[1]); });
+  // Step 6, the two sides at once: a side's patch flood fill is sequential.
+  ClassifyCounts counts[2];
+  Labels labels[2];
+  tbb::parallel_invoke([&] { labels[0] = classify(a, b, 0, refined[0], x, trees, counts[0]); },
+                       [&] { labels[1] = classify(b, a, 1, refined[1], x, trees, counts[1]); });
   stats.patches = counts[0].patches + counts[1].patches;
   stats.patches_by_orientation_rule = counts[0].by_orientation_rule + counts[1].by_orientation_rule;
   stats.patches_by_ray_cast = counts[0].by_ray_cast + counts[1].by_ray_cast;
   stats.orientation_conflicts = counts[0].rule_conflicts + counts[1].rule_conflicts;
   stats.seconds.classify = clock.lap();
-  step(1, "assembling");
+  step.next(1, "assembling");
 
+  // Step 7.
   result.mesh =
-      detail::assemble(a, b, x, refined, labels, op, options.merge_coplanar && !options.provenance,
-                       options.provenance ? &result.provenance : nullptr);
+      assemble(a, b, x, refined, labels, op, options.merge_coplanar && !options.provenance,
+               options.provenance ? &result.provenance : nullptr);
   if (options.exact_output) make_exact(result.mesh);
   stats.seconds.assemble = clock.lap();
   return result;
+}
+
+}  // namespace detail
+
+BooleanResult compute_boolean(const Solid& a, const Solid& b, BooleanOp op,
+                              const BooleanOptions& options) {
+  detail::MeshBoolean r = detail::boolean_of_valid(
+      a.mesh(), b.mesh(), op, options, detail::SolidAccess::tree(a), detail::SolidAccess::tree(b));
+  return {detail::trusted_solid(std::move(r.mesh)), r.stats, std::move(r.provenance)};
 }
 
 }  // namespace morphex

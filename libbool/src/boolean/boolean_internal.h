@@ -8,15 +8,16 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <unordered_map>
 #include <utility>
 #include <vector>
 
-#include "tree/box_frame.h"
+#include "exact/point_table.h"
 #include "morphex/boolean.h"
 #include "morphex/internal/union_find.h"
-#include "exact/point_table.h"
+#include "tree/box_frame.h"
 #include "tree/box_tree.h"
 
 namespace morphex::detail {
@@ -63,7 +64,7 @@ class OperandTrees {
   ApproxPoint corner(int side, VertexIndex v) const;
   // A tree over every triangle of that side's mesh along the coordinate axes, built elsewhere
   // (by the input check).
-  void adopt(int side, std::optional<TriangleTree>&& tree) {
+  void adopt(int side, std::shared_ptr<const TriangleTree> tree) {
     if (tree) tree_[side] = std::move(tree);
   }
 
@@ -71,7 +72,8 @@ class OperandTrees {
   // The boxes of that side's vertices, by vertex index, along `frame`.
   std::vector<FloatBox> vertex_boxes(int side, const Mesh& mesh, const BoxFrame& frame) const;
 
-  std::optional<TriangleTree> tree_[2], framed_[2];
+  std::shared_ptr<const TriangleTree> tree_[2];  // shared with the Solid whose check built it
+  std::optional<TriangleTree> framed_[2];
   const PointTable* points_ = nullptr;
   BoxFrame frame_;
 };
@@ -149,8 +151,12 @@ struct IntersectOptions {
   // the result's (moved from).
   PointTable* points = nullptr;
 };
-Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
+// Step 3 (step3_*.cpp): what each candidate pair leaves, every intersection point named once.
+struct PairFindings;  // segments_internal.h
+PairFindings intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
                        const IntersectOptions& options = {});
+// Step 4 (step4_orient.cpp): the findings gathered per facet, transversal segments oriented.
+Intersection orient_segments(PairFindings&& found);
 
 // Step 5: the cut facets of one mesh re-triangulated (the other facets stay as they are).
 struct SubTriangle {

@@ -102,9 +102,14 @@ std::vector<PairSigns> pair_signs(const PairContext& c, const FacetNormals& norm
 std::vector<PairPoint> coplanar_overlap(const PointTable& table, const Corners& ta,
                                         const Corners& tb, int dropped, bool soup);
 
-// Step 4 (step4_orient.cpp): the per-facet cuts of both sides from the pairs' outcomes (final
-// ids given), built per facet in parallel from its pairs in pair order; transversal segments are
-// oriented by the seed's rule.
-void build_cuts(Intersection& x, const Pairs& pairs, const std::vector<PairOutcome>& outcomes);
+// Step 3's result, step 4's input: the point table and the ids of the input vertices that met
+// (in `x`, whose cuts are still empty), the candidate pairs that no plane separates, and each one's
+// outcome with final point ids.
+struct PairFindings {
+  Intersection x;
+  Pairs pairs;
+  std::vector<PairOutcome> outcomes;
+  std::vector<PointId> merged;  // ids given to several input vertices at one position
+};
 
 }  // namespace morphex::detail

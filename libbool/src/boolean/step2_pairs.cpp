@@ -54,12 +54,13 @@ std::vector<FloatBox> OperandTrees::vertex_boxes(int side, const Mesh& mesh,
 }
 
 const TriangleTree& OperandTrees::of(int side, const Mesh& mesh) {
-  if (!tree_[side]) tree_[side].emplace(mesh, vertex_boxes(side, mesh, BoxFrame{}));
+  if (!tree_[side])
+    tree_[side] = std::make_shared<const TriangleTree>(mesh, vertex_boxes(side, mesh, BoxFrame{}));
   return *tree_[side];
 }
 
 bool OperandTrees::has_pairs_tree(int side) const {
-  return frame_.world ? tree_[side].has_value() : framed_[side].has_value();
+  return frame_.world ? tree_[side] != nullptr : framed_[side].has_value();
 }
 
 const TriangleTree& OperandTrees::for_pairs(int side, const Mesh& mesh) {

@@ -33,10 +33,10 @@
 #include <numeric>
 #include <tuple>
 
-#include "containers/block_offsets.h"
-#include "exact/filtered.h"
-#include "containers/flat_map.h"
 #include "boolean/segments_internal.h"
+#include "containers/block_offsets.h"
+#include "containers/flat_map.h"
+#include "exact/filtered.h"
 
 namespace morphex::detail {
 
@@ -411,23 +411,6 @@ void name_points(Intersection& x, std::vector<PairOutcome>& outcomes, bool soup)
       }
 }
 
-// The summary counts and the point flags (merged vertices, points on the other surface).
-void summarize(Intersection& x, const std::vector<PairOutcome>& outcomes,
-               const std::vector<PointId>& merged) {
-  for (const PairOutcome& out : outcomes) {
-    x.intersecting_pairs += out.kind != PairOutcome::Kind::None;
-    x.coplanar_overlaps = x.coplanar_overlaps || out.kind == PairOutcome::Kind::Polygon;
-  }
-  const PointTable& table = x.points;
-  x.flags.assign(table.size(), 0);
-  for (PointId id : merged) x.flags[id] |= kMerged;
-  for (int side = 0; side < 2; ++side)
-    for (const auto& [facet, cut] : x.cuts[side])
-      for (const CutPoint& p : cut.points) x.flags[p.id] |= kOnSurface;
-  for (PointId id = PointId(table.num_inputs()); id < table.size(); ++id)
-    if (x.flags[id] & kOnSurface) ++x.constructed_points;
-}
-
 // The indices of the pairs whose triangles no plane separates, in order (in parallel blocks).
 std::vector<std::uint32_t> unseparated(const std::vector<PairSigns>& signs) {
   constexpr std::size_t kBlock = 1 << 14;
@@ -449,12 +432,13 @@ std::vector<std::uint32_t> unseparated(const std::vector<PairSigns>& signs) {
 
 // The phases run in parallel where the pairs are independent and end with one sequential pass in
 // pair order that gives final ids, so the result is the same for any number of threads.
-Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
+PairFindings intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
                        const IntersectOptions& options) {
-  Intersection x;
+  PairFindings found;
+  Intersection& x = found.x;
   x.points = options.points ? std::move(*options.points) : PointTable(a, b, options.soup);
   const UsedFacets used = used_facets(a, b, pairs);
-  const std::vector<PointId> merged = identify_vertices(x, a, b, used);
+  found.merged = identify_vertices(x, a, b, used);
   // Corners are named by the ids of their positions from here on: predicates on coincident
   // corners of the two meshes (identical meshes, shared vertices) are decided by the ids alone.
   const PairContext c{{&a, &b}, pairs, options, x.points, x.vertex_rep};
@@ -466,8 +450,10 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
   // between two finely tessellated parallel plates): the outcomes, and the passes over them, are
   // for the pairs left, in their order.
   const std::vector<std::uint32_t> live = unseparated(signs);
-  Pairs live_pairs(live.size());
-  std::vector<PairOutcome> outcomes(live.size());
+  Pairs& live_pairs = found.pairs;
+  std::vector<PairOutcome>& outcomes = found.outcomes;
+  live_pairs.resize(live.size());
+  outcomes.resize(live.size());
   for_each_upward(live.size(), [&](std::size_t j) {
     const std::uint32_t k = live[j];
     live_pairs[j] = pairs[k];
@@ -477,9 +463,7 @@ Intersection intersect(const Mesh& a, const Mesh& b, const Pairs& pairs,
     chord_outcome(c, crossings, signs[k], line, k, outcomes[j]);
   });
   name_points(x, outcomes, options.soup);
-  build_cuts(x, live_pairs, outcomes);  // step 4
-  summarize(x, outcomes, merged);
-  return x;
+  return found;
 }
 
 }  // namespace morphex::detail

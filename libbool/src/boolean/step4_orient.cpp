@@ -9,8 +9,8 @@
 // the result does not depend on the thread count.
 #include <tbb/parallel_for.h>
 
-#include "containers/id_pairs.h"
 #include "boolean/segments_internal.h"
+#include "containers/id_pairs.h"
 
 namespace morphex::detail {
 
@@ -48,8 +48,25 @@ void add_outcome(FacetCut& cut, int side, const PairOutcome& out, std::uint32_t 
   }
 }
 
-}  // namespace
+// The summary counts and the point flags (merged vertices, points on the other surface).
+void summarize(Intersection& x, const std::vector<PairOutcome>& outcomes,
+               const std::vector<PointId>& merged) {
+  for (const PairOutcome& out : outcomes) {
+    x.intersecting_pairs += out.kind != PairOutcome::Kind::None;
+    x.coplanar_overlaps = x.coplanar_overlaps || out.kind == PairOutcome::Kind::Polygon;
+  }
+  const PointTable& table = x.points;
+  x.flags.assign(table.size(), 0);
+  for (PointId id : merged) x.flags[id] |= kMerged;
+  for (int side = 0; side < 2; ++side)
+    for (const auto& [facet, cut] : x.cuts[side])
+      for (const CutPoint& p : cut.points) x.flags[p.id] |= kOnSurface;
+  for (PointId id = PointId(table.num_inputs()); id < table.size(); ++id)
+    if (x.flags[id] & kOnSurface) ++x.constructed_points;
+}
 
+// The per-facet cuts of both sides from the pairs' outcomes (final ids given), built per facet in
+// parallel from its pairs in pair order.
 void build_cuts(Intersection& x, const Pairs& pairs, const std::vector<PairOutcome>& outcomes) {
   const std::size_t np = pairs.size();
   for (int side = 0; side < 2; ++side) {
@@ -73,6 +90,15 @@ void build_cuts(Intersection& x, const Pairs& pairs, const std::vector<PairOutco
       }
     });
   }
+}
+
+}  // namespace
+
+Intersection orient_segments(PairFindings&& found) {
+  Intersection& x = found.x;
+  build_cuts(x, found.pairs, found.outcomes);
+  summarize(x, found.outcomes, found.merged);
+  return std::move(x);
 }
 
 }  // namespace morphex::detail

@@ -26,11 +26,12 @@
 #include <unordered_map>
 
 #include "boolean/boolean_internal.h"
-#include "exact/double_plane.h"
 #include "boolean/merge_adjacency.h"
 #include "boolean/merge_triangulate.h"
+#include "exact/double_plane.h"
 #include "morphex/boolean.h"
 #include "morphex/internal/parallel_points.h"
+#include "morphex/internal/solid_access.h"
 #include "tree/box_tree.h"
 
 namespace morphex {
@@ -538,8 +539,9 @@ Mesh materialize(const PointTable& table, const IdMesh& surface) {
 
 }  // namespace detail
 
-Mesh merge_coplanar_faces(const Mesh& solid) {
-  if (solid.empty()) return solid;
+Solid merge_coplanar_faces(const Solid& input) {
+  const Mesh& solid = input.mesh();
+  if (solid.empty()) return input;
   // The mesh as its own point table: vertex v is point v, and each face is its own plane.
   const detail::PointTable table(solid, solid, true);
   detail::IdMesh surface;
@@ -551,7 +553,8 @@ Mesh merge_coplanar_faces(const Mesh& solid) {
   std::vector<std::uint32_t> plane_of(solid.num_triangles());
   for (std::uint32_t f = 0; f < plane_of.size(); ++f) plane_of[f] = f;
   detail::merge_coplanar(table, surface, planes, plane_of);
-  return detail::materialize(table, surface);
+  // The same solid as a set, exactly: still valid.
+  return detail::trusted_solid(detail::materialize(table, surface));
 }
 
 }  // namespace morphex

@@ -9,6 +9,8 @@
 #include <stdexcept>
 
 #include "morphex/boolean.h"
+#include "morphex/internal/solid_access.h"
+#include "morphex/internal/valid_operations.h"
 #include "morphex/progress.h"
 #include "tree/box_tree.h"
 
@@ -89,18 +91,16 @@ Operand unite_node(std::vector<Operand>& items, std::size_t begin, std::size_t e
       out.mesh.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
   } else {
     ++counters.binary_unions;
-    BooleanOptions options;
-    options.validate_inputs = false;
-    BooleanResult r = compute_boolean(left.mesh, right.mesh, BooleanOp::Union, options);
-    if (!r.ok()) throw std::logic_error("compute_union: " + r.message);
-    out.mesh = std::move(r.mesh);
+    out.mesh = detail::boolean_of_valid(left.mesh, right.mesh, BooleanOp::Union).mesh;
   }
   return out;
 }
 
 }  // namespace
 
-Mesh compute_union(std::vector<Mesh> solids, UnionStats* stats) {
+namespace detail {
+
+Mesh union_of_valid(std::vector<Mesh> solids, UnionStats* stats) {
   std::vector<Operand> items;
   items.reserve(solids.size());
   CGAL::Bbox_3 all;
@@ -136,6 +136,15 @@ Mesh compute_union(std::vector<Mesh> solids, UnionStats* stats) {
     stats->disjoint_merges = counters.disjoint_merges;
   }
   return std::move(result.mesh);
+}
+
+}  // namespace detail
+
+Solid compute_union(const std::vector<Solid>& solids, UnionStats* stats) {
+  std::vector<Mesh> meshes;  // the tree takes its operands over (the disjoint merges extend them)
+  meshes.reserve(solids.size());
+  for (const Solid& solid : solids) meshes.push_back(solid.mesh());
+  return detail::trusted_solid(detail::union_of_valid(std::move(meshes), stats));
 }
 
 }  // namespace morphex

@@ -2,6 +2,7 @@
 // repair_mesh: merged vertices, repeated faces, the closed-chain test and the orientation, then
 // winding_solid (morphex/repair.h).
 #include "morphex/repair.h"
+#include "morphex/internal/solid_access.h"
 #include "morphex/progress.h"
 
 #include <tbb/parallel_sort.h>
@@ -10,11 +11,11 @@
 #include <iomanip>
 #include <sstream>
 
-#include "morphex/check.h"
-#include "morphex/shapes.h"
-#include "morphex/internal/union_find.h"
-#include "morphex/winding.h"
 #include "exact/point_index.h"
+#include "morphex/check.h"
+#include "morphex/internal/union_find.h"
+#include "morphex/shapes.h"
+#include "morphex/winding.h"
 
 namespace morphex {
 namespace {
@@ -158,7 +159,7 @@ RepairResult repair_mesh(const Mesh& mesh, const RepairOptions& options) {
   steps.next(0.15, "checking");
   const MeshReport report = check_mesh(mesh, check);
   if (report.valid_solid()) {
-    result.mesh = mesh;
+    result.solid = detail::trusted_solid(mesh);  // the check just said so
     r.output_faces = mesh.num_triangles();
     r.components_out = r.components_in;
     return result;
@@ -187,14 +188,15 @@ RepairResult repair_mesh(const Mesh& mesh, const RepairOptions& options) {
   winding.pairs = &pairs;
   WindingStats stats;
   steps.next(1, "");  // the arrangement names its own steps
-  result.mesh = winding_solid(chain, {}, winding, &stats);
-  if (result.mesh.empty()) throw InputError("", "mesh bounds no region of positive winding number");
+  Mesh solid = winding_solid(chain, {}, winding, &stats);
+  if (solid.empty()) throw InputError("", "mesh bounds no region of positive winding number");
   r.degenerate_faces = stats.degenerate_faces;
   r.cancelled_faces = stats.cancelled_faces;
   r.intersecting_pairs = stats.intersecting_pairs;
-  r.output_faces = result.mesh.num_triangles();
-  r.components_out = component_count(result.mesh);
+  r.output_faces = solid.num_triangles();
+  r.components_out = component_count(solid);
   r.changed = true;
+  result.solid = detail::trusted_solid(std::move(solid));  // the arrangement's region is one
   return result;
 }
 

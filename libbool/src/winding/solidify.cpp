@@ -2,6 +2,7 @@
 // solidify (morphex/solidify.h): a closed chain from a soup with CGAL's polygon-soup tools, then
 // the exact repair.
 #include "morphex/solidify.h"
+#include "morphex/internal/solid_access.h"
 #include "morphex/progress.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -18,10 +19,10 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "morphex/check.h"
-#include "morphex/repair.h"
-#include "morphex/internal/union_find.h"
 #include "exact/point_index.h"
+#include "morphex/check.h"
+#include "morphex/internal/union_find.h"
+#include "morphex/repair.h"
 
 namespace morphex {
 namespace {
@@ -233,7 +234,7 @@ SolidifyResult solidify(const Mesh& mesh, const SolidifyOptions& options) {
   steps.next(0.1, "checking");
   if (check_mesh(mesh, kValidityOnly).valid_solid()) {
     r.method = "unchanged";
-    out.mesh = mesh;
+    out.solid = detail::trusted_solid(mesh);  // the check just said so
     r.output_faces = mesh.num_triangles();
     return out;
   }
@@ -270,8 +271,8 @@ SolidifyResult solidify(const Mesh& mesh, const SolidifyOptions& options) {
     }
   }
   r.intersecting_pairs = repaired.report.intersecting_pairs;
-  out.mesh = std::move(repaired.mesh);
-  r.output_faces = out.mesh.num_triangles();
+  out.solid = std::move(repaired.solid);
+  r.output_faces = out.solid.num_triangles();
   return out;
 }
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // winding_solid: the chain, the pairs, the driver and the assembly (morphex/winding.h).
 #include "morphex/winding.h"
-#include "morphex/progress.h"
 #include "morphex/internal/stopwatch.h"
+#include "morphex/progress.h"
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
@@ -215,7 +215,7 @@ Mesh winding_solid(const Mesh& surface, const std::vector<int>& weights,
     IntersectOptions soup;
     soup.soup = true;
     soup.planes = &chain.plane;
-    Intersection x = intersect(chain.soup, chain.soup, pairs, soup);
+    Intersection x = orient_segments(intersect(chain.soup, chain.soup, pairs, soup));
     stats.intersecting_pairs = x.intersecting_pairs;
     stats.triple_points = merge_soup_cuts(chain.soup, x);
     stats.cut_facets = x.cuts[0].size();

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "boolean/boolean_internal.h"
+#include "boolean/segments_internal.h"
 #include "morphex/winding.h"
 #include "tree/box_tree.h"
 

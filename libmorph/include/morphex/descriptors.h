@@ -38,6 +38,7 @@
 #include <vector>
 
 #include "morphex/mesh.h"
+#include "morphex/solid.h"
 
 namespace morphex {
 
@@ -70,11 +71,9 @@ struct Descriptors {
   double seconds_morphology = 0;
 };
 
-// Precondition: a valid solid with positive volume (throws InvalidSolid otherwise).
-Descriptors describe(const Mesh& solid, const DescriptorSettings& settings = {});
-// The same for a mesh already known to be a valid solid (a pipeline stage's output, a repair's
-// result): the input check, which costs about as much as reading the mesh, is skipped.
-Descriptors describe_valid(const Mesh& solid, const DescriptorSettings& settings = {});
+// The descriptors of a solid with positive volume (InvalidSolid "cannot describe: the mesh has no
+// volume" otherwise; InputError for settings out of range).
+Descriptors describe(const Solid& solid, const DescriptorSettings& settings = {});
 
 // The names under which descriptor vectors are stored and compared, and the vector for each:
 //   "morphology"        every morphological block, weighted (the best purely morphological one)

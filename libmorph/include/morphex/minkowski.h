@@ -15,6 +15,7 @@
 #include <cstddef>
 
 #include "morphex/mesh.h"
+#include "morphex/solid.h"
 
 namespace morphex {
 
@@ -25,8 +26,8 @@ struct MinkowskiStats {
   double seconds_pieces = 0, seconds_union = 0;
 };
 
-// A + B for closed solids. Throws InvalidSolid if either is not a valid solid.
-Mesh minkowski_sum(const Mesh& a, const Mesh& b, MinkowskiStats* stats = nullptr);
+// A + B, a valid solid (empty when either is).
+Solid minkowski_sum(const Solid& a, const Solid& b, MinkowskiStats* stats = nullptr);
 
 // How the pieces are united: the balanced tree of binary unions (compute_union, the default:
 // intermediate unions shed the overlap early) or one winding arrangement of all of them

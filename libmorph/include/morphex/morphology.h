@@ -10,6 +10,7 @@
 #include <string>
 
 #include "morphex/minkowski.h"
+#include "morphex/solid.h"
 #include "morphex/structuring_element.h"
 
 namespace morphex {
@@ -26,25 +27,14 @@ struct MorphologyStats {
   double seconds = 0;
 };
 
-// Throw std::invalid_argument if `a` is not a valid solid.
-Mesh dilation(const Mesh& a, const StructuringElement& se, MorphologyStats* stats = nullptr);
-Mesh erosion(const Mesh& a, const StructuringElement& se, MorphologyStats* stats = nullptr);
-// The same for an `a` already known to be a valid solid (the result of an exact morphex operation
-// or of a check): the input check, which costs as much as a small operation, is skipped. Chains
-// such as the descriptor's granulometry validate once at the start.
-Mesh dilation_of_valid(const Mesh& a, const StructuringElement& se,
+// The operations on a valid solid (morphex/solid.h), whose result is one again: chains feed each
+// result to the next operation without checking it again. Each refuses a structuring element out
+// of proportion with `a` (check_structuring_element_scale) before any work.
+Solid apply_morphology(MorphologyOp op, const Solid& a, const StructuringElement& se,
                        MorphologyStats* stats = nullptr);
-Mesh erosion_of_valid(const Mesh& a, const StructuringElement& se,
-                      MorphologyStats* stats = nullptr);
-Mesh opening_of_valid(const Mesh& a, const StructuringElement& se,
-                      MorphologyStats* stats = nullptr);
-Mesh closing_of_valid(const Mesh& a, const StructuringElement& se,
-                      MorphologyStats* stats = nullptr);
-Mesh opening(const Mesh& a, const StructuringElement& se, MorphologyStats* stats = nullptr);
-Mesh closing(const Mesh& a, const StructuringElement& se, MorphologyStats* stats = nullptr);
-Mesh apply_morphology(MorphologyOp op, const Mesh& a, const StructuringElement& se,
-                      MorphologyStats* stats = nullptr);
-Mesh apply_morphology_of_valid(MorphologyOp op, const Mesh& a, const StructuringElement& se,
-                               MorphologyStats* stats = nullptr);
+Solid dilation(const Solid& a, const StructuringElement& se, MorphologyStats* stats = nullptr);
+Solid erosion(const Solid& a, const StructuringElement& se, MorphologyStats* stats = nullptr);
+Solid opening(const Solid& a, const StructuringElement& se, MorphologyStats* stats = nullptr);
+Solid closing(const Solid& a, const StructuringElement& se, MorphologyStats* stats = nullptr);
 
 }  // namespace morphex

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "morphex/convex_hull.h"
 #include "morphex/mesh.h"
 
 namespace morphex {
@@ -25,13 +26,15 @@ struct StructuringElement {
 
 using SeParameters = std::vector<std::pair<std::string, std::string>>;  // key, value text
 
-// A bad structuring element (a morphex::InputError, morphex/error.h): what() reads "ball: r: expected
-// a positive number, got -1"; key() is the parameter at fault ("shape" for the shape itself) and
-// problem() the rest, so callers can point at their own location (a JSON path, an option).
+// A bad structuring element (a morphex::InputError, morphex/error.h): what() reads "ball: r:
+// expected a positive number, got -1"; key() is the parameter at fault ("shape" for the shape
+// itself) and problem() the rest, so callers can point at their own location (a JSON path, an
+// option).
 class StructuringElementError : public InputError {
  public:
   StructuringElementError(const std::string& shape, std::string key, std::string problem)
-      : InputError(shape.empty() ? "" : shape + ": " + key, std::move(problem)), key_(std::move(key)) {}
+      : InputError(shape.empty() ? "" : shape + ": " + key, std::move(problem)),
+        key_(std::move(key)) {}
   const std::string& key() const { return key_; }
 
  private:
@@ -63,12 +66,5 @@ const std::vector<SeShapeInfo>& structuring_element_shapes();
 
 // -B: every point negated (faces re-oriented so that the mesh stays outward).
 Mesh reflected(const Mesh& mesh);
-
-// The convex hull of a point set as a closed outward triangle mesh (exact; empty when the points
-// do not span a solid).
-Mesh convex_hull(const std::vector<Point>& points);
-
-// Exact convexity of a valid closed solid: its volume equals its hull's.
-bool is_convex(const Mesh& solid);
 
 }  // namespace morphex

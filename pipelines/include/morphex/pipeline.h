@@ -21,10 +21,12 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "morphex/mesh.h"
 #include "morphex/repair.h"
+#include "morphex/solid.h"
 #include "morphex/solidify.h"
 #include "morphex/structuring_element.h"
 
@@ -55,7 +57,10 @@ struct OptionInfo {
 };
 
 struct StageContext;  // what a running stage sees (run.cpp)
-using StageRunner = std::function<Mesh(StageContext&)>;
+// What flows from a stage to the next: a valid solid (morphex/solid.h), or the mesh of a read not
+// checked because every stage it feeds repairs it (Stage::unchecked).
+using StageValue = std::variant<Solid, Mesh>;
+using StageRunner = std::function<StageValue(StageContext&)>;
 
 struct StageInfo {
   std::string type;
@@ -221,11 +226,19 @@ nlohmann::json to_json(const SolidifyReport& report);
 
 struct StageContext {
   const Stage& stage;
-  std::vector<const Mesh*> inputs;
+  std::vector<const StageValue*> inputs;
   nlohmann::json extra;  // facts for the report
   // A long stage reports the finished share of its work (0 to 1) here, for progress displays.
   std::function<void(double share)> progress;
   const nlohmann::json& option(const std::string& name) const { return stage.options.at(name); }
+  // Input i as a valid solid: every input is one, except an unchecked read's mesh, which
+  // validation lets reach only repair and solidify stages (they read mesh(i)).
+  const Solid& solid(std::size_t i) const { return std::get<Solid>(*inputs.at(i)); }
+  // Input i as a mesh, whichever it is.
+  const Mesh& mesh(std::size_t i) const {
+    const StageValue& value = *inputs.at(i);
+    return value.index() == 0 ? std::get<Solid>(value).mesh() : std::get<Mesh>(value);
+  }
   const StructuringElement& element(const std::string& name) const {
     return *stage.elements.at(name);
   }

@@ -4,8 +4,10 @@
 #pragma once
 
 #include <utility>
+#include <vector>
 
 #include "morphex/shapes.h"
+#include "morphex/solid.h"
 
 namespace morphex {
 
@@ -21,5 +23,13 @@ Mesh make_fan_cone(int segments, double radius, double height);
 std::pair<Mesh, Mesh> make_cubes_sharing_face();
 std::pair<Mesh, Mesh> make_cubes_sharing_edge();
 std::pair<Mesh, Mesh> make_cubes_sharing_vertex();
+
+// Each mesh checked (check_solid), for calls that take many solids (compute_union).
+inline std::vector<Solid> solids_of(const std::vector<Mesh>& meshes) {
+  std::vector<Solid> solids;
+  solids.reserve(meshes.size());
+  for (const Mesh& mesh : meshes) solids.push_back(check_solid(mesh));
+  return solids;
+}
 
 }  // namespace morphex
