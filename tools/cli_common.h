@@ -18,7 +18,7 @@
 
 namespace morphex::cli {
 
-// The exit-code contract of ../shared/conventions.md.
+// The exit-code contract of docs/conventions.md.
 enum ExitCode : int { kSuccess = 0, kFailed = 1, kBadInput = 2 };
 
 // Prints "morphex: MESSAGE" on stderr.
@@ -27,7 +27,7 @@ void print_error(const std::string& message);
 // Writes `value` as one line to stdout when target is "-", else atomically to the file.
 void emit_json(const nlohmann::json& value, const std::string& target);
 
-// The --stats keys every mesh-producing command shares (conventions.md): sizes, exact volume,
+// The --stats keys every mesh-producing command shares (docs/conventions.md): sizes, exact volume,
 // validity and the operation's wall time.
 nlohmann::json result_stats(const Mesh& mesh, double seconds);
 // What writing a plain format's rounding did (--stats key "rounding"): vertices moved, rounds

@@ -192,7 +192,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("morphex ") + MORPHEX_VERSION);
   app.require_subcommand(1);
   // Global options are accepted after the subcommand too (`morphex bool --threads 2 ...`), as
-  // ../shared/conventions.md promises.
+  // docs/conventions.md promises.
   app.fallthrough();
   // CLI11's own errors in the morphex voice ("morphex: --output is required").
   app.failure_message([](const CLI::App*, const CLI::Error& e) {

@@ -146,8 +146,8 @@ Mesh filtered_copy(const Mesh& solid, const DoubleMesh& dm, double scale,
 // Every opening and closing is computed from the copy itself, not chained from the previous
 // radius (A - (r + s)B = (A - rB) - sB would be exact for the convex cube too): an erosion by a
 // cube has about three times the facets of a smooth input, and rational intersection points instead
-// of doubles, so each chained step costs four to five times a step from the copy (profiled on SHREC
-// 2007 meshes simplified to 1,200 facets: 0.8 s against 3.6-4.2 s per erosion).
+// of doubles, so each chained step would cost several times a step from the copy (profiled on
+// SHREC 2007 meshes; the figures are in docs/benchmarks.md).
 void filter_by_cubes(const Mesh& a, const DescriptorSettings& s, Descriptors& d) {
   // The filters are most of a description; D2 is counted as one more step.
   const double steps = double(d.open_radii.size() + (s.closings ? d.close_radii.size() : 0) + 1);

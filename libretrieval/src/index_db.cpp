@@ -85,8 +85,8 @@ class Statement {
     sqlite3_bind_double(stmt_, i, v);
     return *this;
   }
-  // Doubles as a BLOB of little-endian IEEE values: a million vectors load in a second, where
-  // parsing JSON text took a minute.
+  // Doubles as a BLOB of little-endian IEEE values: loading is a copy per vector, where JSON text
+  // would need every number parsed, which dominated loading a large index.
   Statement& bind(int i, const std::vector<double>& v) {
     static_assert(sizeof(double) == 8 && std::numeric_limits<double>::is_iec559);
     if constexpr (kBigEndian) {

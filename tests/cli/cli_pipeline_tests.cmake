@@ -1,4 +1,4 @@
-# `morphex run|validate|stages`: exit codes 0 / 1 / 2 of conventions.md, reports, messages.
+# `morphex run|validate|stages`: exit codes 0 / 1 / 2 of docs/conventions.md, reports, messages.
 set(pipelines ${data}/pipelines)
 set(pipe_out ${PROJECT_BINARY_DIR}/cli-pipeline-out)
 file(MAKE_DIRECTORY ${pipe_out})

@@ -1,4 +1,4 @@
-# Command-line contract tests: exit codes and messages of ../shared/conventions.md.
+# Command-line contract tests: exit codes and messages of docs/conventions.md and docs/cli.md.
 set(data ${CMAKE_CURRENT_SOURCE_DIR}/data)
 function(morphex_cli_test name code regex)
   add_test(NAME cli.${name} COMMAND ${CMAKE_COMMAND}

@@ -105,9 +105,9 @@ Pairs candidate_pairs(const Mesh& a, const Mesh& b, OperandTrees& trees) {
   const int coarse_side = a_coarse ? 0 : 1, fine_side = 1 - coarse_side;
   const Mesh &coarse = a_coarse ? a : b, &fine = a_coarse ? b : a;
   // The coarse facets query the fine tree when it exists (the input check built it) or when the
-  // coarse tree is deep enough that a query per fine facet costs more than building the fine tree
-  // (measured: 1,660 coarse facets against 68,548 fine ones, pairs 15 -> 9 ms; a 12-facet box
-  // against bunny00, 4 -> 5 ms when bunny00's tree must be built, 4 -> 1 ms when it exists).
+  // coarse tree is deep enough that a query per fine facet costs more than building the fine tree.
+  // With a handful of coarse facets, building the fine tree costs more than it saves; with a
+  // thousand or more it pays (docs/benchmarks.md has the measurements behind the threshold).
   const bool from_coarse = trees.has_pairs_tree(fine_side) || coarse.num_triangles() >= 1024;
   // The planes as the trees' frame sees them (a linear map takes a plane to a plane).
   std::vector<IntervalPlane> planes(coarse.num_triangles());

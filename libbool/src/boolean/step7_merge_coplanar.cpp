@@ -11,9 +11,9 @@
 //
 // After a Boolean, only vertices of faces the Boolean cut may go: the other faces are input
 // facets kept whole, around the inputs' own vertices, which the result keeps as they were. The
-// merge then looks only at the regions around those vertices (tripod x armadillo's union: 47,000
-// faces, 3 vertices removed near the cut; the assembly took 12 ms with the whole surface merged,
-// 5.4 so).
+// merge then looks only at the regions around those vertices: its cost follows the size of the
+// cut, not of the output (a coarse part cut into a fine one has a large output and a few
+// removable vertices near the cut; docs/benchmarks.md has the measurement).
 
 #include <tbb/parallel_for.h>
 
@@ -66,8 +66,8 @@ enum EdgePlanes : std::uint8_t {
 
 // Face f's plane against the planes of the faces across its edges, in doubles. Most edges of a
 // curved surface join two planes that a side test tells apart: f's plane is computed once for
-// its three edges, and only the corners of the other plane not on it are read (tripod x
-// armadillo's merge, 71,000 edges: 4.4 ms with an orientation filter per edge, 3.7 so).
+// its three edges, and only the corners of the other plane not on it are read, which is cheaper
+// than an orientation filter per edge (each would recompute the plane from its corners).
 class FaceScreen {
  public:
   FaceScreen(const Regions& s, std::uint32_t f)
@@ -126,8 +126,8 @@ std::vector<std::uint8_t> screen_edges(const Regions& s) {
 // oriented. That relation between planes is an equivalence, so a face joins a region exactly when
 // its plane is the region's: each other plane is tested once per region, and the exact tests are
 // of points against the seed's plane by its linear form, computed once (PlaneSides). Testing each
-// edge's two planes instead (a 4x4 determinant per pair of planes, cached) was most of the merge
-// on flat faces: cheese x fandisk's regions 15 ms, 9 so.
+// edge's two planes instead costs a 4x4 determinant per pair of planes, which dominated the merge
+// on CAD meshes with large flat faces; the linear form costs four products per point.
 //
 // Given `active` vertices (those a Boolean may have made removable), only the regions of the faces
 // around them are filled, and every other face is a region of its own: none of their vertices

@@ -78,9 +78,10 @@ class FacePlanes {
     Xyz corner[3];
   };
   // Face f's record, computed on its first use by whichever thread gets there first (others wait
-  // the few nanoseconds it takes). Most faces of a smooth surface never need one: the traversal
+  // for that one short computation). Most faces of a smooth surface never need one: the traversal
   // meets few pairs that share no proved vertex, and the coplanar search screens by the unit
-  // normals; writing every face's record was 5% of checking such a mesh.
+  // normals; writing every face's record would be a pass over all faces that such a mesh mostly
+  // does not need.
   const Plane& plane(std::uint32_t f) const {
     const std::uint32_t slot = slot_[f].load(std::memory_order_acquire);
     if (slot >= kFirstRecord) return record(slot - kFirstRecord);
@@ -99,11 +100,10 @@ class FacePlanes {
   const std::vector<Xyz>& xyz_;
   const double error_;
   // The records, handed out in the order faces are first used, in blocks allocated as they fill:
-  // the few faces a smooth mesh needs, indexed by face, touched a page each, nearly every page of
-  // an array over all faces (3 of every 10 fresh pages of a checked Boolean, refined_elephant x
-  // bunny00, each a page fault on every call). Each thread fills a block of its own (a cursor per
-  // thread of the arena, on a cache line of its own): a counter shared by every first use made
-  // two threads wait on each other's writes (turbine's check on two threads 8.2 to 9.1 ms).
+  // the few faces a smooth mesh needs, indexed by face, would touch a page each, nearly every page
+  // of an array over all faces, and each fresh page is a page fault on every call. Each thread
+  // fills a block of its own (a cursor per thread of the arena, on a cache line of its own): a
+  // counter shared by every first use makes threads wait on each other's writes.
   static constexpr std::uint32_t kBlockShift = 8, kBlock = 1u << kBlockShift;
   struct alignas(64) Cursor {
     std::uint32_t next = 0, end = 0;  // the record to hand out next, the end of its block

@@ -415,9 +415,9 @@ CGAL::Sign PointTable::orientation_2(int dropped, PointId p, PointId q, PointId 
   }
   // The recipes first, unless a point's exact coordinates are known already: an earlier
   // question left it undecided, and the recipes, when they do not decide, cost about what the
-  // exact stage below costs once the coordinates exist (coarse facets cut into nearly collinear
-  // but not collinear rows ask this by the hundred thousand: 79741 x 65004's triangulations
-  // took 227 ms without the recipes, 355 with them on every question, 228 so).
+  // exact stage below costs once the coordinates exist. Coarse facets cut into nearly collinear
+  // but not collinear rows ask this by the hundred thousand, so asking the recipes every time
+  // would pay twice on each of them.
   if (lines && !has_exact(p) && !has_exact(q) && !has_exact(r) && lines->collinear(p, q, r))
     return CGAL::ZERO;
   const Homogeneous &hp = exact(p), &hq = exact(q), &hr = exact(r);
