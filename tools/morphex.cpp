@@ -26,7 +26,7 @@
 
 #include "cli_common.h"
 #include "morphex/io.h"
-#include "morphex/nearest.h"
+#include "morphex/internal/nearest.h"
 
 namespace {
 

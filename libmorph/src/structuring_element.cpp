@@ -12,7 +12,7 @@
 
 #include "morphex/check.h"
 #include "morphex/io.h"
-#include "morphex/nearest.h"
+#include "morphex/internal/nearest.h"
 #include "morphex/shapes.h"
 
 namespace morphex {
