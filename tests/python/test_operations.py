@@ -111,3 +111,21 @@ def test_repair_has_a_work_budget():
         morphex.repair(soup)
     with pytest.raises(ValueError, match="budget"):
         morphex.repair(soup, budget=-1)
+
+
+def test_errors_form_one_hierarchy_mapped_to_python_kinds(tmp_path, unit_cube):
+    # morphex/error.h: input problems are ValueErrors, storage failures OSErrors, all morphex.Error.
+    assert issubclass(morphex.InputError, morphex.Error) and issubclass(morphex.InputError, ValueError)
+    assert issubclass(morphex.InvalidSolid, morphex.InputError)
+    assert issubclass(morphex.LossyOutputError, morphex.OutputError)
+    assert issubclass(morphex.OutputError, morphex.Error)
+    assert issubclass(morphex.StorageError, morphex.Error) and issubclass(morphex.StorageError, OSError)
+    bad = tmp_path / "bad.off"
+    bad.write_text("OFF\n3 1 0\n0 0 0\n1 0 0\n")
+    with pytest.raises(morphex.InputError, match="bad.off"):
+        morphex.Mesh.read(bad)
+    with pytest.raises(morphex.StorageError, match="cannot"):
+        unit_cube.write(tmp_path / "missing-folder" / "out.off")
+    # An operation's result is a Solid: chaining it checks nothing again and stays exact.
+    dilated = morphex.dilate(unit_cube, "cube:r=1/4")
+    assert (dilated - unit_cube).volume() == dilated.volume() - unit_cube.volume()

@@ -50,15 +50,14 @@ std::pair<Solid, Solid> check_solids(Mesh a, const std::string& where_a, Mesh b,
 }
 
 Solid transformed(const Solid& solid, const Kernel::Aff_transformation_3& map) {
-  // The sign of the linear part's determinant: an exact, non-zero map is a bijection that keeps
-  // a valid solid valid, turning its orientation when negative.
-  const CGAL::Sign sign =
-      CGAL::sign(map.m(0, 0) * (map.m(1, 1) * map.m(2, 2) - map.m(1, 2) * map.m(2, 1)) -
-                 map.m(0, 1) * (map.m(1, 0) * map.m(2, 2) - map.m(1, 2) * map.m(2, 0)) +
-                 map.m(0, 2) * (map.m(1, 0) * map.m(2, 1) - map.m(1, 1) * map.m(2, 0)));
+  // An exact map with a non-zero determinant is a bijection that keeps a valid solid valid;
+  // morphex::transformed turns the faces of a reflection so that the result stays outward.
+  const CGAL::Sign sign = CGAL::sign(
+      map.m(0, 0) * (map.m(1, 1) * map.m(2, 2) - map.m(1, 2) * map.m(2, 1)) -
+      map.m(0, 1) * (map.m(1, 0) * map.m(2, 2) - map.m(1, 2) * map.m(2, 0)) +
+      map.m(0, 2) * (map.m(1, 0) * map.m(2, 1) - map.m(1, 1) * map.m(2, 0)));
   if (sign == CGAL::ZERO) throw InputError("transformed", "the map is singular (determinant 0)");
   Mesh moved = morphex::transformed(solid.mesh(), map);
-  if (sign == CGAL::NEGATIVE) moved = reversed(moved);
   make_exact(moved);  // chains of motions would otherwise grow lazy-evaluation graphs
   return detail::trusted_solid(std::move(moved));
 }
