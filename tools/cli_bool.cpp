@@ -7,6 +7,7 @@
 #include "morphex/boolean.h"
 #include "morphex/check.h"
 #include "morphex/io.h"
+#include "morphex/json.h"
 #include "morphex/internal/stopwatch.h"
 
 namespace morphex::cli {
@@ -49,14 +50,10 @@ Command add_bool_command(CLI::App& app) {
             }
             write_result(result.mesh, args->output, [&] {
               nlohmann::json stats = result_stats(result.mesh, seconds);
-              const BooleanStats& s = result.stats;
+              const nlohmann::json s = result.stats;
               stats["operation"] = args->op;
-              stats["intersected_facets"] = s.cut_facets_a + s.cut_facets_b;
-              stats["segments"] = s.segments;
-              stats["phases"] = {
-                  {"validate", s.seconds.validate}, {"pairs", s.seconds.pairs},
-                  {"segments", s.seconds.segments}, {"retriangulate", s.seconds.retriangulate},
-                  {"classify", s.seconds.classify}, {"assemble", s.seconds.assemble}};
+              for (const char* key : {"intersected_facets", "segments", "phases"})
+                stats[key] = s.at(key);
               return stats;
             });
             return kSuccess;

@@ -15,6 +15,7 @@
 #include "cli_common.h"
 #include "morphex/index.h"
 #include "morphex/pipeline.h"
+#include "morphex/retrieval_json.h"
 #ifdef MORPHEX_HAVE_MPI
 #include "morphex/index_mpi.h"
 #endif
@@ -96,17 +97,10 @@ int print_summary(const IndexArgs& args, const IndexSummary& summary) {
   const double per_minute =
       summary.seconds > 0 ? 60.0 * double(summary.indexed + failed) / summary.seconds : 0;
   if (args.json) {
-    nlohmann::json j = {{"db", args.db},
-                        {"indexed", summary.indexed},
-                        {"skipped", summary.skipped},
-                        {"skipped_failed", summary.skipped_failed},
-                        {"failed", failed},
-                        {"errors", nlohmann::json::array()},
-                        {"seconds", summary.seconds},
-                        {"meshes_per_minute", per_minute},
-                        {"processes", summary.processes}};
-    for (const auto& [path, error] : summary.errors)
-      j["errors"].push_back({{"path", path}, {"error", user_error(args, error)}});
+    nlohmann::json j = summary;
+    j["db"] = args.db;
+    for (nlohmann::json& e : j["errors"])
+      e["error"] = user_error(args, e["error"].get<std::string>());
     std::cout << j.dump() << std::endl;
   } else {
     std::cout << args.db << ": indexed " << summary.indexed << " meshes (" << summary.skipped
@@ -213,20 +207,8 @@ Command add_index_command(CLI::App& app) {
 }
 
 nlohmann::json entry_json(const IndexedMesh& m, bool with_descriptors) {
-  nlohmann::json j = {
-      {"name", m.name},
-      {"path", m.path},
-      {"status", m.status},
-      {"faces", m.faces},
-      {"volume", m.volume},
-      {"hash", m.hash},
-      {"seconds", m.seconds},
-      {"indexed_at", m.indexed_at},
-      {"settings", m.settings},
-      {"settings_id", text_hash(m.settings).substr(0, 8)},
-      {"repair", m.repair.empty() ? nlohmann::json() : nlohmann::json::parse(m.repair)}};
-  if (!m.error.empty()) j["error"] = m.error;
-  if (with_descriptors) j["descriptors"] = m.descriptors;
+  nlohmann::json j = m;
+  if (!with_descriptors) j.erase("descriptors");
   return j;
 }
 

@@ -16,9 +16,12 @@
 #include "morphex/descriptors.h"
 #include "morphex/index.h"
 #include "morphex/io.h"
+#include "morphex/json.h"
+#include "morphex/morph_json.h"
 #include "morphex/pipeline.h"
 #include "morphex/plot.h"
 #include "morphex/retrieval.h"
+#include "morphex/retrieval_json.h"
 #include "morphex/solidify.h"
 #include "morphex/internal/stopwatch.h"
 
@@ -27,26 +30,6 @@ namespace {
 
 namespace mp = morphex::pipeline;
 namespace fs = std::filesystem;
-
-nlohmann::json descriptors_json(const Descriptors& d) {
-  nlohmann::json j = {{"scale_length", d.scale_length},
-                      {"thickness", d.thickness},
-                      {"filtered_facets", d.facets},
-                      {"simplified", d.simplified},
-                      {"open_radii", d.open_radii},
-                      {"close_radii", d.close_radii},
-                      {"granulometry", d.granulometry},
-                      {"pattern_spectrum", d.pattern_spectrum},
-                      {"anti_granulometry", d.anti_granulometry},
-                      {"opening_residue", d.opening_residue},
-                      {"closing_residue", d.closing_residue},
-                      {"components", d.components},
-                      {"d2", d.d2},
-                      {"seconds_morphology", d.seconds_morphology}};
-  for (const std::string& kind : descriptor_kinds())
-    j["vectors"][kind] = descriptor_vector(d, kind);
-  return j;
-}
 
 // --plot FILE: an SVG file, written atomically; "-" writes it on stdout in place of the usual
 // output (which is why it cannot go with --json).
@@ -148,8 +131,8 @@ Command add_describe_command(CLI::App& app) {
               const OperationProgress progress("describe");
               d = describe_valid(*mesh, s);  // read_solid or repair checked it
             }
-            nlohmann::json j = descriptors_json(d);
-            if (repaired && repaired->changed) j["solidify"] = mp::to_json(*repaired);
+            nlohmann::json j = d;
+            if (repaired && repaired->changed) j["solidify"] = *repaired;
             j["name"] = fs::path(args->mesh).stem().string();
             j["path"] = args->mesh;
             j["settings"] = s.to_string();
@@ -240,8 +223,11 @@ Command add_query_command(CLI::App& app) {
                             {"descriptor", args->descriptor},
                             {"distance", args->metric},
                             {"neighbours", nlohmann::json::array()}};
-        for (const Neighbour& n : ranked)
-          j["neighbours"].push_back({{"name", n.name}, {"path", n.path}, {"distance", n.distance}});
+        for (const Neighbour& n : ranked) {
+          nlohmann::json neighbour = n;
+          neighbour.erase("id");  // the row number means nothing outside the index file
+          j["neighbours"].push_back(neighbour);
+        }
         if (args->json) {
           std::cout << j.dump() << std::endl;
           return kSuccess;
@@ -252,15 +238,6 @@ Command add_query_command(CLI::App& app) {
                     << "  " << ranked[i].path << '\n';
         return kSuccess;
       }};
-}
-
-nlohmann::json scores_json(const RetrievalScores& s) {
-  return {{"nearest_neighbor", s.nearest_neighbor},
-          {"first_tier", s.first_tier},
-          {"second_tier", s.second_tier},
-          {"e_measure", s.e_measure},
-          {"dcg", s.dcg},
-          {"queries", s.queries}};
 }
 
 // The table's header and rows: a first column `first` wide, then the five measures.
@@ -357,14 +334,10 @@ Command add_evaluate_command(CLI::App& app) {
             if (!args->json) print_scores_header("descriptor", 18);
             for (std::size_t k = 0; k < e.scores.size(); ++k) {
               const auto& [kind, s] = e.scores[k];
-              nlohmann::json& d = j["descriptors"][kind] = scores_json(s);
-              const PrecisionRecall& pr = e.precision_recall[k].second;
-              d["precision_recall"] = {{"recall", pr.recall}, {"precision", pr.precision}};
+              nlohmann::json& d = j["descriptors"][kind] = s;
+              d["precision_recall"] = e.precision_recall[k].second;
               if (args->per_class)
-                for (const ClassScores& c : e.per_class[k].second) {
-                  d["per_class"][c.name] = scores_json(c.scores);
-                  d["per_class"][c.name]["models"] = c.models;
-                }
+                for (const ClassScores& c : e.per_class[k].second) d["per_class"][c.name] = c;
               if (!args->json) print_scores_row(kind, 18, s);
             }
             if (args->json) {

@@ -8,6 +8,7 @@
 #include "morphex/check.h"
 #include "morphex/descriptors.h"
 #include "morphex/io.h"
+#include "morphex/json.h"
 #include "morphex/minkowski.h"
 #include "morphex/morphology.h"
 #include "morphex/pipeline.h"
@@ -16,29 +17,6 @@
 #include "pipeline_internal.h"
 
 namespace morphex::pipeline {
-
-nlohmann::json to_json(const RepairReport& r) {
-  return {{"changed", r.changed},
-          {"reversed", r.reversed},
-          {"merged_vertices", r.merged_vertices},
-          {"duplicate_faces", r.duplicate_faces},
-          {"degenerate_faces", r.degenerate_faces},
-          {"cancelled_faces", r.cancelled_faces},
-          {"intersecting_pairs", r.intersecting_pairs},
-          {"components_in", r.components_in},
-          {"components_out", r.components_out}};
-}
-
-nlohmann::json to_json(const SolidifyReport& r) {
-  return {{"method", r.method},
-          {"changed", r.changed},
-          {"summary", describe(r)},
-          {"welded_vertices", r.welded_vertices},
-          {"dropped_faces", r.dropped_faces},
-          {"filled_holes", r.filled_holes},
-          {"turned_parts", r.turned_parts},
-          {"intersecting_pairs", r.intersecting_pairs}};
-}
 
 const char* to_string(OptionType type) {
   switch (type) {
@@ -231,7 +209,7 @@ void add_io_stages(StageRegistry& r) {
            RepairOptions options;
            options.budget = c.option("budget").get<double>();
            RepairResult r = repair_mesh(*c.inputs[0], options);
-           c.extra["repair"] = to_json(r.report);
+           c.extra["repair"] = r.report;
            return std::move(r.mesh);
          }});
   r.add(
@@ -251,7 +229,7 @@ void add_io_stages(StageRegistry& r) {
          options.fill_holes = c.option("fill_holes").get<bool>();
          options.repair.budget = c.option("budget").get<double>();
          SolidifyResult r = solidify(*c.inputs[0], options);
-         c.extra["solidify"] = to_json(r.report);
+         c.extra["solidify"] = r.report;
          return std::move(r.mesh);
        }});
   r.add({"write",
@@ -270,12 +248,13 @@ void add_io_stages(StageRegistry& r) {
            const RoundingReport r = write_mesh(*c.inputs[0], path, options);
            c.extra["path"] = path;
            // What rounding to the format did (plain formats: the file is a valid solid).
-           if (!options.exact)
-             c.extra["rounding"] = {{"moved_vertices", r.moved_vertices},
-                                    {"rounds", r.rounds},
-                                    {"resolved_pairs", r.broken_pairs},
-                                    {"max_displacement", r.max_displacement},
-                                    {"collapsed", r.collapsed}};
+           // The report's keys that say what happened to the file, not where the time went.
+           if (!options.exact) {
+             const nlohmann::json rounding = r;
+             for (const char* key :
+                  {"moved_vertices", "rounds", "resolved_pairs", "max_displacement", "collapsed"})
+               c.extra["rounding"][key] = rounding.at(key);
+           }
            return *c.inputs[0];
          }});
 }

@@ -18,6 +18,7 @@
 #include "morphex/io.h"
 #include "morphex/pipeline.h"
 #include "morphex/retrieval.h"
+#include "morphex/retrieval_json.h"
 
 namespace morphex::python {
 namespace {
@@ -208,11 +209,11 @@ py::dict Index::add(const py::object& objects, const py::object& name,
       throw InputError("", pipeline_problems(pipeline.name, e));
     }
   }
+  // The library's summary, its errors as {path: message} (a path is indexed once per call).
+  const nlohmann::json j = summary;
   py::dict out;
-  out["indexed"] = summary.indexed;
-  out["skipped"] = summary.skipped;
-  out["skipped_failed"] = summary.skipped_failed;
-  out["failed"] = summary.errors.size();
+  for (const char* key : {"indexed", "skipped", "skipped_failed", "failed"})
+    out[key] = from_json(j.at(key));
   out["errors"] = std::map<std::string, std::string>(summary.errors.begin(), summary.errors.end());
   return out;
 }

@@ -5,6 +5,8 @@
 
 #include "common.h"
 #include "morphex/descriptors.h"
+#include "morphex/json.h"
+#include "morphex/morph_json.h"
 #include "morphex/pipeline.h"
 #include "morphex/repair.h"
 #include "morphex/retrieval.h"
@@ -38,27 +40,16 @@ void check_settings(const DescriptorSettings& s) {
   require_in("d2_bins", s.d2_bins, 4, 4096);
 }
 
+// The library's JSON of the descriptors, its curves and vectors as numpy arrays.
 py::dict descriptors_dict(const Descriptors& d) {
+  const nlohmann::json j = d;
   py::dict out;
-  out["scale_length"] = d.scale_length;
-  out["thickness"] = d.thickness;
-  out["filtered_facets"] = d.facets;
-  out["simplified"] = d.simplified;
-  const std::pair<const char*, const std::vector<double>*> arrays[] = {
-      {"open_radii", &d.open_radii},
-      {"close_radii", &d.close_radii},
-      {"granulometry", &d.granulometry},
-      {"pattern_spectrum", &d.pattern_spectrum},
-      {"anti_granulometry", &d.anti_granulometry},
-      {"opening_residue", &d.opening_residue},
-      {"closing_residue", &d.closing_residue},
-      {"components", &d.components},
-      {"d2", &d.d2}};
-  for (const auto& [name, values] : arrays) out[name] = to_numpy(*values);
-  out["seconds_morphology"] = d.seconds_morphology;
+  for (const auto& [key, value] : j.items())
+    out[key.c_str()] =
+        value.is_array() ? to_numpy(value.get<std::vector<double>>()) : from_json(value);
   py::dict vectors;
-  for (const std::string& kind : descriptor_kinds())
-    vectors[kind.c_str()] = to_numpy(descriptor_vector(d, kind));
+  for (const auto& [kind, vector] : j.at("vectors").items())
+    vectors[kind.c_str()] = to_numpy(vector.get<std::vector<double>>());
   out["vectors"] = vectors;
   return out;
 }
@@ -91,7 +82,7 @@ py::dict describe_mesh(const PyMesh& mesh, const DescriptorSettings& s, bool rep
     seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   py::dict out = descriptors_dict(d);
-  if (repaired) out["repair"] = from_json(mp::to_json(*repaired));
+  if (repaired) out["repair"] = from_json(*repaired);
   if (!mesh.source.empty()) out["path"] = mesh.source;
   out["settings"] = s.to_string();
   out["seconds"] = seconds;

@@ -211,12 +211,6 @@ std::vector<Pipeline> prepare_run(const nlohmann::json& document, const std::str
                                   const RunOptions& options,
                                   const StageRegistry& registry = StageRegistry::builtin());
 
-// The repair report as JSON (the `repair` object of reports, --stats and index entries).
-nlohmann::json to_json(const RepairReport& report);
-// The solidify report as JSON (the `solidify` object of reports, --stats, describe and index
-// entries): method, changed, summary (describe()) and the counts.
-nlohmann::json to_json(const SolidifyReport& report);
-
 // What a stage sees while it runs.
 
 struct StageContext {
