@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "morphex/check.h"
+#include "morphex/descriptor_settings.h"
 #include "morphex/json.h"
 #include "morphex/morph_json.h"
 #include "morphex/retrieval_json.h"
@@ -183,6 +184,65 @@ TEST(Json, IndexSummaryAndEntry) {
   e = m;
   EXPECT_TRUE(e["repair"].is_null());
   EXPECT_EQ(e["error"], "failed");
+}
+
+// The table of descriptor settings: names, defaults and the library's checks.
+TEST(DescriptorSettings, TableNamesEverySettingWithItsDefault) {
+  const json j = DescriptorSettings{};
+  EXPECT_EQ(j, json::parse(R"({"scales": 8, "open_from": 0.05, "open_to": 0.6,
+      "close_from": 0.02, "close_to": 0.35, "closings": true, "pose": true, "facet_budget": 300,
+      "d2_samples": 200000, "d2_bins": 64, "seed": 1})"));
+  EXPECT_EQ(descriptor_settings_table().size(), j.size());
+  DescriptorSettings s;
+  s.scales = 3;
+  s.normalise_pose = false;
+  s.seed = 7;
+  const DescriptorSettings back = json(s).get<DescriptorSettings>();
+  EXPECT_EQ(back.to_string(), s.to_string());
+}
+
+// Every setting refused out of its range, with its name as where() and in the message.
+TEST(DescriptorSettings, BadValueOfEachSettingIsRefusedByName) {
+  const std::pair<const char*, json> bad[] = {
+      {"scales", 0},        {"scales", 65},        {"open_from", 0},  {"open_to", -1},
+      {"close_from", 0.0},  {"close_to", -0.5},    {"closings", 1},   {"pose", "yes"},
+      {"facet_budget", -1}, {"d2_samples", 15},    {"d2_bins", 4097}, {"seed", -1},
+      {"scales", 2.5},      {"d2_samples", "many"}};
+  for (const auto& [name, value] : bad) {
+    try {
+      json{{name, value}}.get<DescriptorSettings>();
+      ADD_FAILURE() << name << " = " << value.dump() << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.where(), name);
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+  }
+  const json unknown = {{"scale", 2}};  // not a setting
+  EXPECT_THROW(unknown.get<DescriptorSettings>(), InputError);
+}
+
+TEST(DescriptorSettings, RadiiMustGrowAndDescribeChecksThemToo) {
+  DescriptorSettings s;
+  s.open_from = 0.7;
+  try {
+    check_descriptor_settings(s);
+    ADD_FAILURE() << "open_from > open_to was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "open_from");
+    EXPECT_NE(std::string(e.what()).find("must not exceed"), std::string::npos);
+  }
+  s = {};
+  s.close_to = 0.01;
+  EXPECT_THROW(check_descriptor_settings(s), InputError);
+  s = {};
+  s.d2_bins = 1;
+  try {
+    describe_valid(make_cube(FT(1)), s);
+    ADD_FAILURE() << "describe took d2_bins = 1";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "d2_bins");
+  }
+  EXPECT_NO_THROW(check_descriptor_settings(DescriptorSettings{}));
 }
 
 }  // namespace

@@ -3,16 +3,20 @@
 // and `rm`, the collection manager, are in cli_index.cpp).
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <set>
 #include <sstream>
+#include <variant>
 
 #include "cli_common.h"
 #include "morphex/internal/files.h"
 #include "morphex/collection.h"
+#include "morphex/descriptor_settings.h"
 #include "morphex/descriptors.h"
 #include "morphex/index.h"
 #include "morphex/io.h"
@@ -54,6 +58,45 @@ void write_plot(const std::string& plot, const Figure& figure) {
     write_svg(plot, figure);
 }
 
+// The command line's name of a descriptor setting: open_from is --open-from.
+std::string option_name(const std::string& setting) {
+  std::string out = "--" + setting;
+  std::replace(out.begin(), out.end(), '_', '-');
+  return out;
+}
+
+// One option per descriptor setting, from the library's table (morphex/descriptor_settings.h):
+// --name VALUE for a number, --no-name for a setting that is on by default. Their ranges are
+// checked by the library (settings_usable), with the one message every front end gives.
+void add_descriptor_setting_options(CLI::App* cmd, DescriptorSettings& s) {
+  for (const DescriptorSettingInfo& setting : descriptor_settings_table()) {
+    std::string doc = setting.doc;
+    std::visit(
+        [&](auto member) {
+          using T = std::remove_reference_t<decltype(s.*member)>;
+          if constexpr (std::is_same_v<T, bool>) {
+            cmd->add_flag("!--no-" + option_name(setting.name).substr(2), s.*member,
+                          "Do not " + doc);
+          } else {
+            doc[0] = char(std::toupper(static_cast<unsigned char>(doc[0])));
+            cmd->add_option(option_name(setting.name), s.*member, doc)->capture_default_str();
+          }
+        },
+        setting.field);
+  }
+}
+
+// The library's check of the settings, its message under the option's name.
+bool settings_usable(const DescriptorSettings& s) {
+  try {
+    check_descriptor_settings(s);
+    return true;
+  } catch (const InputError& e) {
+    print_error(option_name(e.where()) + ": " + e.problem());
+    return false;
+  }
+}
+
 Command add_describe_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("describe", "Morphological descriptors and D2 of a mesh");
   struct Args {
@@ -71,42 +114,10 @@ Command add_describe_command(CLI::App& app) {
   cmd->add_flag("--repair,!--no-repair", args->repair,
                 "Make a mesh that is not a valid solid into one first (morphex solidify; on by "
                 "default, what was done reported); --no-repair refuses it instead");
-  cmd->add_option("--scales", s.scales, "Number of opening and closing radii")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 64));
-  const auto positive = CLI::PositiveNumber;
-  cmd->add_option("--open-from", s.open_from,
-                  "Smallest opening cube half side, in units of the thickness 3 volume / area")
-      ->capture_default_str()
-      ->check(positive);
-  cmd->add_option("--open-to", s.open_to, "Largest opening cube half side, in units of it")
-      ->capture_default_str()
-      ->check(positive);
-  cmd->add_option("--close-from", s.close_from,
-                  "Smallest closing cube half side, in units of cbrt(volume)")
-      ->capture_default_str()
-      ->check(positive);
-  cmd->add_option("--close-to", s.close_to, "Largest closing cube half side, in units of it")
-      ->capture_default_str()
-      ->check(positive);
-  cmd->add_flag("!--no-closings", s.closings, "Skip the anti-granulometry");
-  cmd->add_option("--facet-budget", s.facet_budget,
-                  "Filter a simplified valid copy of about this many facets (0: the mesh itself)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--d2-samples", s.d2_samples, "D2 point pairs")
-      ->capture_default_str()
-      ->check(CLI::Range(16, 10000000));
-  cmd->add_option("--d2-bins", s.d2_bins, "D2 histogram bins")
-      ->capture_default_str()
-      ->check(CLI::Range(4, 4096));
-  cmd->add_option("--seed", s.seed, "D2 random seed");
+  add_descriptor_setting_options(cmd, s);
   return {cmd, [args]() -> int {
             const auto& s = args->settings;
-            if (s.open_from > s.open_to || s.close_from > s.close_to) {
-              print_error("--open-from/--close-from must not exceed --open-to/--close-to");
-              return kBadInput;
-            }
+            if (!settings_usable(s)) return kBadInput;
             if (!plot_usable(args->plot, args->json, {{args->mesh, "the input"}})) return kBadInput;
             std::optional<Mesh> mesh;
             std::optional<SolidifyReport> repaired;

@@ -6,6 +6,7 @@
 
 #include "morphex/boolean.h"
 #include "morphex/check.h"
+#include "morphex/descriptor_settings.h"
 #include "morphex/descriptors.h"
 #include "morphex/io.h"
 #include "morphex/json.h"
@@ -71,24 +72,6 @@ StructuringElement structuring_element(const nlohmann::json& value) {
   return make_structuring_element(value["shape"].get<std::string>(), params);
 }
 
-DescriptorSettings descriptor_settings(const nlohmann::json& options) {
-  DescriptorSettings s;
-  s.scales = options.at("scales").get<int>();
-  s.open_from = options.at("open_from").get<double>();
-  s.open_to = options.at("open_to").get<double>();
-  s.close_from = options.at("close_from").get<double>();
-  s.close_to = options.at("close_to").get<double>();
-  s.closings = options.at("closings").get<bool>();
-  s.normalise_pose = options.at("pose").get<bool>();
-  s.facet_budget = options.at("facet_budget").get<std::size_t>();
-  s.d2_samples = options.at("d2_samples").get<int>();
-  s.d2_bins = options.at("d2_bins").get<int>();
-  s.seed = options.at("seed").get<std::uint64_t>();
-  if (s.open_from > s.open_to || s.close_from > s.close_to)
-    throw InputError("describe", "open_from/close_from must not exceed open_to/close_to");
-  return s;
-}
-
 Transformation rotation(const std::string& axis, const FT& degrees) {
   const int index = axis == "x" ? 0 : axis == "y" ? 1 : 2;
   FT c, s;
@@ -140,37 +123,27 @@ Mesh morphology_stage(StageContext& c, MorphologyOp op) {
   return result;
 }
 
-// The describe stage's options, with DescriptorSettings' defaults (descriptors.h explains them).
+// The describe stage's options: the table of descriptor settings (morphex/descriptor_settings.h),
+// with its names, defaults, ranges and documentation.
 std::vector<OptionInfo> describe_options() {
-  const DescriptorSettings d;
-  const auto number = [](std::string name, double value, std::string description) {
-    OptionInfo o = optional(std::move(name), OptionType::Number, value, std::move(description));
-    o.positive = true;
-    return o;
-  };
-  const auto integer = [](std::string name, double value, double lo, double hi,
-                          std::string description) {
-    OptionInfo o = optional(std::move(name), OptionType::Integer, value, std::move(description));
-    o.min = lo;
-    o.max = hi;
-    return o;
-  };
-  return {integer("scales", d.scales, 1, 64, "number of opening (and closing) radii"),
-          number("open_from", d.open_from,
-                 "smallest opening cube half side, in units of the "
-                 "thickness T = 3 volume / area"),
-          number("open_to", d.open_to, "largest opening cube half side, in units of T"),
-          number("close_from", d.close_from,
-                 "smallest closing cube half side, in units of L = cbrt(volume)"),
-          number("close_to", d.close_to, "largest closing cube half side, in units of L"),
-          optional("closings", OptionType::Bool, d.closings, "also the anti-granulometry"),
-          optional("pose", OptionType::Bool, d.normalise_pose,
-                   "normalise the pose (principal axes) first"),
-          integer("facet_budget", double(d.facet_budget), 0, 1e9,
-                  "filter a simplified valid copy of about this many facets (0: the mesh itself)"),
-          integer("d2_samples", d.d2_samples, 16, 1e7, "D2 point pairs"),
-          integer("d2_bins", d.d2_bins, 4, 4096, "D2 histogram bins"),
-          integer("seed", double(d.seed), 0, 4294967295.0, "D2 random seed")};
+  const DescriptorSettings defaults;
+  std::vector<OptionInfo> out;
+  for (const DescriptorSettingInfo& setting : descriptor_settings_table()) {
+    using Type = DescriptorSettingInfo::Type;
+    const Type type = setting.type();
+    OptionInfo o = optional(setting.name,
+                            type == Type::Bool     ? OptionType::Bool
+                            : type == Type::Number ? OptionType::Number
+                                                   : OptionType::Integer,
+                            setting.value(defaults), setting.doc);
+    o.positive = setting.positive;
+    if (type != Type::Bool && !setting.positive) {
+      o.min = setting.min;
+      o.max = setting.max;
+    }
+    out.push_back(std::move(o));
+  }
+  return out;
 }
 
 OptionInfo repair_budget() {
@@ -350,7 +323,7 @@ void add_report_stages(StageRegistry& r) {
          "multi-scale granulometry and anti-granulometry by exact openings and closings with "
          "cubes, where their residues lie, and the D2 baseline; passes the mesh on",
          1, describe_options(), [](StageContext& c) {
-           DescriptorSettings settings = detail::descriptor_settings(c.stage.options);
+           DescriptorSettings settings = descriptor_settings(c.stage);
            settings.on_progress = c.progress;
            // Stage outputs are valid solids (read checks, repair and every operation make them).
            const Descriptors d = describe_valid(*c.inputs[0], settings);
@@ -381,6 +354,16 @@ void add_report_stages(StageRegistry& r) {
 }
 
 }  // namespace
+
+DescriptorSettings descriptor_settings(const Stage& stage) {
+  // Validation checked each option; the library checks them together (open_from <= open_to),
+  // naming the setting. A number option may hold a number's text (from a ${variable}, or a
+  // fraction such as "1/20"): its nearest double.
+  nlohmann::json options = stage.options;
+  for (auto& [name, value] : options.items())
+    if (value.is_string()) value = CGAL::to_double(detail::exact_number(value));
+  return options.get<DescriptorSettings>();
+}
 
 void StageRegistry::add(StageInfo stage) {
   if (find(stage.type)) throw std::logic_error("stage registered twice: " + stage.type);

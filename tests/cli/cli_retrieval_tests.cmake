@@ -8,6 +8,11 @@ morphex_cli_test(describe_open_mesh 0 "\"solidify\":\\{\"changed\":true.*\"fille
   describe --json --scales 2 ${data}/open_cube.off)
 morphex_cli_test(describe_open_mesh_refused 2 "open_cube.off: mesh is not closed"
   describe --no-repair ${data}/open_cube.off)
+# the options of describe are the library's table of descriptor settings, checked by the library
+morphex_cli_test(describe_bad_setting 2 "--d2-bins: expected an integer from 4 to 4096, got 2"
+  describe --d2-bins 2 ${data}/unit_cube.off)
+morphex_cli_test(describe_radii_not_growing 2 "--close-from: open_from/close_from must not exceed"
+  describe --close-from 0.5 --close-to 0.4 ${data}/unit_cube.off)
 morphex_cli_test(describe_sheet 2 "sheet.off: cannot solidify: mesh bounds no"
   describe ${data}/sheet.off)
 # A fresh, existing directory: the index tests create their databases in it, whether or not a

@@ -29,6 +29,18 @@ def test_describe_mirrors_the_command_line(unit_cube):
         morphex.describe(box, open_from=0.7, open_to=0.6)
 
 
+def test_describe_keywords_are_the_settings_table():
+    box = morphex.box((0, 0, 0), (1, 2, 3))
+    # a bad value of a setting is refused by the library, naming the setting
+    for name, value in (("scales", 0), ("open_to", -1), ("d2_bins", 2), ("seed", -1),
+                        ("pose", "yes")):
+        with pytest.raises(morphex.InputError, match=f"^{name}: expected"):
+            morphex.describe(box, **{name: value})
+    with pytest.raises(TypeError, match="scale"):
+        morphex.describe(box, scale=2)
+    assert "d2_bins=64" in morphex.describe.__doc__
+
+
 def test_describe_refuses_or_repairs_invalid_solids(data_dir):
     crossing = morphex.Mesh.read(data_dir / "crossing_cubes.off")
     with pytest.raises(morphex.InvalidSolid, match="crossing_cubes.off"):

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "morphex/descriptor_settings.h"  // to_json and from_json of DescriptorSettings
 #include "morphex/descriptors.h"
 #include "morphex/minkowski.h"
 #include "morphex/morphology.h"

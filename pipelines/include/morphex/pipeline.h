@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "morphex/descriptors.h"
 #include "morphex/mesh.h"
 #include "morphex/repair.h"
 #include "morphex/solidify.h"
@@ -148,6 +149,11 @@ struct FileUse {
 };
 std::vector<FileUse> files_read(const Pipeline& pipeline);
 std::vector<FileUse> files_written(const Pipeline& pipeline);
+
+// The settings of a validated describe stage: its options read through the table of
+// morphex/descriptor_settings.h (a number given as text, from a ${variable}, is read as one).
+// Throws InputError naming the setting when they do not go together (open_from > open_to).
+DescriptorSettings descriptor_settings(const Stage& describe_stage);
 
 // Why the folders of `path` cannot be created or written in ("" when they can): the nearest
 // ancestor that exists must be a folder this process may write in.
