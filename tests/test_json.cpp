@@ -131,6 +131,9 @@ TEST(Json, MorphologyStatsAndDescriptors) {
   for (const std::string& kind : descriptor_kinds())
     EXPECT_EQ(j["vectors"][kind], json(descriptor_vector(d, kind))) << kind;
   EXPECT_EQ(j["vectors"]["d2"], j["d2"]);
+  // read back (as `morphex describe` reads the describe stage's report)
+  EXPECT_EQ(json(j.get<Descriptors>()), j);
+  EXPECT_THROW(json({{"granulometry", "high"}}).get<Descriptors>(), InputError);
 }
 
 TEST(Json, RetrievalResults) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -14,11 +15,11 @@
 #include <variant>
 
 #include "cli_common.h"
-#include "morphex/internal/files.h"
 #include "morphex/collection.h"
 #include "morphex/descriptor_settings.h"
 #include "morphex/descriptors.h"
 #include "morphex/index.h"
+#include "morphex/internal/files.h"
 #include "morphex/io.h"
 #include "morphex/json.h"
 #include "morphex/morph_json.h"
@@ -26,8 +27,6 @@
 #include "morphex/plot.h"
 #include "morphex/retrieval.h"
 #include "morphex/retrieval_json.h"
-#include "morphex/solidify.h"
-#include "morphex/internal/stopwatch.h"
 
 namespace morphex::cli {
 namespace {
@@ -97,15 +96,97 @@ bool settings_usable(const DescriptorSettings& s) {
   }
 }
 
+struct DescribeArgs {
+  std::string mesh, plot;
+  bool json = false, repair = true;
+  DescriptorSettings settings;
+};
+
+// What `morphex describe` runs: the pipeline read, solidify (unless --no-repair), describe with the
+// options' settings. The mesh is bound as ${input}, so no character of its path reads as a
+// variable.
+nlohmann::json describe_pipeline(const DescribeArgs& args) {
+  nlohmann::json stages = {{{"type", "read"}, {"path", "${input}"}}};
+  if (args.repair) stages.push_back({{"type", "solidify"}});
+  nlohmann::json describe = args.settings;  // the describe stage's options are the settings
+  describe["type"] = "describe";
+  stages.push_back(describe);
+  return {{"pipeline", stages}};
+}
+
+// A failed run in the words of a command that runs a pipeline the user never wrote: the reader's
+// error names the file, solidify's says why there is no solid, and the read's refusal of a mesh
+// that is not a valid solid is the command line's (solid_problem: `morphex repair` for what it
+// repairs) rather than the pipeline's advice to add a repair stage.
+std::string describe_error(const DescribeArgs& args, const mp::InputReport& r) {
+  const std::string& error = r.stage_error;
+  if (r.failed_stage == 0) {
+    const std::string prefix = args.mesh + ": ";
+    const std::string stage_hint = " (a repair stage after the read repairs it)";
+    if (error.rfind(prefix, 0) == 0 && error.size() > prefix.size() + stage_hint.size() &&
+        error.compare(error.size() - stage_hint.size(), stage_hint.size(), stage_hint) == 0)
+      return solid_problem(
+          args.mesh, error.substr(prefix.size(), error.size() - prefix.size() - stage_hint.size()));
+    return error;
+  }
+  if (args.repair && r.failed_stage == 1) return args.mesh + ": cannot solidify: " + error;
+  return args.mesh + ": " + error;
+}
+
+// Runs the describe pipeline on the mesh; its description as `describe --json` prints it (the
+// describe stage's report, with what solidify changed, the name, path, settings and seconds), or
+// nullopt after printing why there is none.
+std::optional<nlohmann::json> run_describe(const DescribeArgs& args) {
+  mp::RunOptions options;
+  options.inputs = {args.mesh};
+  ProgressDisplay display("described", "stages", false);  // on a terminal only
+  options.on_progress = [&](double done, std::size_t total, const std::string&,
+                            const std::string& stage) {
+    display.update(std::size_t(done), total, 0, stage, done - std::floor(done));
+  };
+  mp::RunReport report;
+  try {
+    report = mp::run(describe_pipeline(args), "describe", options);
+  } catch (const mp::PipelineError& e) {
+    for (const mp::Problem& p : e.problems()) print_error(p.text());
+    return std::nullopt;
+  }
+  const mp::InputReport& r = report.inputs.at(0);
+  if (!r.ok) {
+    print_error(describe_error(args, r));
+    return std::nullopt;
+  }
+  const mp::StageReport& described = r.stages.back();
+  nlohmann::json j = described.extra;  // the library's JSON of the description
+  j["vectors"] = std::move(j["descriptors"]);
+  j.erase("descriptors");
+  j["settings"] = std::move(j["descriptor_settings"]);
+  j.erase("descriptor_settings");
+  if (args.repair && r.stages.at(1).extra.at("solidify").at("changed").get<bool>())
+    j["solidify"] = r.stages[1].extra["solidify"];
+  j["name"] = fs::path(args.mesh).stem().string();
+  j["path"] = args.mesh;
+  j["seconds"] = described.seconds;
+  return j;
+}
+
+void print_description(const std::string& mesh, const nlohmann::json& j) {
+  const Descriptors d = j.get<Descriptors>();
+  std::cout << mesh << "  (L = cbrt(volume) = " << d.scale_length
+            << ", thickness T/L = " << d.thickness << ", " << d.facets << " facets filtered"
+            << (d.simplified ? ", simplified" : "") << ")\n";
+  for (const char* key : {"open_radii", "granulometry", "pattern_spectrum", "close_radii",
+                          "anti_granulometry", "components", "d2"}) {
+    std::cout << std::left << std::setw(19) << key;
+    for (double v : j[key].get<std::vector<double>>())
+      std::cout << ' ' << std::setprecision(4) << v;
+    std::cout << '\n';
+  }
+}
+
 Command add_describe_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("describe", "Morphological descriptors and D2 of a mesh");
-  struct Args {
-    std::string mesh, plot;
-    bool json = false, repair = true;
-    DescriptorSettings settings;
-  };
-  auto args = std::make_shared<Args>();
-  auto& s = args->settings;
+  auto args = std::make_shared<DescribeArgs>();
   cmd->add_option("MESH", args->mesh, "Mesh (a valid solid, or anything solidify takes)")
       ->required();
   cmd->add_flag("--json", args->json, "One JSON object on stdout");
@@ -114,59 +195,23 @@ Command add_describe_command(CLI::App& app) {
   cmd->add_flag("--repair,!--no-repair", args->repair,
                 "Make a mesh that is not a valid solid into one first (morphex solidify; on by "
                 "default, what was done reported); --no-repair refuses it instead");
-  add_descriptor_setting_options(cmd, s);
+  add_descriptor_setting_options(cmd, args->settings);
   return {cmd, [args]() -> int {
-            const auto& s = args->settings;
-            if (!settings_usable(s)) return kBadInput;
+            if (!settings_usable(args->settings)) return kBadInput;
             if (!plot_usable(args->plot, args->json, {{args->mesh, "the input"}})) return kBadInput;
-            std::optional<Mesh> mesh;
-            std::optional<SolidifyReport> repaired;
-            if (args->repair) {
-              try {
-                SolidifyResult r = solidify(read_mesh(args->mesh));
-                mesh = std::move(r.mesh);
-                repaired = r.report;
-              } catch (const InputError& e) {
-                // A reader's error names the file; solidify's says why there is no solid.
-                print_error(e.where().empty() ? args->mesh + ": cannot solidify: " + e.what()
-                                              : std::string(e.what()));
-                return kBadInput;
-              }
-            } else {
-              mesh = read_solid(args->mesh);
-            }
-            if (!mesh) return kBadInput;
-            const Stopwatch start;
-            Descriptors d;
-            {
-              const OperationProgress progress("describe");
-              d = describe_valid(*mesh, s);  // read_solid or repair checked it
-            }
-            nlohmann::json j = d;
-            if (repaired && repaired->changed) j["solidify"] = *repaired;
-            j["name"] = fs::path(args->mesh).stem().string();
-            j["path"] = args->mesh;
-            j["settings"] = s.to_string();
-            j["seconds"] = start.seconds();
+            std::optional<nlohmann::json> j = run_describe(*args);
+            if (!j) return kBadInput;
             if (!args->plot.empty()) {
-              write_plot(args->plot, descriptor_figure(d, j["name"].get<std::string>()));
+              write_plot(args->plot,
+                         descriptor_figure(j->get<Descriptors>(), (*j)["name"].get<std::string>()));
               if (args->plot == "-") return kSuccess;
-              j["plot"] = args->plot;
+              (*j)["plot"] = args->plot;
             }
             if (args->json) {
-              std::cout << j.dump() << std::endl;
+              std::cout << j->dump() << std::endl;
               return kSuccess;
             }
-            std::cout << args->mesh << "  (L = cbrt(volume) = " << d.scale_length
-                      << ", thickness T/L = " << d.thickness << ", " << d.facets
-                      << " facets filtered" << (d.simplified ? ", simplified" : "") << ")\n";
-            for (const char* key : {"open_radii", "granulometry", "pattern_spectrum", "close_radii",
-                                    "anti_granulometry", "components", "d2"}) {
-              std::cout << std::left << std::setw(19) << key;
-              for (double v : j[key].get<std::vector<double>>())
-                std::cout << ' ' << std::setprecision(4) << v;
-              std::cout << '\n';
-            }
+            print_description(args->mesh, *j);
             if (!args->plot.empty()) std::cout << "wrote " << args->plot << '\n';
             return kSuccess;
           }};

@@ -11,6 +11,7 @@
 #include "morphex/io.h"
 #include "morphex/json.h"
 #include "morphex/minkowski.h"
+#include "morphex/morph_json.h"
 #include "morphex/morphology.h"
 #include "morphex/pipeline.h"
 #include "morphex/simplify.h"
@@ -327,14 +328,12 @@ void add_report_stages(StageRegistry& r) {
            settings.on_progress = c.progress;
            // Stage outputs are valid solids (read checks, repair and every operation make them).
            const Descriptors d = describe_valid(*c.inputs[0], settings);
-           nlohmann::json vectors;
-           for (const std::string& kind : descriptor_kinds())
-             vectors[kind] = descriptor_vector(d, kind);
-           c.extra["descriptors"] = vectors;
+           // The library's JSON of the description (morphex/morph_json.h), its vectors under the
+           // name reports and indexes have always read them by, "descriptors".
+           c.extra = d;
+           c.extra["descriptors"] = std::move(c.extra["vectors"]);
+           c.extra.erase("vectors");
            c.extra["descriptor_settings"] = settings.to_string();
-           c.extra["scale_length"] = d.scale_length;
-           c.extra["filtered_facets"] = d.facets;
-           c.extra["simplified"] = d.simplified;
            return *c.inputs[0];
          }});
   r.add({"check",

@@ -100,6 +100,10 @@ endif()
 add_test(NAME cli.repair_budget COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/repair_budget.sh
   $<TARGET_FILE:morphex> ${quick} ${data} ${PROJECT_BINARY_DIR}/cli-repair-budget
   "${repair_budget_cap}")
+# describe runs the describe stage: the same description as `morphex run` of that pipeline
+add_test(NAME cli.describe_is_the_describe_stage COMMAND bash
+  ${CMAKE_CURRENT_SOURCE_DIR}/cli/describe_stage.sh $<TARGET_FILE:morphex> ${data}
+  ${PROJECT_BINARY_DIR}/cli-describe-stage)
 # plots as files: evaluate --plot and describe --plot write SVG an XML parser reads (issue 46)
 add_test(NAME cli.plots COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/plots.sh
   $<TARGET_FILE:morphex> ${quick} ${data} ${PROJECT_BINARY_DIR}/cli-plots)

@@ -21,5 +21,8 @@ void to_json(nlohmann::json& j, const MinkowskiStats& stats);
 // components, d2, seconds_morphology, and vectors {kind: descriptor_vector(d, kind)} for every
 // descriptor_kinds() (what an index stores and compares).
 void to_json(nlohmann::json& j, const Descriptors& descriptors);
+// The same keys read back (vectors are computed from the rest, so they are not read); keys left
+// out keep the defaults. Throws InputError naming a key whose value has the wrong type.
+void from_json(const nlohmann::json& j, Descriptors& descriptors);
 
 }  // namespace morphex

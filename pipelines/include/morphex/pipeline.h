@@ -175,6 +175,10 @@ struct InputReport {
   std::string input;  // the mesh path, or "" for a pipeline without inputs
   bool ok = true;
   std::string error;  // "pipeline[3] (difference): ..." when !ok
+  // When !ok, the stage that failed and its error without the location, for callers that say it
+  // in their own words (`morphex describe` runs a pipeline the user never wrote).
+  std::size_t failed_stage = 0;
+  std::string stage_error;
   double seconds = 0;
   std::vector<StageReport> stages;
 };
