@@ -420,6 +420,6 @@ TEST(Retrieval, RanksShareTheirNodesCoresUnlessThreadsAreGiven) {
   EXPECT_EQ(threads_per_rank(0, 3, 8), 2u);
   EXPECT_EQ(threads_per_rank(0, 8, 2), 1u);  // more ranks than cores: one thread each
   EXPECT_EQ(threads_per_rank(0, 1, 8), 8u);
-  EXPECT_EQ(threads_per_rank(0, 0, 8), 8u);  // an unknown count of ranks: this one alone
+  EXPECT_EQ(threads_per_rank(0, 0, 8), 8u);   // an unknown count of ranks: this one alone
   EXPECT_EQ(threads_per_rank(6, 4, 16), 6u);  // --threads 6
 }

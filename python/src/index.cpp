@@ -351,17 +351,15 @@ others. Returns {kind: {'nearest_neighbor', 'first_tier', 'second_tier', 'e_meas
           [](Index& index) {
             py::list out;
             for (const IndexedMesh& m : index.load(false, {})) {
+              // The library's entry (morphex/retrieval_json.h), with the repair as a flag and the
+              // error always present, as this method has always given them.
+              const nlohmann::json j = m;
               py::dict e;
-              e["name"] = m.name;
-              e["path"] = m.path;
-              e["status"] = m.status;
+              for (const char* key :
+                   {"name", "path", "status", "faces", "volume", "seconds", "settings", "indexed_at"})
+                e[key] = from_json(j.at(key));
               e["error"] = m.error;
-              e["faces"] = m.faces;
-              e["volume"] = m.volume;
-              e["repaired"] = !m.repair.empty();
-              e["seconds"] = m.seconds;
-              e["settings"] = m.settings;
-              e["indexed_at"] = m.indexed_at;
+              e["repaired"] = !j.at("repair").is_null();
               out.append(e);
             }
             return out;

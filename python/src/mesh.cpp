@@ -154,6 +154,11 @@ void bind_check_report(py::module_& m) {
                                   py::make_tuple(b.xmax(), b.ymax(), b.zmax()));
           },
           "((xmin, ymin, zmin), (xmax, ymax, zmax)), rounded outward to doubles.")
+      .def(
+          "to_dict", [](const R& r) { return from_json(r.report); },
+          "The report as a dict, the library's JSON that `morphex check --json --exact` prints "
+          "(without file and seconds): valid, faces, ..., volume (a float), volume_exact (the "
+          "rational as text); genus and volumes None when the surface is not closed.")
       .def("__bool__", [](const R& r) { return r.report.valid_solid(); })
       .def("__repr__", [](const R& r) {
         return "<morphex.CheckReport " +
