@@ -355,8 +355,8 @@ others. Returns {kind: {'nearest_neighbor', 'first_tier', 'second_tier', 'e_meas
               // error always present, as this method has always given them.
               const nlohmann::json j = m;
               py::dict e;
-              for (const char* key :
-                   {"name", "path", "status", "faces", "volume", "seconds", "settings", "indexed_at"})
+              for (const char* key : {"name", "path", "status", "faces", "volume", "seconds",
+                                      "settings", "indexed_at"})
                 e[key] = from_json(j.at(key));
               e["error"] = m.error;
               e["repaired"] = !j.at("repair").is_null();

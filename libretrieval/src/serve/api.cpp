@@ -16,6 +16,7 @@
 #include "morphex/io.h"
 #include "morphex/pipeline.h"
 #include "morphex/retrieval.h"
+#include "morphex/retrieval_json.h"
 #include "morphex/internal/stopwatch.h"
 #include "thumbnail.h"
 
@@ -329,26 +330,15 @@ nlohmann::json IndexApi::curves(const std::map<std::string, std::vector<double>>
 
 nlohmann::json IndexApi::mesh(long long id) {
   const IndexedMesh m = row(id, true);
-  nlohmann::json repair = nullptr;
-  if (!m.repair.empty()) try {
-      repair = nlohmann::json::parse(m.repair);
-    } catch (const nlohmann::json::exception&) {
-      repair = m.repair;  // shown as text
-    }
-  nlohmann::json out = {{"id", m.id},
-                        {"name", m.name},
-                        {"class", label(m.name)},
-                        {"path", m.path},
-                        {"status", m.status},
-                        {"faces", m.faces},
-                        {"volume", decimal(m.volume)},
-                        {"volume_exact", m.volume},
-                        {"seconds", m.seconds},
-                        {"indexed_at", m.indexed_at},
-                        {"repair", repair},
-                        {"descriptors", m.descriptors},
-                        {"curves", curves(m.descriptors)}};
-  if (!m.error.empty()) out["error"] = m.error;
+  // The library's entry (morphex/retrieval_json.h) as the page reads it: with its id, class and
+  // curves, the volume as a decimal beside the exact one, without the hash and the settings.
+  nlohmann::json out = m;
+  for (const char* internal : {"hash", "settings", "settings_id"}) out.erase(internal);
+  out["id"] = m.id;
+  out["class"] = label(m.name);
+  out["volume"] = decimal(m.volume);
+  out["volume_exact"] = m.volume;
+  out["curves"] = curves(m.descriptors);
   return out;
 }
 
