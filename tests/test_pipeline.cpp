@@ -8,6 +8,7 @@
 #include "morphex/descriptors.h"
 #include "morphex/io.h"
 #include "morphex/minkowski.h"
+#include "morphex/descriptor_settings.h"
 #include "morphex/pipeline.h"
 #include "morphex/shapes.h"
 #include "morphex/structuring_element.h"
@@ -110,6 +111,39 @@ TEST(Pipeline, VariablesComeFromSetThenFromTheDocument) {
   EXPECT_TRUE(fs::exists(out + "/unit_cube-grown.off"));
   options.variables["r"] = "1/2";
   EXPECT_EQ(run_text(text, options).inputs[0].stages.back().volume, "8");
+}
+
+// The describe stage's options are the table of descriptor settings: its defaults, ranges and
+// names, and the library's check of the radii together (at run time, naming the setting).
+TEST(Pipeline, DescribeStageTakesTheDescriptorSettingsTable) {
+  const mp::StageInfo* describe = mp::StageRegistry::builtin().find("describe");
+  ASSERT_TRUE(describe);
+  ASSERT_EQ(describe->options.size(), descriptor_settings_table().size());
+  for (std::size_t i = 0; i < describe->options.size(); ++i) {
+    const DescriptorSettingInfo& setting = descriptor_settings_table()[i];
+    EXPECT_EQ(describe->options[i].name, setting.name);
+    EXPECT_EQ(*describe->options[i].default_value, setting.value(DescriptorSettings{}));
+  }
+  const auto problems =
+      problems_of(R"([{"type": "read", "path": "a.off"}, {"type": "describe", "d2_bins": 2}])");
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_NE(problems[0].find("pipeline[1].d2_bins"), std::string::npos) << problems[0];
+  mp::RunOptions options;
+  options.inputs = {kData + "/unit_cube.off"};
+  options.variables = {{"from", "0.7"}};
+  const mp::RunReport report = run_text(
+      R"([{"type": "read", "path": "${input}"},
+          {"type": "describe", "scales": 2, "d2_samples": 256, "open_from": "${from}"}])",
+      options);
+  ASSERT_FALSE(report.ok());
+  EXPECT_NE(report.inputs[0].error.find("open_from: open_from/close_from must not exceed"),
+            std::string::npos)
+      << report.inputs[0].error;
+  options.variables = {{"from", "0.1"}};  // a number option's value from a variable
+  EXPECT_TRUE(run_text(R"([{"type": "read", "path": "${input}"},
+          {"type": "describe", "scales": 2, "d2_samples": 256, "open_from": "${from}"}])",
+                       options)
+                  .ok());
 }
 
 TEST(Pipeline, OneBadMeshAmongGoodOnesFailsAloneAndKeepsTheOthers) {

@@ -16,6 +16,7 @@
 #include "morphex/collection.h"
 #include "morphex/descriptors.h"
 #include "morphex/index.h"
+#include "morphex/index_mpi.h"  // threads_per_rank: inline, no MPI needed
 #include "morphex/io.h"
 #include "morphex/knn.h"
 #include "morphex/retrieval.h"
@@ -413,4 +414,15 @@ TEST(IndexDb, DescriptorsRoundTripAndOldJsonVectors) {
   EXPECT_FALSE(db.remove("/x/m.off"));
   EXPECT_TRUE(db.load(false).empty());
   fs::remove(file);
+}
+
+// How MPI ranks share a node's threads (decided by libretrieval, the command line passes only the
+// user's --threads): the user's number wins; otherwise the cores are shared, at least one each.
+TEST(Retrieval, RanksShareTheirNodesCoresUnlessThreadsAreGiven) {
+  EXPECT_EQ(threads_per_rank(0, 4, 16), 4u);
+  EXPECT_EQ(threads_per_rank(0, 3, 8), 2u);
+  EXPECT_EQ(threads_per_rank(0, 8, 2), 1u);  // more ranks than cores: one thread each
+  EXPECT_EQ(threads_per_rank(0, 1, 8), 8u);
+  EXPECT_EQ(threads_per_rank(0, 0, 8), 8u);   // an unknown count of ranks: this one alone
+  EXPECT_EQ(threads_per_rank(6, 4, 16), 6u);  // --threads 6
 }

@@ -6,8 +6,9 @@
 #include "cli_common.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
-#include "morphex/internal/stopwatch.h"
 #include "morphex/io.h"
+#include "morphex/json.h"
+#include "morphex/internal/stopwatch.h"
 #include "morphex/progress.h"
 #include "morphex/solid.h"
 
@@ -61,14 +62,12 @@ Command add_bool_command(CLI::App& app) {
             const double seconds = start.seconds();
             write_result(result.solid, args->output, [&] {
               nlohmann::json stats = result_stats(result.solid, seconds);
-              const BooleanStats& s = result.stats;
+              const nlohmann::json s = result.stats;
               stats["operation"] = args->op;
-              stats["intersected_facets"] = s.cut_facets_a + s.cut_facets_b;
-              stats["segments"] = s.segments;
-              stats["phases"] = {
-                  {"validate", checking},           {"pairs", s.seconds.pairs},
-                  {"segments", s.seconds.segments}, {"retriangulate", s.seconds.retriangulate},
-                  {"classify", s.seconds.classify}, {"assemble", s.seconds.assemble}};
+              for (const char* key : {"intersected_facets", "segments", "phases"})
+                stats[key] = s.at(key);
+              // The input check is the command's (check_solids), not the Boolean's.
+              stats["phases"]["validate"] = checking;
               return stats;
             });
             return kSuccess;

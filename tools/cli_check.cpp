@@ -8,6 +8,7 @@
 #include "cli_common.h"
 #include "morphex/check.h"
 #include "morphex/io.h"
+#include "morphex/json.h"
 #include "morphex/internal/stopwatch.h"
 
 namespace morphex::cli {
@@ -21,35 +22,13 @@ std::string decimal(const FT& value) {
   return std::string(text, end);
 }
 
+// The library's report, with the file and the time around it; the exact volume only under --exact
+// (it can run to thousands of digits).
 nlohmann::json report_json(const std::string& path, const MeshReport& r, double seconds,
                            bool exact) {
-  nlohmann::json j;
+  nlohmann::json j = r;
   j["file"] = path;
-  j["valid"] = r.valid_solid();
-  j["faces"] = r.triangles;
-  j["vertices"] = r.vertices;
-  j["components"] = r.components;
-  j["border_edges"] = r.border_edges;
-  j["non_manifold_edges"] = r.non_manifold_edges;
-  j["non_manifold_vertices"] = r.non_manifold_vertices;
-  j["degenerate_faces"] = r.degenerate_faces;
-  j["closed"] = r.closed();
-  j["consistently_oriented"] = r.consistently_oriented;
-  j["outward"] = r.outward;
-  j["self_intersecting"] = r.self_intersections > 0;
-  j["self_intersections"] = r.self_intersections;
-  if (r.first_self_intersection)
-    j["first_self_intersection"] = {r.first_self_intersection->first,
-                                    r.first_self_intersection->second};
-  // Genus and volume mean something for a closed surface only (an open one has genus -1).
-  j["genus"] = r.closed() ? nlohmann::json(r.genus) : nlohmann::json();
-  j["bbox"] = {{"min", {r.bbox.xmin(), r.bbox.ymin(), r.bbox.zmin()}},
-               {"max", {r.bbox.xmax(), r.bbox.ymax(), r.bbox.zmax()}}};
-  j["volume"] = r.closed() ? nlohmann::json(CGAL::to_double(r.volume)) : nlohmann::json();
-  j["volume_approx"] = j["volume"];  // the name scripts used before "volume" was a decimal
-  if (exact)
-    j["volume_exact"] =
-        r.closed() ? nlohmann::json(to_rational_string(r.volume)) : nlohmann::json();
+  if (!exact) j.erase("volume_exact");
   j["seconds"] = seconds;
   return j;
 }

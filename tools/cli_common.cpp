@@ -13,6 +13,7 @@
 #include "morphex/check.h"
 #include "morphex/internal/files.h"
 #include "morphex/io.h"
+#include "morphex/json.h"
 
 namespace morphex::cli {
 
@@ -38,19 +39,8 @@ nlohmann::json result_stats(const Mesh& mesh, double seconds) {
 }
 
 nlohmann::json rounding_json(const RoundingReport& r) {
-  nlohmann::json j = {
-      {"moved_vertices", r.moved_vertices},
-      {"rounds", r.rounds},
-      {"resolved_pairs", r.broken_pairs},
-      {"flattened_faces", r.flattened_faces},
-      {"max_displacement", r.max_displacement},
-      {"collapsed", r.collapsed},
-      {"phases",
-       {{"round", r.seconds_round}, {"check", r.seconds_check}, {"resolve", r.seconds_resolve}}}};
-  if (r.volume_measured) {
-    j["volume_change"] = r.volume_change;
-    j["relative_volume_change"] = r.relative_volume_change;
-  }
+  nlohmann::json j = r;
+  j.erase("not_a_solid");  // the command line rounds valid solids only
   return j;
 }
 

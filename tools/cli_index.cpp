@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The collection manager: `morphex index` (in one process, or across MPI ranks when started by
 // mpirun or srun), `morphex ls` and `morphex rm`.
-#include <tbb/global_control.h>
-
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -10,11 +8,11 @@
 #include <iostream>
 #include <memory>
 #include <set>
-#include <thread>
 
 #include "cli_common.h"
 #include "morphex/index.h"
 #include "morphex/pipeline.h"
+#include "morphex/retrieval_json.h"
 #ifdef MORPHEX_HAVE_MPI
 #include "morphex/index_mpi.h"
 #endif
@@ -96,17 +94,10 @@ int print_summary(const IndexArgs& args, const IndexSummary& summary) {
   const double per_minute =
       summary.seconds > 0 ? 60.0 * double(summary.indexed + failed) / summary.seconds : 0;
   if (args.json) {
-    nlohmann::json j = {{"db", args.db},
-                        {"indexed", summary.indexed},
-                        {"skipped", summary.skipped},
-                        {"skipped_failed", summary.skipped_failed},
-                        {"failed", failed},
-                        {"errors", nlohmann::json::array()},
-                        {"seconds", summary.seconds},
-                        {"meshes_per_minute", per_minute},
-                        {"processes", summary.processes}};
-    for (const auto& [path, error] : summary.errors)
-      j["errors"].push_back({{"path", path}, {"error", user_error(args, error)}});
+    nlohmann::json j = summary;
+    j["db"] = args.db;
+    for (nlohmann::json& e : j["errors"])
+      e["error"] = user_error(args, e["error"].get<std::string>());
     std::cout << j.dump() << std::endl;
   } else {
     std::cout << args.db << ": indexed " << summary.indexed << " meshes (" << summary.skipped
@@ -125,7 +116,7 @@ int print_summary(const IndexArgs& args, const IndexSummary& summary) {
 
 // Runs the index in this process, or as one rank of an MPI job (only rank 0 opens the index,
 // draws progress and prints the summary).
-int run_index(const IndexArgs& args, const IndexPipeline& pipeline, bool threads_given) {
+int run_index(const IndexArgs& args, const IndexPipeline& pipeline, unsigned threads) {
   const int launched = launched_processes();
 #ifndef MORPHEX_HAVE_MPI
   if (launched > 1) {
@@ -139,6 +130,7 @@ int run_index(const IndexArgs& args, const IndexPipeline& pipeline, bool threads
   for (const std::string& input : expand_inputs(args.inputs)) items.push_back(index_item(input));
   IndexOptions options;
   options.retry_failed = args.retry_failed;
+  options.threads = threads;  // 0: the library's default (MPI ranks share their node's cores)
   ProgressDisplay bar("indexed", "meshes", !args.quiet);
   auto on_mesh = [&](const IndexItem& item, const std::string& error, const IndexProgress& p) {
     if (!error.empty()) print_error(item.path + ": " + user_error(args, error));
@@ -159,18 +151,11 @@ int run_index(const IndexArgs& args, const IndexPipeline& pipeline, bool threads
       IndexDb db(args.db);
       return print_summary(args, index_meshes(db, pipeline, items, on_mesh, options));
     }
-    // The ranks on one node share its cores, unless --threads says otherwise.
-    std::optional<tbb::global_control> share;
-    if (!threads_given)
-      share.emplace(tbb::global_control::max_allowed_parallelism,
-                    std::max(1u, std::thread::hardware_concurrency() /
-                                     unsigned(session.ranks_on_this_node())));
     const IndexSummary summary =
         index_meshes_mpi(session, args.db, pipeline, items, on_mesh, options);
     return session.rank() == 0 ? print_summary(args, summary) : kSuccess;
   }
 #endif
-  (void)threads_given;
   IndexDb db(args.db);
   return print_summary(args, index_meshes(db, pipeline, items, on_mesh, options));
 }
@@ -204,7 +189,10 @@ Command add_index_command(CLI::App& app) {
             const std::optional<IndexPipeline> pipeline = index_pipeline(*args);
             if (!pipeline) return kBadInput;
             try {
-              return run_index(*args, *pipeline, app.count("--threads") > 0);
+              // The user's --threads, or 0 for the library's default.
+              const unsigned threads =
+                  app.count("--threads") > 0 ? app.get_option("--threads")->as<unsigned>() : 0;
+              return run_index(*args, *pipeline, threads);
             } catch (const mp::PipelineError& e) {
               for (const auto& p : e.problems()) print_error(pipeline->name + ": " + p.text());
               return kBadInput;
@@ -213,20 +201,8 @@ Command add_index_command(CLI::App& app) {
 }
 
 nlohmann::json entry_json(const IndexedMesh& m, bool with_descriptors) {
-  nlohmann::json j = {
-      {"name", m.name},
-      {"path", m.path},
-      {"status", m.status},
-      {"faces", m.faces},
-      {"volume", m.volume},
-      {"hash", m.hash},
-      {"seconds", m.seconds},
-      {"indexed_at", m.indexed_at},
-      {"settings", m.settings},
-      {"settings_id", text_hash(m.settings).substr(0, 8)},
-      {"repair", m.repair.empty() ? nlohmann::json() : nlohmann::json::parse(m.repair)}};
-  if (!m.error.empty()) j["error"] = m.error;
-  if (with_descriptors) j["descriptors"] = m.descriptors;
+  nlohmann::json j = m;
+  if (!with_descriptors) j.erase("descriptors");
   return j;
 }
 

@@ -7,6 +7,7 @@
 #include "morphex/internal/stopwatch.h"
 #include "morphex/io.h"
 #include "morphex/minkowski.h"
+#include "morphex/morph_json.h"
 #include "morphex/morphology.h"
 
 namespace morphex::cli {
@@ -68,8 +69,8 @@ Command add_morphology_command(CLI::App& app, MorphologyOp op, const std::string
               j["operation"] = to_string(op);
               j["se"] = se.spec;
               j["se_convex"] = se.convex;
-              j["pieces"] = stats.pieces;
-              j["binary_unions"] = stats.binary_unions;
+              const nlohmann::json s = stats;
+              for (const char* key : {"pieces", "binary_unions"}) j[key] = s.at(key);
               return j;
             });
             return kSuccess;
@@ -103,9 +104,8 @@ Command add_minkowski_command(CLI::App& app) {
             write_result(result, args->output, [&] {
               nlohmann::json j = result_stats(result, seconds);
               j["operation"] = "minkowski";
-              j["pieces"] = stats.pieces;
-              j["binary_unions"] = stats.binary_unions;
-              j["phases"] = {{"pieces", stats.seconds_pieces}, {"union", stats.seconds_union}};
+              const nlohmann::json s = stats;
+              for (const char* key : {"pieces", "binary_unions", "phases"}) j[key] = s.at(key);
               return j;
             });
             return kSuccess;

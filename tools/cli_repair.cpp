@@ -6,7 +6,7 @@
 #include "cli_common.h"
 #include "morphex/internal/stopwatch.h"
 #include "morphex/io.h"
-#include "morphex/pipeline.h"
+#include "morphex/json.h"
 #include "morphex/repair.h"
 #include "morphex/solidify.h"
 
@@ -65,7 +65,7 @@ Command add_repair_command(CLI::App& app) {
               nlohmann::json stats = result_stats(result.solid, seconds);
               stats["operation"] = "repair";
               stats["input_faces"] = result.report.input_faces;
-              stats["repair"] = pipeline::to_json(result.report);
+              stats["repair"] = result.report;
               return stats;
             });
             return kSuccess;
@@ -116,7 +116,7 @@ Command add_solidify_command(CLI::App& app) {
               const SolidifyReport& r = result.report;
               stats["operation"] = "solidify";
               stats["input_faces"] = r.input_faces;
-              stats["solidify"] = pipeline::to_json(r);
+              stats["solidify"] = r;
               return stats;
             });
             return kSuccess;

@@ -3,50 +3,36 @@
 // and `rm`, the collection manager, are in cli_index.cpp).
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <set>
 #include <sstream>
+#include <variant>
 
 #include "cli_common.h"
 #include "morphex/collection.h"
+#include "morphex/descriptor_settings.h"
 #include "morphex/descriptors.h"
 #include "morphex/index.h"
 #include "morphex/internal/files.h"
-#include "morphex/internal/stopwatch.h"
 #include "morphex/io.h"
+#include "morphex/json.h"
+#include "morphex/morph_json.h"
 #include "morphex/pipeline.h"
 #include "morphex/plot.h"
 #include "morphex/retrieval.h"
-#include "morphex/solidify.h"
+#include "morphex/retrieval_json.h"
 
 namespace morphex::cli {
 namespace {
 
 namespace mp = morphex::pipeline;
 namespace fs = std::filesystem;
-
-nlohmann::json descriptors_json(const Descriptors& d) {
-  nlohmann::json j = {{"scale_length", d.scale_length},
-                      {"thickness", d.thickness},
-                      {"filtered_facets", d.facets},
-                      {"simplified", d.simplified},
-                      {"open_radii", d.open_radii},
-                      {"close_radii", d.close_radii},
-                      {"granulometry", d.granulometry},
-                      {"pattern_spectrum", d.pattern_spectrum},
-                      {"anti_granulometry", d.anti_granulometry},
-                      {"opening_residue", d.opening_residue},
-                      {"closing_residue", d.closing_residue},
-                      {"components", d.components},
-                      {"d2", d.d2},
-                      {"seconds_morphology", d.seconds_morphology}};
-  for (const std::string& kind : descriptor_kinds())
-    j["vectors"][kind] = descriptor_vector(d, kind);
-  return j;
-}
 
 // --plot FILE: an SVG file, written atomically; "-" writes it on stdout in place of the usual
 // output (which is why it cannot go with --json).
@@ -71,15 +57,136 @@ void write_plot(const std::string& plot, const Figure& figure) {
     write_svg(plot, figure);
 }
 
+// The command line's name of a descriptor setting: open_from is --open-from.
+std::string option_name(const std::string& setting) {
+  std::string out = "--" + setting;
+  std::replace(out.begin(), out.end(), '_', '-');
+  return out;
+}
+
+// One option per descriptor setting, from the library's table (morphex/descriptor_settings.h):
+// --name VALUE for a number, --no-name for a setting that is on by default. Their ranges are
+// checked by the library (settings_usable), with the one message every front end gives.
+void add_descriptor_setting_options(CLI::App* cmd, DescriptorSettings& s) {
+  for (const DescriptorSettingInfo& setting : descriptor_settings_table()) {
+    std::string doc = setting.doc;
+    std::visit(
+        [&](auto member) {
+          using T = std::remove_reference_t<decltype(s.*member)>;
+          if constexpr (std::is_same_v<T, bool>) {
+            cmd->add_flag("!--no-" + option_name(setting.name).substr(2), s.*member,
+                          "Do not " + doc);
+          } else {
+            doc[0] = char(std::toupper(static_cast<unsigned char>(doc[0])));
+            cmd->add_option(option_name(setting.name), s.*member, doc)->capture_default_str();
+          }
+        },
+        setting.field);
+  }
+}
+
+// The library's check of the settings, its message under the option's name.
+bool settings_usable(const DescriptorSettings& s) {
+  try {
+    check_descriptor_settings(s);
+    return true;
+  } catch (const InputError& e) {
+    print_error(option_name(e.where()) + ": " + e.problem());
+    return false;
+  }
+}
+
+struct DescribeArgs {
+  std::string mesh, plot;
+  bool json = false, repair = true;
+  DescriptorSettings settings;
+};
+
+// What `morphex describe` runs: the pipeline read, solidify (unless --no-repair), describe with the
+// options' settings. The mesh is bound as ${input}, so no character of its path reads as a
+// variable.
+nlohmann::json describe_pipeline(const DescribeArgs& args) {
+  nlohmann::json stages = {{{"type", "read"}, {"path", "${input}"}}};
+  if (args.repair) stages.push_back({{"type", "solidify"}});
+  nlohmann::json describe = args.settings;  // the describe stage's options are the settings
+  describe["type"] = "describe";
+  stages.push_back(describe);
+  return {{"pipeline", stages}};
+}
+
+// A failed run in the words of a command that runs a pipeline the user never wrote: the reader's
+// error names the file, solidify's says why there is no solid, and the read's refusal of a mesh
+// that is not a valid solid is the command line's (solid_problem: `morphex repair` for what it
+// repairs) rather than the pipeline's advice to add a repair stage.
+std::string describe_error(const DescribeArgs& args, const mp::InputReport& r) {
+  const std::string& error = r.stage_error;
+  if (r.failed_stage == 0) {
+    const std::string prefix = args.mesh + ": ";
+    const std::string stage_hint = " (a repair stage after the read repairs it)";
+    if (error.rfind(prefix, 0) == 0 && error.size() > prefix.size() + stage_hint.size() &&
+        error.compare(error.size() - stage_hint.size(), stage_hint.size(), stage_hint) == 0)
+      return solid_problem(
+          args.mesh, error.substr(prefix.size(), error.size() - prefix.size() - stage_hint.size()));
+    return error;
+  }
+  if (args.repair && r.failed_stage == 1) return args.mesh + ": cannot solidify: " + error;
+  return args.mesh + ": " + error;
+}
+
+// Runs the describe pipeline on the mesh; its description as `describe --json` prints it (the
+// describe stage's report, with what solidify changed, the name, path, settings and seconds), or
+// nullopt after printing why there is none.
+std::optional<nlohmann::json> run_describe(const DescribeArgs& args) {
+  mp::RunOptions options;
+  options.inputs = {args.mesh};
+  ProgressDisplay display("described", "stages", false);  // on a terminal only
+  options.on_progress = [&](double done, std::size_t total, const std::string&,
+                            const std::string& stage) {
+    display.update(std::size_t(done), total, 0, stage, done - std::floor(done));
+  };
+  mp::RunReport report;
+  try {
+    report = mp::run(describe_pipeline(args), "describe", options);
+  } catch (const mp::PipelineError& e) {
+    for (const mp::Problem& p : e.problems()) print_error(p.text());
+    return std::nullopt;
+  }
+  const mp::InputReport& r = report.inputs.at(0);
+  if (!r.ok) {
+    print_error(describe_error(args, r));
+    return std::nullopt;
+  }
+  const mp::StageReport& described = r.stages.back();
+  nlohmann::json j = described.extra;  // the library's JSON of the description
+  j["vectors"] = std::move(j["descriptors"]);
+  j.erase("descriptors");
+  j["settings"] = std::move(j["descriptor_settings"]);
+  j.erase("descriptor_settings");
+  if (args.repair && r.stages.at(1).extra.at("solidify").at("changed").get<bool>())
+    j["solidify"] = r.stages[1].extra["solidify"];
+  j["name"] = fs::path(args.mesh).stem().string();
+  j["path"] = args.mesh;
+  j["seconds"] = described.seconds;
+  return j;
+}
+
+void print_description(const std::string& mesh, const nlohmann::json& j) {
+  const Descriptors d = j.get<Descriptors>();
+  std::cout << mesh << "  (L = cbrt(volume) = " << d.scale_length
+            << ", thickness T/L = " << d.thickness << ", " << d.facets << " facets filtered"
+            << (d.simplified ? ", simplified" : "") << ")\n";
+  for (const char* key : {"open_radii", "granulometry", "pattern_spectrum", "close_radii",
+                          "anti_granulometry", "components", "d2"}) {
+    std::cout << std::left << std::setw(19) << key;
+    for (double v : j[key].get<std::vector<double>>())
+      std::cout << ' ' << std::setprecision(4) << v;
+    std::cout << '\n';
+  }
+}
+
 Command add_describe_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("describe", "Morphological descriptors and D2 of a mesh");
-  struct Args {
-    std::string mesh, plot;
-    bool json = false, repair = true;
-    DescriptorSettings settings;
-  };
-  auto args = std::make_shared<Args>();
-  auto& s = args->settings;
+  auto args = std::make_shared<DescribeArgs>();
   cmd->add_option("MESH", args->mesh, "Mesh (a valid solid, or anything solidify takes)")
       ->required();
   cmd->add_flag("--json", args->json, "One JSON object on stdout");
@@ -88,91 +195,23 @@ Command add_describe_command(CLI::App& app) {
   cmd->add_flag("--repair,!--no-repair", args->repair,
                 "Make a mesh that is not a valid solid into one first (morphex solidify; on by "
                 "default, what was done reported); --no-repair refuses it instead");
-  cmd->add_option("--scales", s.scales, "Number of opening and closing radii")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 64));
-  const auto positive = CLI::PositiveNumber;
-  cmd->add_option("--open-from", s.open_from,
-                  "Smallest opening cube half side, in units of the thickness 3 volume / area")
-      ->capture_default_str()
-      ->check(positive);
-  cmd->add_option("--open-to", s.open_to, "Largest opening cube half side, in units of it")
-      ->capture_default_str()
-      ->check(positive);
-  cmd->add_option("--close-from", s.close_from,
-                  "Smallest closing cube half side, in units of cbrt(volume)")
-      ->capture_default_str()
-      ->check(positive);
-  cmd->add_option("--close-to", s.close_to, "Largest closing cube half side, in units of it")
-      ->capture_default_str()
-      ->check(positive);
-  cmd->add_flag("!--no-closings", s.closings, "Skip the anti-granulometry");
-  cmd->add_option("--facet-budget", s.facet_budget,
-                  "Filter a simplified valid copy of about this many facets (0: the mesh itself)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--d2-samples", s.d2_samples, "D2 point pairs")
-      ->capture_default_str()
-      ->check(CLI::Range(16, 10000000));
-  cmd->add_option("--d2-bins", s.d2_bins, "D2 histogram bins")
-      ->capture_default_str()
-      ->check(CLI::Range(4, 4096));
-  cmd->add_option("--seed", s.seed, "D2 random seed");
+  add_descriptor_setting_options(cmd, args->settings);
   return {cmd, [args]() -> int {
-            const auto& s = args->settings;
-            if (s.open_from > s.open_to || s.close_from > s.close_to) {
-              print_error("--open-from/--close-from must not exceed --open-to/--close-to");
-              return kBadInput;
-            }
+            if (!settings_usable(args->settings)) return kBadInput;
             if (!plot_usable(args->plot, args->json, {{args->mesh, "the input"}})) return kBadInput;
-            std::optional<Solid> mesh;
-            std::optional<SolidifyReport> repaired;
-            if (args->repair) {
-              try {
-                SolidifyResult r = solidify(read_mesh(args->mesh));
-                mesh = std::move(r.solid);
-                repaired = r.report;
-              } catch (const InputError& e) {
-                // A reader's error names the file; solidify's says why there is no solid.
-                print_error(e.where().empty() ? args->mesh + ": cannot solidify: " + e.what()
-                                              : std::string(e.what()));
-                return kBadInput;
-              }
-            } else {
-              mesh = read_solid(args->mesh);
-            }
-            if (!mesh) return kBadInput;
-            const Stopwatch start;
-            Descriptors d;
-            {
-              const OperationProgress progress("describe");
-              d = describe(*mesh, s);
-            }
-            nlohmann::json j = descriptors_json(d);
-            if (repaired && repaired->changed) j["solidify"] = mp::to_json(*repaired);
-            j["name"] = fs::path(args->mesh).stem().string();
-            j["path"] = args->mesh;
-            j["settings"] = s.to_string();
-            j["seconds"] = start.seconds();
+            std::optional<nlohmann::json> j = run_describe(*args);
+            if (!j) return kBadInput;
             if (!args->plot.empty()) {
-              write_plot(args->plot, descriptor_figure(d, j["name"].get<std::string>()));
+              write_plot(args->plot,
+                         descriptor_figure(j->get<Descriptors>(), (*j)["name"].get<std::string>()));
               if (args->plot == "-") return kSuccess;
-              j["plot"] = args->plot;
+              (*j)["plot"] = args->plot;
             }
             if (args->json) {
-              std::cout << j.dump() << std::endl;
+              std::cout << j->dump() << std::endl;
               return kSuccess;
             }
-            std::cout << args->mesh << "  (L = cbrt(volume) = " << d.scale_length
-                      << ", thickness T/L = " << d.thickness << ", " << d.facets
-                      << " facets filtered" << (d.simplified ? ", simplified" : "") << ")\n";
-            for (const char* key : {"open_radii", "granulometry", "pattern_spectrum", "close_radii",
-                                    "anti_granulometry", "components", "d2"}) {
-              std::cout << std::left << std::setw(19) << key;
-              for (double v : j[key].get<std::vector<double>>())
-                std::cout << ' ' << std::setprecision(4) << v;
-              std::cout << '\n';
-            }
+            print_description(args->mesh, *j);
             if (!args->plot.empty()) std::cout << "wrote " << args->plot << '\n';
             return kSuccess;
           }};
@@ -240,8 +279,11 @@ Command add_query_command(CLI::App& app) {
                             {"descriptor", args->descriptor},
                             {"distance", args->metric},
                             {"neighbours", nlohmann::json::array()}};
-        for (const Neighbour& n : ranked)
-          j["neighbours"].push_back({{"name", n.name}, {"path", n.path}, {"distance", n.distance}});
+        for (const Neighbour& n : ranked) {
+          nlohmann::json neighbour = n;
+          neighbour.erase("id");  // the row number means nothing outside the index file
+          j["neighbours"].push_back(neighbour);
+        }
         if (args->json) {
           std::cout << j.dump() << std::endl;
           return kSuccess;
@@ -252,15 +294,6 @@ Command add_query_command(CLI::App& app) {
                     << "  " << ranked[i].path << '\n';
         return kSuccess;
       }};
-}
-
-nlohmann::json scores_json(const RetrievalScores& s) {
-  return {{"nearest_neighbor", s.nearest_neighbor},
-          {"first_tier", s.first_tier},
-          {"second_tier", s.second_tier},
-          {"e_measure", s.e_measure},
-          {"dcg", s.dcg},
-          {"queries", s.queries}};
 }
 
 // The table's header and rows: a first column `first` wide, then the five measures.
@@ -357,14 +390,10 @@ Command add_evaluate_command(CLI::App& app) {
             if (!args->json) print_scores_header("descriptor", 18);
             for (std::size_t k = 0; k < e.scores.size(); ++k) {
               const auto& [kind, s] = e.scores[k];
-              nlohmann::json& d = j["descriptors"][kind] = scores_json(s);
-              const PrecisionRecall& pr = e.precision_recall[k].second;
-              d["precision_recall"] = {{"recall", pr.recall}, {"precision", pr.precision}};
+              nlohmann::json& d = j["descriptors"][kind] = s;
+              d["precision_recall"] = e.precision_recall[k].second;
               if (args->per_class)
-                for (const ClassScores& c : e.per_class[k].second) {
-                  d["per_class"][c.name] = scores_json(c.scores);
-                  d["per_class"][c.name]["models"] = c.models;
-                }
+                for (const ClassScores& c : e.per_class[k].second) d["per_class"][c.name] = c;
               if (!args->json) print_scores_row(kind, 18, s);
             }
             if (args->json) {

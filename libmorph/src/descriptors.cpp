@@ -12,6 +12,7 @@
 
 #include "descriptor_internal.h"
 #include "morphex/check.h"
+#include "morphex/descriptor_settings.h"
 #include "morphex/internal/union_find.h"
 #include "morphex/morphology.h"
 #include "morphex/progress.h"
@@ -199,9 +200,7 @@ std::string DescriptorSettings::to_string() const {
 
 Descriptors describe(const Solid& input, const DescriptorSettings& settings) {
   const Mesh& solid = input.mesh();
-  if (settings.scales < 1 || !(settings.open_from > 0 && settings.open_from <= settings.open_to) ||
-      !(settings.close_from > 0 && settings.close_from <= settings.close_to))
-    throw InputError("cannot describe", "scales must be at least 1 and radii positive and growing");
+  check_descriptor_settings(settings);  // InputError naming the setting
   // The volume only sets the scale (the descriptor is computed in double precision around the
   // exact filtering): its sign exactly, its value in double precision.
   if (signed_volume_sign(solid) != CGAL::POSITIVE)

@@ -5,7 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <set>
+
+#include <tbb/global_control.h>
 
 #include "index_internal.h"
 #include "morphex/knn.h"
@@ -286,6 +289,9 @@ IndexedMesh describe_mesh(const IndexPipeline& pipeline, const PendingMesh& mesh
 IndexSummary index_meshes(IndexDb& db, const IndexPipeline& pipeline,
                           const std::vector<IndexItem>& items, const IndexCallback& on_mesh,
                           const IndexOptions& options) {
+  std::optional<tbb::global_control> limit;
+  if (options.threads > 0)
+    limit.emplace(tbb::global_control::max_allowed_parallelism, options.threads);
   const Stopwatch clock;
   detail::IndexRun run(db, pipeline, options, on_mesh);
   const std::vector<detail::PendingMesh> pending = run.plan(items);

@@ -6,7 +6,9 @@
 #include "morphex/index_mpi.h"
 
 #include <mpi.h>
+#include <tbb/global_control.h>
 
+#include <algorithm>
 #include <chrono>
 #include <deque>
 #include <filesystem>
@@ -193,6 +195,10 @@ MpiSession::~MpiSession() {
 IndexSummary index_meshes_mpi(MpiSession& session, const std::string& db_path,
                               const IndexPipeline& pipeline, const std::vector<IndexItem>& items,
                               const IndexCallback& on_mesh, const IndexOptions& options) {
+  const tbb::global_control limit(
+      tbb::global_control::max_allowed_parallelism,
+      threads_per_rank(options.threads, session.ranks_on_this_node(),
+                       std::max(1u, std::thread::hardware_concurrency())));
   const Stopwatch clock;
   IndexSummary summary;
   if (session.rank() != 0) {

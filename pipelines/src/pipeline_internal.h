@@ -17,9 +17,6 @@ FT exact_number(const nlohmann::json& value);
 // Throws StructuringElementError (its key() names the member at fault).
 StructuringElement structuring_element(const nlohmann::json& value);
 
-// The describe stage's validated options as settings.
-DescriptorSettings descriptor_settings(const nlohmann::json& options);
-
 // Rotation about a coordinate axis by an angle in degrees, exactly orthogonal: multiples of 90
 // degrees are exact, other angles use the rational half-tangent nearest to a 1e-9 grid.
 Transformation rotation(const std::string& axis, const FT& degrees);

@@ -82,6 +82,8 @@ InputReport run_one(const Pipeline& pipeline, const std::string& input, Progress
         if (report.ok) {
           report.ok = false;
           report.error = "pipeline[" + std::to_string(s) + "] (" + stage.type + "): " + e.what();
+          report.failed_stage = s;
+          report.stage_error = e.what();
         }
         return;
       }

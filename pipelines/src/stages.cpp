@@ -6,9 +6,12 @@
 
 #include "morphex/boolean.h"
 #include "morphex/check.h"
+#include "morphex/descriptor_settings.h"
 #include "morphex/descriptors.h"
 #include "morphex/io.h"
+#include "morphex/json.h"
 #include "morphex/minkowski.h"
+#include "morphex/morph_json.h"
 #include "morphex/morphology.h"
 #include "morphex/pipeline.h"
 #include "morphex/simplify.h"
@@ -17,29 +20,6 @@
 #include "pipeline_internal.h"
 
 namespace morphex::pipeline {
-
-nlohmann::json to_json(const RepairReport& r) {
-  return {{"changed", r.changed},
-          {"reversed", r.reversed},
-          {"merged_vertices", r.merged_vertices},
-          {"duplicate_faces", r.duplicate_faces},
-          {"degenerate_faces", r.degenerate_faces},
-          {"cancelled_faces", r.cancelled_faces},
-          {"intersecting_pairs", r.intersecting_pairs},
-          {"components_in", r.components_in},
-          {"components_out", r.components_out}};
-}
-
-nlohmann::json to_json(const SolidifyReport& r) {
-  return {{"method", r.method},
-          {"changed", r.changed},
-          {"summary", describe(r)},
-          {"welded_vertices", r.welded_vertices},
-          {"dropped_faces", r.dropped_faces},
-          {"filled_holes", r.filled_holes},
-          {"turned_parts", r.turned_parts},
-          {"intersecting_pairs", r.intersecting_pairs}};
-}
 
 const char* to_string(OptionType type) {
   switch (type) {
@@ -94,24 +74,6 @@ StructuringElement structuring_element(const nlohmann::json& value) {
   return make_structuring_element(value["shape"].get<std::string>(), params);
 }
 
-DescriptorSettings descriptor_settings(const nlohmann::json& options) {
-  DescriptorSettings s;
-  s.scales = options.at("scales").get<int>();
-  s.open_from = options.at("open_from").get<double>();
-  s.open_to = options.at("open_to").get<double>();
-  s.close_from = options.at("close_from").get<double>();
-  s.close_to = options.at("close_to").get<double>();
-  s.closings = options.at("closings").get<bool>();
-  s.normalise_pose = options.at("pose").get<bool>();
-  s.facet_budget = options.at("facet_budget").get<std::size_t>();
-  s.d2_samples = options.at("d2_samples").get<int>();
-  s.d2_bins = options.at("d2_bins").get<int>();
-  s.seed = options.at("seed").get<std::uint64_t>();
-  if (s.open_from > s.open_to || s.close_from > s.close_to)
-    throw InputError("describe", "open_from/close_from must not exceed open_to/close_to");
-  return s;
-}
-
 Transformation rotation(const std::string& axis, const FT& degrees) {
   const int index = axis == "x" ? 0 : axis == "y" ? 1 : 2;
   FT c, s;
@@ -159,37 +121,27 @@ StageValue morphology_stage(StageContext& c, MorphologyOp op) {
   return StageValue(std::move(result));
 }
 
-// The describe stage's options, with DescriptorSettings' defaults (descriptors.h explains them).
+// The describe stage's options: the table of descriptor settings (morphex/descriptor_settings.h),
+// with its names, defaults, ranges and documentation.
 std::vector<OptionInfo> describe_options() {
-  const DescriptorSettings d;
-  const auto number = [](std::string name, double value, std::string description) {
-    OptionInfo o = optional(std::move(name), OptionType::Number, value, std::move(description));
-    o.positive = true;
-    return o;
-  };
-  const auto integer = [](std::string name, double value, double lo, double hi,
-                          std::string description) {
-    OptionInfo o = optional(std::move(name), OptionType::Integer, value, std::move(description));
-    o.min = lo;
-    o.max = hi;
-    return o;
-  };
-  return {integer("scales", d.scales, 1, 64, "number of opening (and closing) radii"),
-          number("open_from", d.open_from,
-                 "smallest opening cube half side, in units of the "
-                 "thickness T = 3 volume / area"),
-          number("open_to", d.open_to, "largest opening cube half side, in units of T"),
-          number("close_from", d.close_from,
-                 "smallest closing cube half side, in units of L = cbrt(volume)"),
-          number("close_to", d.close_to, "largest closing cube half side, in units of L"),
-          optional("closings", OptionType::Bool, d.closings, "also the anti-granulometry"),
-          optional("pose", OptionType::Bool, d.normalise_pose,
-                   "normalise the pose (principal axes) first"),
-          integer("facet_budget", double(d.facet_budget), 0, 1e9,
-                  "filter a simplified valid copy of about this many facets (0: the mesh itself)"),
-          integer("d2_samples", d.d2_samples, 16, 1e7, "D2 point pairs"),
-          integer("d2_bins", d.d2_bins, 4, 4096, "D2 histogram bins"),
-          integer("seed", double(d.seed), 0, 4294967295.0, "D2 random seed")};
+  const DescriptorSettings defaults;
+  std::vector<OptionInfo> out;
+  for (const DescriptorSettingInfo& setting : descriptor_settings_table()) {
+    using Type = DescriptorSettingInfo::Type;
+    const Type type = setting.type();
+    OptionInfo o = optional(setting.name,
+                            type == Type::Bool     ? OptionType::Bool
+                            : type == Type::Number ? OptionType::Number
+                                                   : OptionType::Integer,
+                            setting.value(defaults), setting.doc);
+    o.positive = setting.positive;
+    if (type != Type::Bool && !setting.positive) {
+      o.min = setting.min;
+      o.max = setting.max;
+    }
+    out.push_back(std::move(o));
+  }
+  return out;
 }
 
 OptionInfo repair_budget() {
@@ -228,7 +180,7 @@ void add_io_stages(StageRegistry& r) {
            RepairOptions options;
            options.budget = c.option("budget").get<double>();
            RepairResult r = repair_mesh(c.mesh(0), options);
-           c.extra["repair"] = to_json(r.report);
+           c.extra["repair"] = r.report;
            return StageValue(std::move(r.solid));
          }});
   r.add(
@@ -248,7 +200,7 @@ void add_io_stages(StageRegistry& r) {
          options.fill_holes = c.option("fill_holes").get<bool>();
          options.repair.budget = c.option("budget").get<double>();
          SolidifyResult r = solidify(c.mesh(0), options);
-         c.extra["solidify"] = to_json(r.report);
+         c.extra["solidify"] = r.report;
          return StageValue(std::move(r.solid));
        }});
   r.add({"write",
@@ -267,12 +219,13 @@ void add_io_stages(StageRegistry& r) {
            const RoundingReport r = write_mesh(c.solid(0), path, options);
            c.extra["path"] = path;
            // What rounding to the format did (plain formats: the file is a valid solid).
-           if (!options.exact)
-             c.extra["rounding"] = {{"moved_vertices", r.moved_vertices},
-                                    {"rounds", r.rounds},
-                                    {"resolved_pairs", r.broken_pairs},
-                                    {"max_displacement", r.max_displacement},
-                                    {"collapsed", r.collapsed}};
+           // The report's keys that say what happened to the file, not where the time went.
+           if (!options.exact) {
+             const nlohmann::json rounding = r;
+             for (const char* key :
+                  {"moved_vertices", "rounds", "resolved_pairs", "max_displacement", "collapsed"})
+               c.extra["rounding"][key] = rounding.at(key);
+           }
            return StageValue(c.solid(0));
          }});
 }
@@ -366,17 +319,15 @@ void add_report_stages(StageRegistry& r) {
          "multi-scale granulometry and anti-granulometry by exact openings and closings with "
          "cubes, where their residues lie, and the D2 baseline; passes the mesh on",
          1, describe_options(), [](StageContext& c) {
-           DescriptorSettings settings = detail::descriptor_settings(c.stage.options);
+           DescriptorSettings settings = descriptor_settings(c.stage);
            settings.on_progress = c.progress;
            const Descriptors d = describe(c.solid(0), settings);
-           nlohmann::json vectors;
-           for (const std::string& kind : descriptor_kinds())
-             vectors[kind] = descriptor_vector(d, kind);
-           c.extra["descriptors"] = vectors;
+           // The library's JSON of the description (morphex/morph_json.h), its vectors under the
+           // name reports and indexes have always read them by, "descriptors".
+           c.extra = d;
+           c.extra["descriptors"] = std::move(c.extra["vectors"]);
+           c.extra.erase("vectors");
            c.extra["descriptor_settings"] = settings.to_string();
-           c.extra["scale_length"] = d.scale_length;
-           c.extra["filtered_facets"] = d.facets;
-           c.extra["simplified"] = d.simplified;
            return StageValue(c.solid(0));
          }});
   r.add({"check",
@@ -396,6 +347,16 @@ void add_report_stages(StageRegistry& r) {
 }
 
 }  // namespace
+
+DescriptorSettings descriptor_settings(const Stage& stage) {
+  // Validation checked each option; the library checks them together (open_from <= open_to),
+  // naming the setting. A number option may hold a number's text (from a ${variable}, or a
+  // fraction such as "1/20"): its nearest double.
+  nlohmann::json options = stage.options;
+  for (auto& [name, value] : options.items())
+    if (value.is_string()) value = CGAL::to_double(detail::exact_number(value));
+  return options.get<DescriptorSettings>();
+}
 
 void StageRegistry::add(StageInfo stage) {
   if (find(stage.type)) throw std::logic_error("stage registered twice: " + stage.type);

@@ -18,6 +18,7 @@
 #include "morphex/io.h"
 #include "morphex/pipeline.h"
 #include "morphex/retrieval.h"
+#include "morphex/retrieval_json.h"
 
 namespace morphex::python {
 namespace {
@@ -209,11 +210,11 @@ py::dict Index::add(const py::object& objects, const py::object& name,
       throw InputError("", pipeline_problems(pipeline.name, e));
     }
   }
+  // The library's summary, its errors as {path: message} (a path is indexed once per call).
+  const nlohmann::json j = summary;
   py::dict out;
-  out["indexed"] = summary.indexed;
-  out["skipped"] = summary.skipped;
-  out["skipped_failed"] = summary.skipped_failed;
-  out["failed"] = summary.errors.size();
+  for (const char* key : {"indexed", "skipped", "skipped_failed", "failed"})
+    out[key] = from_json(j.at(key));
   out["errors"] = std::map<std::string, std::string>(summary.errors.begin(), summary.errors.end());
   return out;
 }
@@ -350,17 +351,15 @@ others. Returns {kind: {'nearest_neighbor', 'first_tier', 'second_tier', 'e_meas
           [](Index& index) {
             py::list out;
             for (const IndexedMesh& m : index.load(false, {})) {
+              // The library's entry (morphex/retrieval_json.h), with the repair as a flag and the
+              // error always present, as this method has always given them.
+              const nlohmann::json j = m;
               py::dict e;
-              e["name"] = m.name;
-              e["path"] = m.path;
-              e["status"] = m.status;
+              for (const char* key : {"name", "path", "status", "faces", "volume", "seconds",
+                                      "settings", "indexed_at"})
+                e[key] = from_json(j.at(key));
               e["error"] = m.error;
-              e["faces"] = m.faces;
-              e["volume"] = m.volume;
-              e["repaired"] = !m.repair.empty();
-              e["seconds"] = m.seconds;
-              e["settings"] = m.settings;
-              e["indexed_at"] = m.indexed_at;
+              e["repaired"] = !j.at("repair").is_null();
               out.append(e);
             }
             return out;

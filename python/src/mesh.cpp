@@ -7,6 +7,7 @@
 #include "common.h"
 #include "morphex/check.h"
 #include "morphex/io.h"
+#include "morphex/json.h"
 #include "morphex/rounding.h"
 #include "morphex/shapes.h"
 
@@ -153,6 +154,11 @@ void bind_check_report(py::module_& m) {
                                   py::make_tuple(b.xmax(), b.ymax(), b.zmax()));
           },
           "((xmin, ymin, zmin), (xmax, ymax, zmax)), rounded outward to doubles.")
+      .def(
+          "to_dict", [](const R& r) { return from_json(r.report); },
+          "The report as a dict, the library's JSON that `morphex check --json --exact` prints "
+          "(without file and seconds): valid, faces, ..., volume (a float), volume_exact (the "
+          "rational as text); genus and volumes None when the surface is not closed.")
       .def("__bool__", [](const R& r) { return r.report.valid_solid(); })
       .def("__repr__", [](const R& r) {
         return "<morphex.CheckReport " +
@@ -179,20 +185,11 @@ PyMesh read(const py::object& path) {
   return {read_mesh(p), p};  // InputError names the file (ValueError)
 }
 
+// The library's report without its timings (Mesh.write's dict has always left them out).
 py::dict rounding_dict(const RoundingReport& r) {
-  py::dict d;
-  d["moved_vertices"] = r.moved_vertices;
-  d["rounds"] = r.rounds;
-  d["resolved_pairs"] = r.broken_pairs;
-  d["flattened_faces"] = r.flattened_faces;
-  d["max_displacement"] = r.max_displacement;
-  d["collapsed"] = r.collapsed;
-  d["not_a_solid"] = r.not_a_solid;
-  if (r.volume_measured) {
-    d["volume_change"] = r.volume_change;
-    d["relative_volume_change"] = r.relative_volume_change;
-  }
-  return d;
+  nlohmann::json j = r;
+  j.erase("phases");
+  return from_json(j);
 }
 
 py::object write(const PyMesh& m, const py::object& path, bool exact) {

@@ -7,7 +7,7 @@
 #include "morphex/boolean.h"
 #include "morphex/check.h"
 #include "morphex/morphology.h"
-#include "morphex/pipeline.h"
+#include "morphex/json.h"
 #include "morphex/repair.h"
 
 namespace morphex::python {
@@ -77,7 +77,7 @@ py::object repair(const PyMesh& m, bool merge_coplanar, bool report, double budg
   }
   PyMesh out(std::move(r.solid));
   if (!report) return py::cast(std::move(out));
-  return py::make_tuple(std::move(out), from_json(pipeline::to_json(r.report)));
+  return py::make_tuple(std::move(out), from_json(r.report));
 }
 
 const char* kSeDoc =

@@ -8,19 +8,13 @@
 #include "common.h"
 #include "morphex/io.h"
 #include "morphex/retrieval.h"
+#include "morphex/retrieval_json.h"
 
 namespace morphex::python {
 namespace {
 
 py::dict scores_dict(const RetrievalScores& s) {
-  py::dict j;
-  j["nearest_neighbor"] = s.nearest_neighbor;
-  j["first_tier"] = s.first_tier;
-  j["second_tier"] = s.second_tier;
-  j["e_measure"] = s.e_measure;
-  j["dcg"] = s.dcg;
-  j["queries"] = s.queries;
-  return j;
+  return from_json(s);
 }
 
 py::dict curve_dict(const PrecisionRecall& pr) {
@@ -33,9 +27,7 @@ py::dict curve_dict(const PrecisionRecall& pr) {
 py::dict per_class_dict(const std::vector<ClassScores>& classes) {
   py::dict out;
   for (const ClassScores& c : classes) {
-    py::dict j = scores_dict(c.scores);
-    j["models"] = c.models;
-    out[c.name.c_str()] = j;
+    out[c.name.c_str()] = from_json(c);
   }
   return out;
 }

@@ -4,7 +4,10 @@
 #include <chrono>
 
 #include "common.h"
+#include "morphex/descriptor_settings.h"
 #include "morphex/descriptors.h"
+#include "morphex/json.h"
+#include "morphex/morph_json.h"
 #include "morphex/pipeline.h"
 #include "morphex/repair.h"
 #include "morphex/retrieval.h"
@@ -14,57 +17,22 @@ namespace {
 
 namespace mp = morphex::pipeline;
 
-void require_in(const char* name, double value, double lo, double hi) {
-  if (!(value >= lo && value <= hi))
-    throw InputError("", std::string(name) + ": expected a number in [" + std::to_string(lo) +
-                             ", " + std::to_string(hi) + "], got " + std::to_string(value));
-}
-
-// The command line's checks of `morphex describe`'s options, with the keyword names.
-void check_settings(const DescriptorSettings& s) {
-  require_in("scales", s.scales, 1, 64);
-  const std::pair<const char*, double> numbers[] = {{"open_from", s.open_from},
-                                                    {"open_to", s.open_to},
-                                                    {"close_from", s.close_from},
-                                                    {"close_to", s.close_to}};
-  for (const auto& [name, v] : numbers)
-    if (!(v > 0))
-      throw InputError(
-          "", std::string(name) + ": expected a positive number, got " + std::to_string(v));
-  if (s.open_from > s.open_to || s.close_from > s.close_to)
-    throw InputError("", "open_from/close_from must not exceed open_to/close_to");
-  require_in("d2_samples", s.d2_samples, 16, 1e7);
-  require_in("d2_bins", s.d2_bins, 4, 4096);
-}
-
+// The library's JSON of the descriptors, its curves and vectors as numpy arrays.
 py::dict descriptors_dict(const Descriptors& d) {
+  const nlohmann::json j = d;
   py::dict out;
-  out["scale_length"] = d.scale_length;
-  out["thickness"] = d.thickness;
-  out["filtered_facets"] = d.facets;
-  out["simplified"] = d.simplified;
-  const std::pair<const char*, const std::vector<double>*> arrays[] = {
-      {"open_radii", &d.open_radii},
-      {"close_radii", &d.close_radii},
-      {"granulometry", &d.granulometry},
-      {"pattern_spectrum", &d.pattern_spectrum},
-      {"anti_granulometry", &d.anti_granulometry},
-      {"opening_residue", &d.opening_residue},
-      {"closing_residue", &d.closing_residue},
-      {"components", &d.components},
-      {"d2", &d.d2}};
-  for (const auto& [name, values] : arrays) out[name] = to_numpy(*values);
-  out["seconds_morphology"] = d.seconds_morphology;
+  for (const auto& [key, value] : j.items())
+    out[key.c_str()] =
+        value.is_array() ? to_numpy(value.get<std::vector<double>>()) : from_json(value);
   py::dict vectors;
-  for (const std::string& kind : descriptor_kinds())
-    vectors[kind.c_str()] = to_numpy(descriptor_vector(d, kind));
+  for (const auto& [kind, vector] : j.at("vectors").items())
+    vectors[kind.c_str()] = to_numpy(vector.get<std::vector<double>>());
   out["vectors"] = vectors;
   return out;
 }
 
 py::dict describe_mesh(const PyMesh& mesh, const DescriptorSettings& s, bool repair,
                        const std::optional<int>& threads) {
-  check_settings(s);
   Descriptors d;
   std::optional<RepairReport> repaired;
   double seconds = 0;
@@ -88,7 +56,7 @@ py::dict describe_mesh(const PyMesh& mesh, const DescriptorSettings& s, bool rep
     seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   py::dict out = descriptors_dict(d);
-  if (repaired) out["repair"] = from_json(mp::to_json(*repaired));
+  if (repaired) out["repair"] = from_json(*repaired);
   if (!mesh.source.empty()) out["path"] = mesh.source;
   out["settings"] = s.to_string();
   out["seconds"] = seconds;
@@ -138,44 +106,51 @@ py::object run_pipeline(const py::object& document, const py::object& inputs,
   return from_json(report.to_json());
 }
 
+// The keywords of describe(): one per descriptor setting, from the library's table.
+std::string settings_doc() {
+  const DescriptorSettings defaults;
+  std::string out;
+  for (const DescriptorSettingInfo& setting : descriptor_settings_table())
+    out += std::string("  ") + setting.name + "=" +
+           py::repr(from_json(setting.value(defaults))).cast<std::string>() + ": " + setting.doc +
+           "\n";
+  return out;
+}
+
 void bind_describe(py::module_& m) {
-  const DescriptorSettings d;
-  m.def(
-      "describe",
-      [](const PyMesh& mesh, int scales, double open_from, double open_to, double close_from,
-         double close_to, bool closings, bool pose, std::size_t facet_budget, int d2_samples,
-         int d2_bins, std::uint64_t seed, bool repair, const std::optional<int>& threads) {
-        DescriptorSettings s;
-        s.scales = scales;
-        s.open_from = open_from;
-        s.open_to = open_to;
-        s.close_from = close_from;
-        s.close_to = close_to;
-        s.closings = closings;
-        s.normalise_pose = pose;
-        s.facet_budget = facet_budget;
-        s.d2_samples = d2_samples;
-        s.d2_bins = d2_bins;
-        s.seed = seed;
-        return describe_mesh(mesh, s, repair, threads);
-      },
-      py::arg("mesh"), py::kw_only(), py::arg("scales") = d.scales,
-      py::arg("open_from") = d.open_from, py::arg("open_to") = d.open_to,
-      py::arg("close_from") = d.close_from, py::arg("close_to") = d.close_to,
-      py::arg("closings") = d.closings, py::arg("pose") = d.normalise_pose,
-      py::arg("facet_budget") = d.facet_budget, py::arg("d2_samples") = d.d2_samples,
-      py::arg("d2_bins") = d.d2_bins, py::arg("seed") = d.seed, py::arg("repair") = false,
-      py::arg("threads") = py::none(),
-      R"doc(Morphological descriptors and D2 of a valid solid, as `morphex describe --json`.
+  static const std::string doc =
+      R"doc(describe(mesh, *, repair=False, threads=None, **settings)
+
+Morphological descriptors and D2 of a valid solid, as `morphex describe --json`.
 
 Returns a dict: scale_length, thickness, filtered_facets, simplified, seconds_morphology, seconds,
 settings, and numpy arrays open_radii, close_radii, granulometry, pattern_spectrum,
 anti_granulometry, opening_residue, closing_residue, components, d2; 'vectors' maps each
 descriptor kind (descriptor_kinds()) to the vector an Index stores and compares.
-Keywords are the command line's options (closings=False is --no-closings; pose=False skips
-the pose normalisation, as the describe stage's "pose": false); repair=True repairs an invalid
-mesh first and adds a 'repair' dict.
-Raises InvalidSolid when the mesh is not a valid solid (and repair is False).)doc");
+repair=True repairs an invalid mesh first and adds a 'repair' dict.
+Raises InvalidSolid when the mesh is not a valid solid (and repair is False), and InputError
+naming the setting for a value out of its range.
+
+Settings (keywords, the describe stage's options; the command line's --name, --no-name for
+True/False ones), with their defaults:
+)doc" +
+      settings_doc();
+  m.def(
+      "describe",
+      [](const PyMesh& mesh, bool repair, const std::optional<int>& threads,
+         const py::kwargs& keywords) {
+        nlohmann::json given = nlohmann::json::object();
+        for (const auto& [key, value] : keywords) {
+          const std::string name = py::str(key);
+          if (!find_descriptor_setting(name))
+            throw py::type_error("describe() got an unexpected keyword argument '" + name + "'");
+          given[name] = to_json(value);
+        }
+        // The library checks each value and the ranges together, naming the setting.
+        return describe_mesh(mesh, given.get<DescriptorSettings>(), repair, threads);
+      },
+      py::arg("mesh"), py::kw_only(), py::arg("repair") = false, py::arg("threads") = py::none(),
+      doc.c_str());
   m.def("descriptor_kinds", &descriptor_kinds,
         "The descriptor kinds: morphology, granulometry, pattern_spectrum, spatial, d2, combined.");
   m.def(

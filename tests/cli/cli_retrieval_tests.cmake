@@ -8,6 +8,11 @@ morphex_cli_test(describe_open_mesh 0 "\"solidify\":\\{\"changed\":true.*\"fille
   describe --json --scales 2 ${data}/open_cube.off)
 morphex_cli_test(describe_open_mesh_refused 2 "open_cube.off: mesh is not closed"
   describe --no-repair ${data}/open_cube.off)
+# the options of describe are the library's table of descriptor settings, checked by the library
+morphex_cli_test(describe_bad_setting 2 "--d2-bins: expected an integer from 4 to 4096, got 2"
+  describe --d2-bins 2 ${data}/unit_cube.off)
+morphex_cli_test(describe_radii_not_growing 2 "--close-from: open_from/close_from must not exceed"
+  describe --close-from 0.5 --close-to 0.4 ${data}/unit_cube.off)
 morphex_cli_test(describe_sheet 2 "sheet.off: cannot solidify: mesh bounds no"
   describe ${data}/sheet.off)
 # A fresh, existing directory: the index tests create their databases in it, whether or not a
@@ -95,6 +100,10 @@ endif()
 add_test(NAME cli.repair_budget COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/repair_budget.sh
   $<TARGET_FILE:morphex> ${quick} ${data} ${PROJECT_BINARY_DIR}/cli-repair-budget
   "${repair_budget_cap}")
+# describe runs the describe stage: the same description as `morphex run` of that pipeline
+add_test(NAME cli.describe_is_the_describe_stage COMMAND bash
+  ${CMAKE_CURRENT_SOURCE_DIR}/cli/describe_stage.sh $<TARGET_FILE:morphex> ${data}
+  ${PROJECT_BINARY_DIR}/cli-describe-stage)
 # plots as files: evaluate --plot and describe --plot write SVG an XML parser reads (issue 46)
 add_test(NAME cli.plots COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/plots.sh
   $<TARGET_FILE:morphex> ${quick} ${data} ${PROJECT_BINARY_DIR}/cli-plots)

@@ -29,6 +29,25 @@ def test_describe_mirrors_the_command_line(unit_cube):
         morphex.describe(box, open_from=0.7, open_to=0.6)
 
 
+def test_describe_keywords_are_the_settings_table():
+    box = morphex.box((0, 0, 0), (1, 2, 3))
+    # a bad value of a setting is refused by the library, naming the setting
+    for name, value in (("scales", 0), ("open_to", -1), ("d2_bins", 2), ("seed", -1),
+                        ("pose", "yes")):
+        with pytest.raises(morphex.InputError, match=f"^{name}: expected"):
+            morphex.describe(box, **{name: value})
+    with pytest.raises(TypeError, match="scale"):
+        morphex.describe(box, scale=2)
+    assert "d2_bins=64" in morphex.describe.__doc__
+
+
+def test_check_report_as_a_dict_is_the_library_json(unit_cube):
+    d = unit_cube.check().to_dict()
+    assert d["valid"] and d["closed"] and d["genus"] == 0
+    assert d["volume_exact"] == "1" and d["volume"] == 1.0 and d["faces"] == 12
+    assert d["bbox"] == {"min": [0.0, 0.0, 0.0], "max": [1.0, 1.0, 1.0]}
+
+
 def test_describe_refuses_or_repairs_invalid_solids(data_dir):
     crossing = morphex.Mesh.read(data_dir / "crossing_cubes.off")
     with pytest.raises(morphex.InvalidSolid, match="crossing_cubes.off"):

@@ -79,6 +79,10 @@ struct IndexOptions {
   bool retry_failed = false;
   // Called after every pipeline stage of every mesh, one call at a time (single-process runs).
   std::function<void(const IndexProgress&)> on_stage;
+  // Worker threads of this process, as the user chose them (the command line's --threads); 0:
+  // the default, every core, or under MPI this node's cores shared among its ranks
+  // (threads_per_rank, morphex/index_mpi.h).
+  unsigned threads = 0;
 };
 
 struct IndexSummary {

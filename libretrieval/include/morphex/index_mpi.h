@@ -37,7 +37,17 @@ class MpiSession {
   int rank_ = 0, size_ = 1, local_size_ = 1;
 };
 
-// index_meshes (morphex/index.h) across the session's ranks; every rank calls it. Rank 0 opens
+// The worker threads of each of `ranks_on_node` ranks on a node of `cores` cores: `requested` when
+// the user chose a number (IndexOptions::threads, the command line's --threads), else an equal
+// share of the node's cores, at least one, so that the ranks of a node do not oversubscribe it.
+inline unsigned threads_per_rank(unsigned requested, int ranks_on_node, unsigned cores) {
+  if (requested > 0) return requested;
+  const unsigned ranks = ranks_on_node > 0 ? unsigned(ranks_on_node) : 1u;
+  return cores / ranks > 0 ? cores / ranks : 1u;
+}
+
+// index_meshes (morphex/index.h) across the session's ranks; every rank calls it, each using
+// threads_per_rank(options.threads, ...) worker threads. Rank 0 opens
 // the index at `db_path`; `items` and on_mesh are used on rank 0 only. The summary is rank 0's
 // (other ranks get an empty one). The rows stored are identical to those of a single-process run.
 // When rank 0 cannot open or write the index, every rank is stopped before rank 0 throws.

@@ -16,6 +16,7 @@
 #include "morphex/io.h"
 #include "morphex/pipeline.h"
 #include "morphex/retrieval.h"
+#include "morphex/retrieval_json.h"
 #include "morphex/internal/stopwatch.h"
 #include "thumbnail.h"
 
@@ -173,9 +174,10 @@ std::vector<double> geometric_radii(double from, double to, int n) {
   return out;
 }
 
-// The options of the last describe stage of the index's stored pipeline, defaults filled in;
-// null when the stored pipeline is not one morphex would run.
-nlohmann::json describe_options(const std::string& document, const std::string& sets) {
+// The settings of the last describe stage of the index's stored pipeline (read by the library's
+// table, as the stage reads them); none when the stored pipeline is not one morphex would run.
+std::optional<DescriptorSettings> stored_settings(const std::string& document,
+                                                  const std::string& sets) {
   try {
     const nlohmann::json doc = nlohmann::json::parse(document);
     mp::Variables variables;
@@ -183,10 +185,10 @@ nlohmann::json describe_options(const std::string& document, const std::string& 
     require_descriptor_pipeline(doc);
     const mp::Pipeline p = mp::validate(doc, "stored pipeline", variables, {"input", "stem"});
     for (auto s = p.stages.rbegin(); s != p.stages.rend(); ++s)
-      if (s->type == "describe") return s->options;
+      if (s->type == "describe") return mp::descriptor_settings(*s);
   } catch (const std::exception&) {
   }
-  return nullptr;
+  return std::nullopt;
 }
 
 }  // namespace
@@ -296,18 +298,18 @@ IndexedMesh IndexApi::row(long long id, bool with_descriptors) {
 nlohmann::json IndexApi::curves(const std::map<std::string, std::vector<double>>& descriptors) {
   const auto g = descriptors.find("granulometry");
   if (g == descriptors.end()) return nullptr;
-  nlohmann::json options;
+  std::optional<DescriptorSettings> settings;
   {
     std::lock_guard<std::mutex> lock(db_mutex_);
-    options = describe_options(db_.meta("pipeline").value_or(kDefaultIndexPipeline),
+    settings = stored_settings(db_.meta("pipeline").value_or(kDefaultIndexPipeline),
                                db_.meta("sets").value_or(""));
   }
   const auto spectrum = descriptors.find("pattern_spectrum");
   int n = 0;
   bool closings = false;
-  if (options.is_object()) {
-    n = options.value("scales", 0);
-    closings = options.value("closings", false);
+  if (settings) {
+    n = settings->scales;
+    closings = settings->closings;
   } else if (spectrum != descriptors.end()) {  // unknown settings: the lengths tell
     n = int(spectrum->second.size());
     closings = g->second.size() == 2 * spectrum->second.size();
@@ -319,36 +321,24 @@ nlohmann::json IndexApi::curves(const std::map<std::string, std::vector<double>>
     out["anti_granulometry"] = std::vector<double>(g->second.begin() + n, g->second.end());
   if (spectrum != descriptors.end() && spectrum->second.size() == std::size_t(n))
     out["pattern_spectrum"] = spectrum->second;
-  if (options.is_object()) {
-    out["open_radii"] = geometric_radii(options["open_from"], options["open_to"], n);
-    if (closings)
-      out["close_radii"] = geometric_radii(options["close_from"], options["close_to"], n);
+  if (settings) {
+    out["open_radii"] = geometric_radii(settings->open_from, settings->open_to, n);
+    if (closings) out["close_radii"] = geometric_radii(settings->close_from, settings->close_to, n);
   }
   return out;
 }
 
 nlohmann::json IndexApi::mesh(long long id) {
   const IndexedMesh m = row(id, true);
-  nlohmann::json repair = nullptr;
-  if (!m.repair.empty()) try {
-      repair = nlohmann::json::parse(m.repair);
-    } catch (const nlohmann::json::exception&) {
-      repair = m.repair;  // shown as text
-    }
-  nlohmann::json out = {{"id", m.id},
-                        {"name", m.name},
-                        {"class", label(m.name)},
-                        {"path", m.path},
-                        {"status", m.status},
-                        {"faces", m.faces},
-                        {"volume", decimal(m.volume)},
-                        {"volume_exact", m.volume},
-                        {"seconds", m.seconds},
-                        {"indexed_at", m.indexed_at},
-                        {"repair", repair},
-                        {"descriptors", m.descriptors},
-                        {"curves", curves(m.descriptors)}};
-  if (!m.error.empty()) out["error"] = m.error;
+  // The library's entry (morphex/retrieval_json.h) as the page reads it: with its id, class and
+  // curves, the volume as a decimal beside the exact one, without the hash and the settings.
+  nlohmann::json out = m;
+  for (const char* internal : {"hash", "settings", "settings_id"}) out.erase(internal);
+  out["id"] = m.id;
+  out["class"] = label(m.name);
+  out["volume"] = decimal(m.volume);
+  out["volume_exact"] = m.volume;
+  out["curves"] = curves(m.descriptors);
   return out;
 }
 

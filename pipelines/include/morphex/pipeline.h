@@ -24,6 +24,7 @@
 #include <variant>
 #include <vector>
 
+#include "morphex/descriptors.h"
 #include "morphex/mesh.h"
 #include "morphex/repair.h"
 #include "morphex/solid.h"
@@ -154,6 +155,11 @@ struct FileUse {
 std::vector<FileUse> files_read(const Pipeline& pipeline);
 std::vector<FileUse> files_written(const Pipeline& pipeline);
 
+// The settings of a validated describe stage: its options read through the table of
+// morphex/descriptor_settings.h (a number given as text, from a ${variable}, is read as one).
+// Throws InputError naming the setting when they do not go together (open_from > open_to).
+DescriptorSettings descriptor_settings(const Stage& describe_stage);
+
 // Why the folders of `path` cannot be created or written in ("" when they can): the nearest
 // ancestor that exists must be a folder this process may write in.
 std::string folder_problem(const std::string& path);
@@ -174,6 +180,10 @@ struct InputReport {
   std::string input;  // the mesh path, or "" for a pipeline without inputs
   bool ok = true;
   std::string error;  // "pipeline[3] (difference): ..." when !ok
+  // When !ok, the stage that failed and its error without the location, for callers that say it
+  // in their own words (`morphex describe` runs a pipeline the user never wrote).
+  std::size_t failed_stage = 0;
+  std::string stage_error;
   double seconds = 0;
   std::vector<StageReport> stages;
 };
@@ -215,12 +225,6 @@ RunReport run(const nlohmann::json& document, const std::string& name, const Run
 std::vector<Pipeline> prepare_run(const nlohmann::json& document, const std::string& name,
                                   const RunOptions& options,
                                   const StageRegistry& registry = StageRegistry::builtin());
-
-// The repair report as JSON (the `repair` object of reports, --stats and index entries).
-nlohmann::json to_json(const RepairReport& report);
-// The solidify report as JSON (the `solidify` object of reports, --stats, describe and index
-// entries): method, changed, summary (describe()) and the counts.
-nlohmann::json to_json(const SolidifyReport& report);
 
 // What a stage sees while it runs.
 
