@@ -21,7 +21,6 @@
 #include <tbb/global_control.h>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -33,6 +32,7 @@
 #include <thread>
 
 #include "bench_bool_common.h"
+#include "bench_harness.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
 #include "morphex/internal/solid_access.h"
@@ -94,75 +94,84 @@ struct Options {
   BooleanOp op = BooleanOp::Union;
   int max_level = 5;
   std::size_t nef_max_faces = 3000;
-  std::string json_path, only, a_path, b_path;
+  std::string only, a_path, b_path;
   std::string set = "generated";  // or "real"
   int busy_retries = 2;           // --set real only
   bool phases = false, peers_too = true;
-  std::size_t threads = 0;  // 0: all cores
+  unsigned threads = 0;  // 0: all cores
   std::string demo_dir, prusa_dir, ember_dir, write_cases;
   double degrees = 0;
   Vector offset = Vector(0, 0, 0);
 };
 
-// The command line (see the top of this file), or nullopt after reporting an unknown argument.
-// An option missing its value throws, ending the run.
-std::optional<Options> parse_arguments(int argc, char** argv) {
-  Options o;
+// A Boolean operation's name as parse_boolean_op takes it, or why not.
+std::string check_boolean_op(const std::string& name) {
+  try {
+    parse_boolean_op(name);
+    return "";
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+}
+
+// The options of the generated set and of one pair from files (see the top of this file).
+void add_generated_options(CLI::App& app, Options& o, std::vector<double>& translate) {
+  app.add_option("A", o.a_path, "One pair from files: A (against itself without B)");
+  app.add_option("B", o.b_path, "One pair from files: B, moved by --rotate and --translate");
+  app.add_option("--max-level", o.max_level, "Largest icosphere level of the scaling curve")
+      ->capture_default_str();
+  app.add_option("--nef-max-faces", o.nef_max_faces,
+                 "Nef polyhedra run on cases of at most this many input faces")
+      ->capture_default_str();
+  app.add_flag("--phases", o.phases, "Add morphex's time per phase to the table and the JSON");
+  app.add_flag_callback(
+      "--no-peers", [&o] { o.peers_too = false; }, "morphex alone (for profiling)");
+  app.add_option("--rotate", o.degrees, "Turn B by this many degrees (rational rotation)");
+  app.add_option("--translate", translate, "Move B by X Y Z")->expected(3)->type_name("FLOAT");
+}
+
+// The options of --set real (bench_bool_real.cpp).
+void add_real_options(CLI::App& app, Options& o) {
+  app.add_option("--set", o.set,
+                 "generated: icospheres, contacts, demo meshes against CGAL; "
+                 "real: pairs of real meshes against Manifold")
+      ->check(CLI::IsMember({"generated", "real"}))
+      ->capture_default_str();
+  app.add_option("--prusa-dir", o.prusa_dir, "PrusaSlicer's sample shapes (--set real)")
+      ->capture_default_str();
+  app.add_option("--ember-dir", o.ember_dir, "The EMBER cases and meshes (--set real)")
+      ->capture_default_str();
+  app.add_option("--busy-retries", o.busy_retries,
+                 "Runs again a pair disturbed by other load, up to this many times (--set real)")
+      ->capture_default_str();
+  app.add_option("--write-cases", o.write_cases,
+                 "Write each selected pair as placed, exact OFF, into DIR (--set real)");
+}
+
+// The command line (see the top of this file) into `o`; the exit status when the program should
+// stop at once (--help, a usage error).
+std::optional<int> parse_arguments(Harness& harness, Options& o, int argc, char** argv) {
   const char* home = std::getenv("HOME");
   o.demo_dir = std::string(home ? home : ".") + "/.cache/morphex/cgal-demo";
   o.prusa_dir = std::string(home ? home : ".") + "/.cache/morphex/prusa-shapes";
   o.ember_dir = std::string(home ? home : ".") + "/.cache/morphex/ember";
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto next = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(arg + " needs a value");
-      return argv[++i];
-    };
-    if (arg == "--op")
-      o.op = parse_boolean_op(next());
-    else if (arg == "--max-level")
-      o.max_level = std::stoi(next());
-    else if (arg == "--nef-max-faces")
-      o.nef_max_faces = std::stoul(next());
-    else if (arg == "--json")
-      o.json_path = next();
-    else if (arg == "--demo-dir")
-      o.demo_dir = next();
-    else if (arg == "--busy-retries")
-      o.busy_retries = std::stoi(next());
-    else if (arg == "--prusa-dir")
-      o.prusa_dir = next();
-    else if (arg == "--ember-dir")
-      o.ember_dir = next();
-    else if (arg == "--write-cases")
-      o.write_cases = next();
-    else if (arg == "--set") {
-      o.set = next();
-      if (o.set != "generated" && o.set != "real")
-        throw std::invalid_argument("--set is generated or real, not " + o.set);
-    } else if (arg == "--only")
-      o.only = next();
-    else if (arg == "--phases")
-      o.phases = true;
-    else if (arg == "--no-peers")
-      o.peers_too = false;
-    else if (arg == "--threads")
-      o.threads = std::stoul(next());
-    else if (arg == "--rotate")
-      o.degrees = std::stod(next());
-    else if (arg == "--translate") {
-      const double x = std::stod(next()), y = std::stod(next()), z = std::stod(next());
-      o.offset = Vector(x, y, z);
-    } else if (arg.rfind("--", 0) != 0 && o.a_path.empty())
-      o.a_path = arg;
-    else if (arg.rfind("--", 0) != 0 && o.b_path.empty())
-      o.b_path = arg;
-    else {
-      std::cerr << "bench_bool: unknown argument " << arg << "\n";
-      return std::nullopt;
-    }
-  }
-  return o;
+  CLI::App& app = harness.app();
+  std::string op = "union";
+  std::vector<double> translate;
+  app.add_option("--op", op, "union, intersection or difference")
+      ->check(check_boolean_op)
+      ->capture_default_str();
+  app.add_option("--demo-dir", o.demo_dir, "CGAL's demo meshes (scripts/fetch-cgal-demo-meshes)")
+      ->capture_default_str();
+  app.add_option("--only", o.only, "Only the cases whose name contains this");
+  harness.add_json();
+  harness.add_threads(o.threads, "Limit morphex's threads (default: all cores)");
+  add_generated_options(app, o, translate);
+  add_real_options(app, o);
+  if (const std::optional<int> stop = harness.parse(argc, argv)) return stop;
+  o.op = parse_boolean_op(op);
+  if (!translate.empty()) o.offset = Vector(translate[0], translate[1], translate[2]);
+  return std::nullopt;
 }
 
 // The cases to run: the pair of files given (B moved as asked, A against itself without B), or
@@ -383,13 +392,16 @@ void print_legend() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::optional<Options> options = parse_arguments(argc, argv);
-  if (!options) return 2;
-  const Options& o = *options;
+  Harness harness(
+      "bench_bool: morphex Booleans against CGAL corefinement and Nef polyhedra (or, "
+      "--set real, against Manifold on pairs of real meshes)");
+  Options o;
+  if (const std::optional<int> stop = parse_arguments(harness, o, argc, argv)) return *stop;
   // The real set runs each engine at the thread counts it compares (1, 2, 4), set in each child.
   if (o.set == "real")
-    return run_real_set({o.op, o.json_path, o.only, o.demo_dir, o.prusa_dir, o.ember_dir,
-                         o.busy_retries, o.write_cases});
+    return run_real_set(
+        {o.op, o.only, o.demo_dir, o.prusa_dir, o.ember_dir, o.busy_retries, o.write_cases},
+        harness);
   const std::vector<Case> cases = make_cases(o);
 
   // Limits morphex's TBB phases; CGAL's corefinement and Nef run sequentially anyway.
@@ -410,7 +422,7 @@ int main(int argc, char** argv) {
     if (o.phases && runs.ours.ok) print_phases(runs.ours.note, row);
     rows.push_back(row);
   }
-  if (!o.json_path.empty()) std::ofstream(o.json_path) << rows.dump(2) << '\n';
+  if (!harness.write_json(rows)) return 2;
   print_legend();
   return all_agree ? 0 : 1;
 }

@@ -59,8 +59,7 @@ double median_seconds(Once&& once) {
     runs.push_back(once());
     spent += runs.back();
   }
-  std::sort(runs.begin(), runs.end());
-  return runs[runs.size() / 2];
+  return median_of(std::move(runs));
 }
 
 // Runs `engine` in a child process. The engine times the operation itself (not the volume it
@@ -142,7 +141,7 @@ inline void own_inputs(const Case& c) {
 // The real-mesh pairs set (bench_bool --set real, bench_bool_real.cpp).
 struct RealSetOptions {
   BooleanOp op = BooleanOp::Union;
-  std::string json_path, only, demo_dir, prusa_dir;
+  std::string only, demo_dir, prusa_dir;
   // Manifold's EMBER cases (ember-benchmark-cases.json and the meshes, ID.stl), as
   // tools/peers/extract-ember-meshes leaves them; the EMBER pairs are skipped without it.
   std::string ember_dir;
@@ -153,8 +152,8 @@ struct RealSetOptions {
   // "<A> x <B>.a.off" and ".b.off"), so that one pair can be profiled alone with `bench_bool A B`.
   std::string write_cases;
 };
-// Runs the set, prints its table and summary, writes the JSON; the exit status (0: every pair
-// that ran agreed).
-int run_real_set(const RealSetOptions& options);
+// Runs the set, prints its table and summary, writes the JSON (output.write_json); the exit
+// status (0: every pair that ran agreed).
+int run_real_set(const RealSetOptions& options, const Harness& output);
 
 }  // namespace morphex::bench

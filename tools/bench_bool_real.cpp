@@ -534,7 +534,7 @@ void print_legend() {
 
 }  // namespace
 
-int run_real_set(const RealSetOptions& o) {
+int run_real_set(const RealSetOptions& o, const Harness& output) {
   std::vector<PairSpec> pairs;
   for (const PairSpec& p : kPairs)
     if (o.only.empty() || pair_name(p).find(o.only) != std::string::npos) pairs.push_back(p);
@@ -590,9 +590,7 @@ int run_real_set(const RealSetOptions& o) {
             << speedups.size() << " pairs of at least 100,000 facets)\n";
   print_check_speeds(inputs, summary);
   print_legend();
-  if (!o.json_path.empty())
-    std::ofstream(o.json_path) << nlohmann::json{{"pairs", rows}, {"summary", summary}}.dump(2)
-                               << '\n';
+  if (!output.write_json({{"pairs", rows}, {"summary", summary}})) return 2;
   return all_agree ? 0 : 1;
 }
 

@@ -19,16 +19,16 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <sstream>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "bench_common.h"
+#include "bench_harness.h"
 #include "morphex/check.h"
 #include "morphex/internal/fixtures.h"
 #include "morphex/io.h"
@@ -57,42 +57,32 @@ Mesh input_mesh(const std::string& spec) {
   return read_mesh(spec);
 }
 
-std::vector<int> parse_list(const std::string& text) {
-  std::vector<int> out;
-  std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');) out.push_back(std::max(1, std::stoi(item)));
-  return out;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
+  bench::Harness harness(
+      "bench_check: the validity check per million facets at several thread counts, beside "
+      "CGAL's self-intersection test");
+  CLI::App& app = harness.app();
   int runs = 3;
   bool peer = true;
-  std::vector<int> threads{1, 2, 4};
-  std::string json_path;
+  std::vector<unsigned> threads{1, 2, 4};
   std::vector<std::string> inputs;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--runs" && i + 1 < argc)
-      runs = std::max(1, std::stoi(argv[++i]));
-    else if (arg == "--threads" && i + 1 < argc)
-      threads = parse_list(argv[++i]);
-    else if (arg == "--no-peer")
-      peer = false;
-    else if (arg == "--json" && i + 1 < argc)
-      json_path = argv[++i];
-    else if (arg.rfind("--", 0) == 0) {
-      std::cerr << "bench_check: unknown option " << arg << '\n';
-      return 2;
-    } else
-      inputs.push_back(arg);
-  }
+  harness.add_thread_counts(threads, "Thread counts of the validity check (comma-separated)");
+  harness.add_runs(runs, "Timed runs per measurement after a warm-up (median)");
+  app.add_flag_callback(
+      "--no-peer", [&peer] { peer = false; }, "Without CGAL's does_self_intersect");
+  harness.add_json();
+  app.add_option("INPUT", inputs,
+                 "Mesh files or generated shapes: fan-prism:N, cylinder:N, cone:N, icosphere:L, "
+                 "rotated:INPUT (default: fan-prism:7000 cone:7000 cylinder:7000 icosphere:7)");
+  if (const std::optional<int> stop = harness.parse(argc, argv)) return *stop;
   if (inputs.empty()) inputs = {"fan-prism:7000", "cone:7000", "cylinder:7000", "icosphere:7"};
   nlohmann::json rows = nlohmann::json::array();
   std::cout << std::left << std::setw(26) << "input" << std::right << std::setw(9) << "facets"
             << std::setw(10) << "check" << std::setw(8) << "s/M";
-  for (const int t : threads) std::cout << std::setw(9) << ("valid " + std::to_string(t) + "t");
+  for (const unsigned t : threads)
+    std::cout << std::setw(9) << ("valid " + std::to_string(t) + "t");
   std::cout << std::setw(9) << "s/M 1t" << std::setw(9) << "x 2t" << std::setw(10) << "CGAL"
             << std::setw(7) << "valid" << std::setw(7) << "agree\n";
   for (const std::string& spec : inputs) {
@@ -113,8 +103,8 @@ int main(int argc, char** argv) {
     }
     row["check_seconds"] = full;
     row["valid"] = valid;
-    std::map<int, double> validity;
-    for (const int t : threads) {
+    std::map<unsigned, double> validity;
+    for (const unsigned t : threads) {
       const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, t);
       validity[t] = median_of_runs(runs, [&] { check_mesh(mesh, kValidityOnly); });
       row["validity_seconds"][std::to_string(t)] = validity[t];
@@ -142,7 +132,7 @@ int main(int argc, char** argv) {
     std::cout << std::left << std::setw(26) << name.substr(0, 25) << std::right << std::setw(9)
               << mesh.num_triangles() << std::fixed << std::setprecision(3) << std::setw(10) << full
               << std::setprecision(2) << std::setw(8) << full * per_million << std::setprecision(3);
-    for (const int t : threads) std::cout << std::setw(9) << validity[t];
+    for (const unsigned t : threads) std::cout << std::setw(9) << validity[t];
     const double first = validity[threads.front()];
     std::cout << std::setprecision(2) << std::setw(9) << first * per_million << std::setw(9)
               << (validity.count(2) ? first / validity[2] : 0.0) << std::setprecision(3)
@@ -150,6 +140,6 @@ int main(int argc, char** argv) {
               << std::setw(7) << agree << '\n';
     rows.push_back(row);
   }
-  if (!json_path.empty()) std::ofstream(json_path) << rows.dump(2) << '\n';
+  if (!harness.write_json(rows)) return 2;
   return 0;
 }

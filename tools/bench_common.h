@@ -1,31 +1,16 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Small pieces the benchmarks share: a median of timed runs, the exact power-of-two scale that
-// brings a mesh to a common size, and the rational rotation that makes coordinates non-doubles.
+// Small pieces of geometry the benchmarks share: the exact power-of-two scale that brings a mesh
+// to a common size, and the rational rotation that makes coordinates non-doubles. The command
+// line, the medians of timed runs and the JSON output are in bench_harness.h.
 #pragma once
 
-#include <algorithm>
 #include <cmath>
-#include <vector>
 
+#include "bench_harness.h"
 #include "morphex/shapes.h"
 #include "morphex/mesh.h"
-#include "morphex/internal/stopwatch.h"
 
 namespace morphex::bench {
-
-// The median time of `runs` runs of body, after one untimed warm-up run.
-template <class Body>
-double median_of_runs(int runs, Body&& body) {
-  body();
-  std::vector<double> times;
-  for (int i = 0; i < runs; ++i) {
-    const Stopwatch start;
-    body();
-    times.push_back(start.seconds());
-  }
-  std::sort(times.begin(), times.end());
-  return times[times.size() / 2];
-}
 
 // Exact rotation about z then x by the rational angle whose half-tangent is near tan(deg/2).
 inline Transformation rational_rotation(double degrees) {

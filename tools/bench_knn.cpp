@@ -13,11 +13,12 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <random>
 
+#include "bench_harness.h"
 #include "morphex/index.h"
 #include "morphex/knn.h"
 #include "morphex/internal/stopwatch.h"
@@ -52,11 +53,6 @@ std::vector<Match> plain_loop(const std::vector<std::vector<double>>& rows,
   });
   all.resize(std::min(k, all.size()));
   return all;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0 : v[v.size() / 2];
 }
 
 // query_index end to end on a stored index: loading one kind from SQLite, then the scan.
@@ -98,11 +94,11 @@ nlohmann::json time_index_query(std::size_t rows, std::size_t dims, std::size_t 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"k-nearest-neighbour queries: DescriptorMatrix against the plain loop"};
+  bench::Harness harness("k-nearest-neighbour queries: DescriptorMatrix against the plain loop");
+  CLI::App& app = harness.app();
   std::size_t rows = 1000000, dims = 185, k = 10;
   int queries = 10, plain_queries = 3;
   std::vector<unsigned> thread_counts = {1, 2};
-  std::string json_path;
   app.add_option("--rows", rows, "Indexed descriptors")->capture_default_str();
   app.add_option("--dims", dims, "Descriptor length (185: the default combined kind)")
       ->capture_default_str();
@@ -111,16 +107,14 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--plain-queries", plain_queries, "Queries of the plain loop (slow)")
       ->capture_default_str();
-  app.add_option("--threads", thread_counts, "Thread counts to measure (comma-separated)")
-      ->delimiter(',')
-      ->capture_default_str();
-  app.add_option("--json", json_path, "Also write the table as JSON");
+  harness.add_thread_counts(thread_counts, "Thread counts to measure (comma-separated)");
+  harness.add_json("Also write the table as JSON");
   std::size_t index_rows = 0;
   app.add_option("--index-rows", index_rows,
                  "Also store this many descriptors in a temporary SQLite index and time "
                  "query_index on it, loading included (0: skip)")
       ->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  if (const std::optional<int> stop = harness.parse(argc, argv)) return *stop;
 
   std::mt19937_64 rng(20261125);
   const Stopwatch load;
@@ -165,24 +159,24 @@ int main(int argc, char** argv) {
           return 1;
         }
       }
-      const double plain_median = median(plain_s);
+      const double plain_median = bench::median_of(plain_s);
       table.push_back({{"metric", to_string(metric)},
                        {"threads", threads},
                        {"rows", rows},
                        {"dims", dims},
                        {"k", k},
-                       {"scan_median_s", median(scan_s)},
+                       {"scan_median_s", bench::median_of(scan_s)},
                        {"scan_max_s", *std::max_element(scan_s.begin(), scan_s.end())},
                        {"plain_median_s", plain_median},
                        {"agreeing_queries", agree}});
       std::cout << std::left << std::setw(7) << to_string(metric) << std::right << std::setw(9)
-                << threads << std::setprecision(4) << std::setw(14) << median(scan_s)
+                << threads << std::setprecision(4) << std::setw(14) << bench::median_of(scan_s)
                 << std::setw(12) << *std::max_element(scan_s.begin(), scan_s.end());
       if (plain_s.empty())
         std::cout << std::setw(14) << "-" << std::setw(10) << "-" << std::setw(10) << "-";
       else
         std::cout << std::setw(14) << plain_median << std::setprecision(1) << std::setw(9)
-                  << plain_median / median(scan_s) << "x" << std::setw(7) << agree << "/"
+                  << plain_median / bench::median_of(scan_s) << "x" << std::setw(7) << agree << "/"
                   << plain_s.size();
       std::cout << '\n';
     }
@@ -190,6 +184,6 @@ int main(int argc, char** argv) {
   std::cout << "peak memory " << std::setprecision(0) << peak_rss_mb()
             << " MiB (matrix and the plain loop's vectors)\n";
   if (index_rows > 0) table.push_back(time_index_query(index_rows, dims, k, rng));
-  if (!json_path.empty()) std::ofstream(json_path) << table.dump(2) << '\n';
+  if (!harness.write_json(table)) return 2;
   return 0;
 }

@@ -16,7 +16,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -24,6 +23,7 @@
 #include <sstream>
 
 #include "bench_common.h"
+#include "bench_harness.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
 #include "morphex/internal/solid_access.h"
@@ -69,52 +69,44 @@ Mesh scaled_to_unit_diagonal(const Mesh& m) {
   return out;
 }
 
-std::vector<std::string> split(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');) out.push_back(item);
-  return out;
+// The command line's settings, with their defaults.
+struct Options {
+  std::string se_spec = "cube:r=1/20";
+  std::vector<std::string> ops = {"dilate"}, inputs;
+  bool peer = false, nary = false, normalize = false, repair = false;
+  int chain = 0;
+  unsigned threads = 0;  // 0: all cores
+};
+
+// The command line (see the top of this file) into `o`.
+void add_options(bench::Harness& harness, Options& o) {
+  CLI::App& app = harness.app();
+  app.add_option("--se", o.se_spec, "Structuring element")->capture_default_str();
+  app.add_option("--ops", o.ops, "Operations: dilate, erode, open, close (comma-separated)")
+      ->delimiter(',')
+      ->capture_default_str();
+  app.add_flag("--peer", o.peer, "Run CGAL's minkowski_sum_3 on every dilation");
+  app.add_flag("--nary", o.nary,
+               "Also time the dilation with the pieces united by one winding arrangement");
+  app.add_option("--chain", o.chain, "Dilate N times in a row, report the first and the last step");
+  app.add_flag("--normalize", o.normalize,
+               "Scale each input by a power of two to a bounding-box diagonal in [1, 2)");
+  app.add_flag("--repair", o.repair, "Make inputs that are not valid solids valid first");
+  harness.add_threads(o.threads, "Limit morphex's threads (default: all cores)");
+  harness.add_json();
+  app.add_option("INPUT", o.inputs, "Mesh files or torus:U,V, l-shape, icosphere:L")->required();
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string se_spec = "cube:r=1/20", json_path;
-  std::vector<std::string> ops = {"dilate"}, inputs;
-  bool peer = false, nary = false, normalize = false, repair = false;
-  int chain = 0;
-  unsigned threads = 0;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--se" && i + 1 < argc)
-      se_spec = argv[++i];
-    else if (arg == "--ops" && i + 1 < argc)
-      ops = split(argv[++i]);
-    else if (arg == "--peer")
-      peer = true;
-    else if (arg == "--nary")
-      nary = true;
-    else if (arg == "--chain" && i + 1 < argc)
-      chain = std::stoi(argv[++i]);
-    else if (arg == "--json" && i + 1 < argc)
-      json_path = argv[++i];
-    else if (arg == "--normalize")
-      normalize = true;
-    else if (arg == "--repair")
-      repair = true;
-    else if (arg == "--threads" && i + 1 < argc)
-      threads = unsigned(std::max(1, std::stoi(argv[++i])));
-    else if (arg.rfind("--", 0) == 0) {
-      std::cerr << "bench_morph: unknown option " << arg << '\n';
-      return 2;
-    } else
-      inputs.push_back(arg);
-  }
-  if (inputs.empty()) {
-    std::cerr << "usage: bench_morph [--se SPEC] [--ops dilate,erode,open,close] [--peer] "
-                 "[--chain N] [--threads N] [--normalize] [--repair] [--json FILE] INPUT...\n";
-    return 2;
-  }
+  bench::Harness harness(
+      "bench_morph: morphex morphology against CGAL's minkowski_sum_3 on the same input");
+  Options o;
+  add_options(harness, o);
+  // The settings under the names the measuring code below has always used.
+  auto& [se_spec, ops, inputs, peer, nary, normalize, repair, chain, threads] = o;
+  if (const std::optional<int> stop = harness.parse(argc, argv)) return *stop;
   std::optional<tbb::global_control> limit;
   if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, threads);
   const StructuringElement se = parse_structuring_element(se_spec);
@@ -208,6 +200,6 @@ int main(int argc, char** argv) {
                       {"step_input_facets", facets}});
     }
   }
-  if (!json_path.empty()) std::ofstream(json_path) << rows.dump(2) << '\n';
+  if (!harness.write_json(rows)) return 2;
   return all_agree ? 0 : 1;
 }

@@ -10,15 +10,16 @@
 
 #include <algorithm>
 #include <chrono>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "bench_common.h"
+#include "bench_harness.h"
 #include "morphex/check.h"
 #include "morphex/internal/stopwatch.h"
 #include "morphex/io.h"
@@ -34,28 +35,16 @@ using bench::median_of_runs;
 }  // namespace
 
 int main(int argc, char** argv) {
+  bench::Harness harness("bench_repair: the exact repair against the validity check");
+  CLI::App& app = harness.app();
   int runs = 3;
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-  std::string json_path;
   std::vector<std::string> inputs;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--runs" && i + 1 < argc)
-      runs = std::max(1, std::stoi(argv[++i]));
-    else if (arg == "--threads" && i + 1 < argc)
-      threads = unsigned(std::max(1, std::stoi(argv[++i])));
-    else if (arg == "--json" && i + 1 < argc)
-      json_path = argv[++i];
-    else if (arg.rfind("--", 0) == 0) {
-      std::cerr << "bench_repair: unknown option " << arg << '\n';
-      return 2;
-    } else
-      inputs.push_back(arg);
-  }
-  if (inputs.empty()) {
-    std::cerr << "usage: bench_repair [--threads N] [--runs K] [--json FILE] MESH...\n";
-    return 2;
-  }
+  harness.add_threads(threads, "Thread limit (default: all cores)")->capture_default_str();
+  harness.add_runs(runs, "Timed runs per measurement after a warm-up (median)");
+  harness.add_json();
+  app.add_option("MESH", inputs, "Mesh files")->required();
+  if (const std::optional<int> stop = harness.parse(argc, argv)) return *stop;
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   nlohmann::json rows = nlohmann::json::array();
   bool all_valid = true;
@@ -111,6 +100,6 @@ int main(int argc, char** argv) {
                     {"result", outcome},
                     {"threads", threads}});
   }
-  if (!json_path.empty()) std::ofstream(json_path) << rows.dump(2) << '\n';
+  if (!harness.write_json(rows)) return 2;
   return all_valid ? 0 : 1;
 }

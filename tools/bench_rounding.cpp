@@ -21,9 +21,11 @@
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "bench_common.h"
+#include "bench_harness.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
 #include "morphex/internal/solid_access.h"
@@ -38,7 +40,7 @@ namespace fs = std::filesystem;
 namespace {
 
 struct Options {
-  std::string cases, json;
+  std::string cases;
   std::vector<std::string> ops = {"union", "intersection", "difference"};
   std::vector<std::string> morph, shapes = {"cube", "octahedron", "ball"};
   std::vector<std::string> radii = {"1/400", "1/100", "1/20"};
@@ -227,7 +229,9 @@ std::vector<Row> morphology_rows(const Options& o, const fs::path& dir) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"bench_rounding: the cost and the validity of rounding exact results to floats"};
+  bench::Harness harness(
+      "bench_rounding: the cost and the validity of rounding exact results to floats");
+  CLI::App& app = harness.app();
   Options o;
   app.add_option("--cases", o.cases, "Folder of placed pairs written by bench_bool --write-cases");
   app.add_option("--ops", o.ops, "Boolean operations")->delimiter(',');
@@ -237,9 +241,9 @@ int main(int argc, char** argv) {
       ->delimiter(';');
   app.add_option("--radii", o.radii, "Radii, fractions of the bounding-box diagonal")
       ->delimiter(',');
-  app.add_option("--runs", o.runs, "Timed runs per Boolean (median)")->check(CLI::PositiveNumber);
-  app.add_option("--json", o.json, "Write the rows and the summary as JSON");
-  CLI11_PARSE(app, argc, argv);
+  harness.add_runs(o.runs, "Timed runs per Boolean after a warm-up (median)");
+  harness.add_json("Write the rows and the summary as JSON");
+  if (const std::optional<int> stop = harness.parse(argc, argv)) return *stop;
   tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
   const fs::path dir =
       fs::temp_directory_path() / ("morphex-bench-rounding-" + std::to_string(getpid()));
@@ -267,20 +271,17 @@ int main(int argc, char** argv) {
     worst = std::max(worst, r.written.worst_relative_volume);
   }
   std::sort(ratios.begin(), ratios.end());
-  const nlohmann::json summary = {
-      {"results", rows.size()},
-      {"results_resolved", resolved},
-      {"files_written", files},
-      {"files_valid", valid},
-      {"median_float_cost_ratio", ratios.empty() ? 0 : ratios[ratios.size() / 2]},
-      {"max_float_cost_ratio", ratios.empty() ? 0 : ratios.back()},
-      {"worst_relative_volume_error", worst},
-      {"worst_relative_volume_error_by_format", worst_by_format}};
+  const nlohmann::json summary = {{"results", rows.size()},
+                                  {"results_resolved", resolved},
+                                  {"files_written", files},
+                                  {"files_valid", valid},
+                                  {"median_float_cost_ratio", bench::median_of(ratios)},
+                                  {"max_float_cost_ratio", ratios.empty() ? 0 : ratios.back()},
+                                  {"worst_relative_volume_error", worst},
+                                  {"worst_relative_volume_error_by_format", worst_by_format}};
   std::cout << "\n" << summary.dump(2) << '\n';
-  if (!o.json.empty()) {
-    nlohmann::json all = nlohmann::json::array();
-    for (const Row& r : rows) all.push_back(to_json(r));
-    std::ofstream(o.json) << nlohmann::json{{"rows", all}, {"summary", summary}}.dump(2) << '\n';
-  }
+  nlohmann::json all = nlohmann::json::array();
+  for (const Row& r : rows) all.push_back(to_json(r));
+  if (!harness.write_json({{"rows", all}, {"summary", summary}})) return 2;
   return valid == files ? 0 : 1;
 }

@@ -13,9 +13,11 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <random>
 #include <string>
 
+#include "bench_harness.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
 #include "morphex/internal/stopwatch.h"
@@ -94,22 +96,18 @@ std::string problem_with(const Mesh& m) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  bench::Harness harness(
+      "stress: randomized exact Booleans and morphology, checked by exact "
+      "volume identities");
+  CLI::App& app = harness.app();
   std::uint64_t seed = 1;
   long count = 1000;
   std::string out_dir = "stress-failures";
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--seed" && i + 1 < argc)
-      seed = std::stoull(argv[++i]);
-    else if (arg == "--count" && i + 1 < argc)
-      count = std::stol(argv[++i]);
-    else if (arg == "--out" && i + 1 < argc)
-      out_dir = argv[++i];
-    else {
-      std::cerr << "usage: stress [--seed S] [--count N] [--out DIR]\n";
-      return 2;
-    }
-  }
+  app.add_option("--seed", seed, "Seed of the random cases")->capture_default_str();
+  app.add_option("--count", count, "Number of cases")->capture_default_str();
+  app.add_option("--out", out_dir, "Where failing cases are written (exact OFF)")
+      ->capture_default_str();
+  if (const std::optional<int> stop = harness.parse(argc, argv)) return *stop;
   const Stopwatch start;
   RandomSolids random(seed);
   long failures = 0;
