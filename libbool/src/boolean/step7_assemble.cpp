@@ -67,11 +67,11 @@ struct AroundEdge {
   }
 };
 
-constexpr std::uint32_t kNone = 0xffffffffu;
+constexpr std::uint32_t kUnset = 0xffffffffu;  // no vertex or face assigned yet
 
 // A corner (f, k), numbered 3 f + k, sits at faces[f][k]; half-edge (f, k) leaves it for
 // faces[f][k + 1], and half-edge (f, k - 1) arrives at it from faces[f][k - 1].
-struct Corners {
+struct FaceCorners {
   const std::vector<Triangle>& faces;
   PointId at(std::uint32_t corner) const { return faces[corner / 3][corner % 3]; }
   PointId next(std::uint32_t corner) const { return faces[corner / 3][(corner % 3 + 1) % 3]; }
@@ -187,7 +187,7 @@ class Fans {
   }
 
   const PointTable& points_;
-  const Corners faces_;
+  const FaceCorners faces_;
   const std::vector<std::pair<PointId, std::uint32_t>> corners_;  // see special_corners
   UnionFind sets_;  // over the special corners, by their index in `corners_`
   FlatMap<std::uint64_t, std::uint32_t, Hash64> slot_of_corner_;
@@ -230,7 +230,7 @@ IdMesh number_vertices(const PointTable& points, const std::vector<Triangle>& fa
       });
   IdMesh out;
   out.vertex_point.resize(first.back());
-  std::vector<VertexIndex> vertex_of_key(keys, kNone);
+  std::vector<VertexIndex> vertex_of_key(keys, kUnset);
   tbb::parallel_for(std::size_t(0), first.size() - 1, [&](std::size_t b) {
     auto v = VertexIndex(first[b]);
     for (std::size_t k = b * kBlock; k < std::min(keys, (b + 1) * kBlock); ++k)
@@ -257,7 +257,7 @@ void split_shared_pairs(PointTable& points, const std::vector<Triangle>& faces,
     const WedgePair& w = wedge_pairs[i];
     const Triangle& t = out.triangles[w.faces[0]];
     const Triangle& input = faces[w.faces[0]];
-    VertexIndex a = kNone, b = kNone;
+    VertexIndex a = kUnset, b = kUnset;
     for (int k = 0; k < 3; ++k) {
       if (input[k] == w.lo) a = t[k];
       if (input[k] == w.hi) b = t[k];
@@ -435,8 +435,8 @@ Mesh assemble(const Mesh& a, const Mesh& b, Intersection& x, const Refined refin
     std::vector<std::array<PointId, 3>> planes;
     std::vector<std::uint32_t> plane_of(origin.size());
     std::vector<std::uint32_t> plane_of_facet[2] = {
-        std::vector<std::uint32_t>(a.num_triangles(), kNone),
-        std::vector<std::uint32_t>(b.num_triangles(), kNone)};
+        std::vector<std::uint32_t>(a.num_triangles(), kUnset),
+        std::vector<std::uint32_t>(b.num_triangles(), kUnset)};
     // Faces of facets the other mesh touches (cut, or split at a point) may hold removable
     // vertices; the others are input facets kept whole, around their inputs' own vertices.
     std::vector<std::uint8_t> cut_facet[2] = {std::vector<std::uint8_t>(a.num_triangles(), 0),
@@ -448,7 +448,7 @@ Mesh assemble(const Mesh& a, const Mesh& b, Intersection& x, const Refined refin
       const FaceOrigin& o = origin[f];
       touched[f] = cut_facet[o.mesh][o.face];
       std::uint32_t& plane = plane_of_facet[o.mesh][o.face];
-      if (plane == kNone) {
+      if (plane == kUnset) {
         const Triangle& t = meshes[o.mesh]->triangles[o.face];
         plane = std::uint32_t(planes.size());
         std::array<PointId, 3> corners = {x.points.vertex(o.mesh, t[0]),
