@@ -12,10 +12,10 @@
 #include <vector>
 
 #include "check/check_planar.h"
-#include "morphex/check.h"
-#include "morphex/internal/fixtures.h"
 #include "exact/point_index.h"
 #include "exact/point_table.h"
+#include "morphex/check.h"
+#include "morphex/internal/fixtures.h"
 #include "tree/box_tree.h"
 
 namespace morphex::test_support {

@@ -12,13 +12,13 @@
 #include "check/check_internal.h"
 #include "check/check_planar.h"
 #include "check_test_support.h"
+#include "exact/point_index.h"
+#include "exact/point_table.h"
+#include "mesh/volume_internal.h"
 #include "morphex/check.h"
 #include "morphex/internal/fixtures.h"
 #include "peers.h"
-#include "exact/point_index.h"
-#include "exact/point_table.h"
 #include "tree/box_tree.h"
-#include "mesh/volume_internal.h"
 
 using namespace morphex;
 

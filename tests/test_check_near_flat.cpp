@@ -9,9 +9,9 @@
 
 #include "check/check_planar.h"
 #include "check_test_support.h"
+#include "exact/point_table.h"
 #include "morphex/check.h"
 #include "morphex/internal/fixtures.h"
-#include "exact/point_table.h"
 
 using namespace morphex;
 using test_support::improper_pairs_by_brute_force;

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "check/check_planes.h"
-#include "morphex/shapes.h"
 #include "exact/point_table.h"
+#include "morphex/shapes.h"
 
 using namespace morphex;
 

@@ -13,10 +13,10 @@
 
 #include "check/check_stars.h"
 #include "check_test_support.h"
+#include "exact/point_table.h"
 #include "morphex/check.h"
 #include "morphex/internal/fixtures.h"
 #include "morphex/internal/union_find.h"
-#include "exact/point_table.h"
 #include "tree/box_tree.h"
 
 using namespace morphex;

@@ -13,10 +13,10 @@
 
 #include "boolean/step1_triangulate.h"
 #include "mesh/io_text.h"
-#include "morphex/internal/files.h"
 #include "morphex/check.h"
-#include "morphex/shapes.h"
+#include "morphex/internal/files.h"
 #include "morphex/io.h"
+#include "morphex/shapes.h"
 
 #ifdef MORPHEX_HAVE_3MF
 #include <Model/COM/NMR_DLLInterfaces.h>

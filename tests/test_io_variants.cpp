@@ -10,10 +10,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "morphex/internal/files.h"
 #include "morphex/check.h"
-#include "morphex/shapes.h"
+#include "morphex/internal/files.h"
 #include "morphex/io.h"
+#include "morphex/shapes.h"
 
 using namespace morphex;
 namespace fs = std::filesystem;
@@ -190,7 +190,8 @@ TEST(PlyVariants, ExtraPropertiesAndIndexTypesAreRead) {
 // turned it into a regular file that later redirections filled (found by this session's
 // `--stats /dev/null`).
 TEST(AtomicWrite, DevicesAreWrittenInPlace) {
-  struct stat before {}, after {};
+  struct stat before {
+  }, after{};
   ASSERT_EQ(stat("/dev/null", &before), 0);
   ASSERT_TRUE(S_ISCHR(before.st_mode));
   write_file_atomically("/dev/null", [](std::ostream& out) { out << "written\n"; });

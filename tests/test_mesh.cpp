@@ -6,10 +6,10 @@
 
 #include <gmpxx.h>
 
-#include "morphex/shapes.h"
-#include "morphex/mesh.h"
 #include "morphex/internal/parallel_points.h"
 #include "morphex/internal/union_find.h"
+#include "morphex/mesh.h"
+#include "morphex/shapes.h"
 
 using namespace morphex;
 

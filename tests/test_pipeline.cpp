@@ -5,10 +5,10 @@
 
 #include <filesystem>
 
+#include "morphex/descriptor_settings.h"
 #include "morphex/descriptors.h"
 #include "morphex/io.h"
 #include "morphex/minkowski.h"
-#include "morphex/descriptor_settings.h"
 #include "morphex/pipeline.h"
 #include "morphex/shapes.h"
 #include "morphex/structuring_element.h"

@@ -14,10 +14,10 @@
 #include "exact/point_index.h"
 #include "exact/point_table.h"
 #include "exact/projection_traits.h"
-#include "random_points.h"
 #include "exact/stable_vector.h"
 #include "exact/static_filter.h"
 #include "exact/triangle_overlap.h"
+#include "random_points.h"
 
 using namespace morphex;
 using test_support::RandomPoints;

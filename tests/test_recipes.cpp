@@ -12,8 +12,8 @@
 
 #include "boolean/facet_lines.h"
 #include "exact/point_table.h"
-#include "random_points.h"
 #include "exact/static_filter.h"
+#include "random_points.h"
 
 using namespace morphex;
 using test_support::RandomPoints;

@@ -42,8 +42,8 @@ TEST(Solid, CopiesShareTheirMeshAndResultsAreSolidsAgain) {
   // A chain: each result feeds the next operation without a check, and stays valid.
   Solid current = a;
   for (int i = 1; i <= 3; ++i) {
-    const Solid moved = transformed(a, Kernel::Aff_transformation_3(
-                                           CGAL::TRANSLATION, Kernel::Vector_3(FT(i) / 2, 0, 0)));
+    const Solid moved = transformed(
+        a, Kernel::Aff_transformation_3(CGAL::TRANSLATION, Kernel::Vector_3(FT(i) / 2, 0, 0)));
     current = compute_boolean(current, moved, BooleanOp::Union).solid;
     const MeshReport report = check_mesh(current);
     ASSERT_TRUE(report.valid_solid()) << describe_problems(report);

@@ -44,8 +44,8 @@ TEST(Spatial, TraversalsFindExactlyTheOverlappingBoxesAtEverySize) {
   std::mt19937 random(41);
   std::size_t self_pairs = 0, cross_pairs = 0, query_hits = 0;
 
-  for (const std::size_t n : {1, 2, 3, 4, 5, 7, 8, 9, 15, 16, 17, 31, 33, 63, 64, 65, 127, 129, 255,
-                              257, 511, 513, 1023, 1025, 2047, 4097}) {
+  for (const std::size_t n : {1,  2,  3,  4,   5,   7,   8,   9,   15,  16,   17,   31,   33,
+                              63, 64, 65, 127, 129, 255, 257, 511, 513, 1023, 1025, 2047, 4097}) {
     const std::vector<FloatBox> a = random_boxes(n, random), b = random_boxes(n / 3 + 1, random);
     const std::vector<std::uint32_t> ia = ids_of(a.size()), ib = ids_of(b.size());
     const TriangleTree ta(a, ia), tb(b, ib);

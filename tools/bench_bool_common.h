@@ -18,8 +18,8 @@
 
 #include "bench_common.h"
 #include "morphex/boolean.h"
-#include "morphex/shapes.h"
 #include "morphex/mesh.h"
+#include "morphex/shapes.h"
 
 namespace morphex::bench {
 

@@ -31,8 +31,8 @@
 #include "bench_harness.h"
 #include "morphex/check.h"
 #include "morphex/internal/fixtures.h"
-#include "morphex/io.h"
 #include "morphex/internal/stopwatch.h"
+#include "morphex/io.h"
 #include "peers.h"
 
 using namespace morphex;

@@ -7,8 +7,8 @@
 #include <cmath>
 
 #include "bench_harness.h"
-#include "morphex/shapes.h"
 #include "morphex/mesh.h"
+#include "morphex/shapes.h"
 
 namespace morphex::bench {
 

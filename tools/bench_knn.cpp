@@ -20,8 +20,8 @@
 
 #include "bench_harness.h"
 #include "morphex/index.h"
-#include "morphex/knn.h"
 #include "morphex/internal/stopwatch.h"
+#include "morphex/knn.h"
 
 namespace {
 

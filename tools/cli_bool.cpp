@@ -6,9 +6,9 @@
 #include "cli_common.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
+#include "morphex/internal/stopwatch.h"
 #include "morphex/io.h"
 #include "morphex/json.h"
-#include "morphex/internal/stopwatch.h"
 #include "morphex/progress.h"
 #include "morphex/solid.h"
 

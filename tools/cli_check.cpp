@@ -7,9 +7,9 @@
 
 #include "cli_common.h"
 #include "morphex/check.h"
+#include "morphex/internal/stopwatch.h"
 #include "morphex/io.h"
 #include "morphex/json.h"
-#include "morphex/internal/stopwatch.h"
 
 namespace morphex::cli {
 

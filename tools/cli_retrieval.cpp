@@ -263,37 +263,36 @@ Command add_query_command(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::IsMember({"l1", "l2", "chi2"}));
   cmd->add_flag("--json", args->json, "One JSON object on stdout");
-  return {
-      cmd, [args]() -> int {
-        IndexDb db(args->db, IndexAccess::ReadOnly);
-        std::vector<Neighbour> ranked;
-        try {
-          const OperationProgress progress("query");  // a query mesh file is described first
-          ranked =
-              query_index(db, args->mesh, args->k, args->descriptor, parse_metric(args->metric));
-        } catch (const InputError& e) {
-          print_error(e.what());
-          return kBadInput;
-        }
-        nlohmann::json j = {{"query", args->mesh},
-                            {"descriptor", args->descriptor},
-                            {"distance", args->metric},
-                            {"neighbours", nlohmann::json::array()}};
-        for (const Neighbour& n : ranked) {
-          nlohmann::json neighbour = n;
-          neighbour.erase("id");  // the row number means nothing outside the index file
-          j["neighbours"].push_back(neighbour);
-        }
-        if (args->json) {
-          std::cout << j.dump() << std::endl;
-          return kSuccess;
-        }
-        for (std::size_t i = 0; i < ranked.size(); ++i)
-          std::cout << std::setw(3) << i + 1 << "  " << std::left << std::setw(24) << ranked[i].name
-                    << std::right << std::setw(12) << std::setprecision(5) << ranked[i].distance
-                    << "  " << ranked[i].path << '\n';
-        return kSuccess;
-      }};
+  return {cmd, [args]() -> int {
+            IndexDb db(args->db, IndexAccess::ReadOnly);
+            std::vector<Neighbour> ranked;
+            try {
+              const OperationProgress progress("query");  // a query mesh file is described first
+              ranked = query_index(db, args->mesh, args->k, args->descriptor,
+                                   parse_metric(args->metric));
+            } catch (const InputError& e) {
+              print_error(e.what());
+              return kBadInput;
+            }
+            nlohmann::json j = {{"query", args->mesh},
+                                {"descriptor", args->descriptor},
+                                {"distance", args->metric},
+                                {"neighbours", nlohmann::json::array()}};
+            for (const Neighbour& n : ranked) {
+              nlohmann::json neighbour = n;
+              neighbour.erase("id");  // the row number means nothing outside the index file
+              j["neighbours"].push_back(neighbour);
+            }
+            if (args->json) {
+              std::cout << j.dump() << std::endl;
+              return kSuccess;
+            }
+            for (std::size_t i = 0; i < ranked.size(); ++i)
+              std::cout << std::setw(3) << i + 1 << "  " << std::left << std::setw(24)
+                        << ranked[i].name << std::right << std::setw(12) << std::setprecision(5)
+                        << ranked[i].distance << "  " << ranked[i].path << '\n';
+            return kSuccess;
+          }};
 }
 
 // The table's header and rows: a first column `first` wide, then the five measures.

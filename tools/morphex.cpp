@@ -25,8 +25,8 @@
 #include <vector>
 
 #include "cli_common.h"
-#include "morphex/io.h"
 #include "morphex/internal/nearest.h"
+#include "morphex/io.h"
 
 namespace {
 

@@ -86,7 +86,8 @@ void write_file_atomically(const std::string& path,
   std::string tmp = (dir / ("." + target.filename().string() + ".tmp.XXXXXX")).string();
   const int fd = mkstemp(tmp.data());
   if (fd < 0)
-    throw StorageError(path, std::string("cannot create a temporary file: ") + std::strerror(errno));
+    throw StorageError(path,
+                       std::string("cannot create a temporary file: ") + std::strerror(errno));
   close(fd);
   const PendingTemporary pending(tmp);
   try {
@@ -105,7 +106,8 @@ void write_file_atomically(const std::string& path,
       close(sync_fd);
     }
     if (std::rename(tmp.c_str(), path.c_str()) != 0)
-      throw StorageError(path, std::string("cannot rename the temporary file: ") + std::strerror(errno));
+      throw StorageError(path,
+                         std::string("cannot rename the temporary file: ") + std::strerror(errno));
   } catch (...) {
     std::remove(tmp.c_str());
     throw;

@@ -58,7 +58,9 @@ ProgressScope::ProgressScope(ProgressSink sink) : previous_(detail::current) {
   detail::current = &frame_;
 }
 
-ProgressScope::~ProgressScope() { detail::current = previous_; }
+ProgressScope::~ProgressScope() {
+  detail::current = previous_;
+}
 
 using detail::nested_phase;
 
@@ -86,7 +88,9 @@ ProgressCounter::ProgressCounter(double total) : previous_(detail::current), tot
   detail::current = nullptr;
 }
 
-ProgressCounter::~ProgressCounter() { detail::current = previous_; }
+ProgressCounter::~ProgressCounter() {
+  detail::current = previous_;
+}
 
 void ProgressCounter::add(double units) {
   if (!frame_ || total_ <= 0) return;

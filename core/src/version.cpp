@@ -3,4 +3,6 @@
 // given to this file only, so the precompiled header the other sources share stays valid.
 #include "morphex/version.h"
 
-const char* morphex::version() { return MORPHEX_VERSION; }
+const char* morphex::version() {
+  return MORPHEX_VERSION;
+}

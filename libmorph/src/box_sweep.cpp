@@ -27,8 +27,8 @@
 #include <unordered_map>
 
 #include "minkowski_internal.h"
-#include "morphex/shapes.h"
 #include "morphex/internal/parallel_points.h"
+#include "morphex/shapes.h"
 #include "morphex/winding.h"
 
 namespace morphex::detail {

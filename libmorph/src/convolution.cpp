@@ -33,8 +33,8 @@
 #include <vector>
 
 #include "convolution_internal.h"
-#include "morphex/structuring_element.h"
 #include "morphex/internal/union_find.h"
+#include "morphex/structuring_element.h"
 
 namespace morphex::detail {
 namespace {

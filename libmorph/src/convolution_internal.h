@@ -36,9 +36,8 @@ std::vector<std::vector<std::uint32_t>> same_support_patches(
     const std::vector<std::vector<VertexIndex>>& support, const std::vector<std::uint8_t>& whole);
 // The prisms f + [c, s] of one patch as few valid solids, appended to `out`: the patch's sweep
 // when it is a valid solid, else the sweeps of its halves, down to single prisms.
-void patch_pieces(const Mesh& surface, const DirectedEdges& edges,
-                  std::vector<std::uint32_t> patch, const Point& s, const Point& c,
-                  std::vector<Mesh>& out);
+void patch_pieces(const Mesh& surface, const DirectedEdges& edges, std::vector<std::uint32_t> patch,
+                  const Point& s, const Point& c, std::vector<Mesh>& out);
 
 // A convex edge u-v of the surface whose piece is e + T, T = (c, B[s0], B[s1]) with s0 < s1.
 struct TriangleEdge {

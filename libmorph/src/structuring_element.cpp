@@ -11,8 +11,8 @@
 #include <stdexcept>
 
 #include "morphex/check.h"
-#include "morphex/io.h"
 #include "morphex/internal/nearest.h"
+#include "morphex/io.h"
 #include "morphex/shapes.h"
 
 namespace morphex {

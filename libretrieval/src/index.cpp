@@ -11,8 +11,8 @@
 #include <tbb/global_control.h>
 
 #include "index_internal.h"
-#include "morphex/knn.h"
 #include "morphex/internal/stopwatch.h"
+#include "morphex/knn.h"
 
 namespace morphex {
 
@@ -76,9 +76,9 @@ std::map<std::string, std::vector<double>> descriptors_of(const mp::InputReport&
 // query), nor is a read of another file or a structuring element read from a file.
 const std::set<std::string>& descriptor_stage_types() {
   static const std::set<std::string> types = {
-      "read",  "repair",       "solidify",   "describe", "check",    "simplify", "translate",
-      "scale", "rotate",       "dilate",     "erode",    "open",     "close",
-      "union", "intersection", "difference", "minkowski"};
+      "read",      "repair", "solidify",     "describe",   "check",    "simplify",
+      "translate", "scale",  "rotate",       "dilate",     "erode",    "open",
+      "close",     "union",  "intersection", "difference", "minkowski"};
   return types;
 }
 

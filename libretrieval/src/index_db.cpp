@@ -5,16 +5,16 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <chrono>
 #include <filesystem>
-#include <thread>
 #include <fstream>
 #include <limits>
 #include <set>
 #include <stdexcept>
+#include <thread>
 
 #include "morphex/error.h"
 

@@ -2,8 +2,8 @@
 // The SVG chart writer (morphex/plot.h). SVG cannot measure text, so widths are estimated from the
 // number of characters (0.6 em each, generous for sans-serif faces): labels longer than their room
 // are cut with an ellipsis instead of running over their neighbours.
-#include "morphex/internal/files.h"
 #include "morphex/plot.h"
+#include "morphex/internal/files.h"
 
 #include <algorithm>
 #include <cmath>

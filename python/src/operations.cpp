@@ -6,8 +6,8 @@
 #include "common.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
-#include "morphex/morphology.h"
 #include "morphex/json.h"
+#include "morphex/morphology.h"
 #include "morphex/repair.h"
 
 namespace morphex::python {

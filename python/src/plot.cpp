@@ -3,9 +3,9 @@
 // evaluate_retrieval on a distance matrix (scores, per class, precision-recall), the charts of a
 // description and of an evaluation as dicts, and plot_svg, which writes any such chart without a
 // plotting library.
-#include "morphex/internal/files.h"
 #include "morphex/plot.h"
 #include "common.h"
+#include "morphex/internal/files.h"
 #include "morphex/io.h"
 #include "morphex/retrieval.h"
 #include "morphex/retrieval_json.h"

@@ -3,8 +3,8 @@
 // (when built with lib3mf) and glTF binary (.glb, written only, for viewers). The path "-" is
 // standard input or output. Readers triangulate polygons and throw InputError naming the file, the
 // problem and the line, vertex or face. Writers are atomic: a temporary file in the target's
-// directory, then rename (morphex/atomic_files.h); standard output gets the whole file at once, once
-// it is complete.
+// directory, then rename (morphex/atomic_files.h); standard output gets the whole file at once,
+// once it is complete.
 #pragma once
 
 #include <cstdint>
@@ -12,9 +12,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "morphex/mesh.h"
 #include "morphex/atomic_files.h"
 #include "morphex/error.h"
+#include "morphex/mesh.h"
 #include "morphex/rounding.h"
 #include "morphex/version.h"
 

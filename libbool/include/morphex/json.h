@@ -28,8 +28,9 @@ namespace morphex {
 void to_json(nlohmann::json& j, const MeshReport& report);
 // candidate_pairs, intersecting_pairs, cut_facets_a, cut_facets_b, intersected_facets (their
 // sum), segments, intersection_points, patches, patches_by_orientation_rule, patches_by_ray_cast,
-// orientation_conflicts, phases {pairs, segments, retriangulate, classify, assemble} (the operands were checked
-// where their Solids were made: `morphex bool` adds that check's time as phases.validate).
+// orientation_conflicts, phases {pairs, segments, retriangulate, classify, assemble} (the operands
+// were checked where their Solids were made: `morphex bool` adds that check's time as
+// phases.validate).
 void to_json(nlohmann::json& j, const BooleanStats& stats);
 // binary_unions, disjoint_merges.
 void to_json(nlohmann::json& j, const UnionStats& stats);

@@ -70,8 +70,7 @@ void triangulate_polygon(const std::vector<Point>& points, const std::vector<Ver
       clipped = true;
     }
     if (!clipped)
-      throw InputError("", 
-          "polygon cannot be triangulated (self-intersecting or degenerate)");
+      throw InputError("", "polygon cannot be triangulated (self-intersecting or degenerate)");
   }
   if (CGAL::orientation(flat[ring[0]], flat[ring[1]], flat[ring[2]]) != ccw)
     throw InputError("", "polygon cannot be triangulated (degenerate)");

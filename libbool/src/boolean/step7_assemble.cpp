@@ -22,11 +22,11 @@
 #include <stdexcept>
 #include <vector>
 
-#include "containers/block_offsets.h"
 #include "boolean/boolean_internal.h"
-#include "exact/filtered.h"
+#include "containers/block_offsets.h"
 #include "containers/flat_map.h"
 #include "containers/id_pairs.h"
+#include "exact/filtered.h"
 
 namespace morphex::detail {
 

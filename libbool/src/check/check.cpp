@@ -14,18 +14,18 @@
 #include <numeric>
 #include <sstream>
 
-#include "tree/box_frame.h"
 #include "check/check_internal.h"
 #include "check/check_planar.h"
 #include "check/check_planes.h"
 #include "check/check_stars.h"
-#include "morphex/internal/union_find.h"
 #include "exact/point_index.h"
 #include "exact/point_table.h"
-#include "tree/box_tree.h"
 #include "exact/static_filter.h"
 #include "exact/triangle_overlap.h"
 #include "mesh/volume_internal.h"
+#include "morphex/internal/union_find.h"
+#include "tree/box_frame.h"
+#include "tree/box_tree.h"
 
 namespace morphex {
 

@@ -10,8 +10,8 @@
 #include <limits>
 #include <optional>
 
-#include "morphex/internal/union_find.h"
 #include "exact/static_filter.h"
+#include "morphex/internal/union_find.h"
 
 namespace morphex::detail {
 namespace {

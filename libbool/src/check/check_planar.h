@@ -20,10 +20,10 @@
 #include <utility>
 #include <vector>
 
-#include "tree/box_frame.h"
 #include "check/check_planes.h"
-#include "morphex/mesh.h"
 #include "exact/point_table.h"
+#include "morphex/mesh.h"
+#include "tree/box_frame.h"
 
 namespace morphex::detail {
 

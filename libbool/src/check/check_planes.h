@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "exact/double_plane.h"
-#include "morphex/mesh.h"
 #include "exact/static_filter.h"
+#include "morphex/mesh.h"
 
 namespace morphex::detail {
 

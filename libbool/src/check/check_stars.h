@@ -26,8 +26,8 @@
 #include <vector>
 
 #include "check/check_planar.h"
-#include "morphex/mesh.h"
 #include "exact/point_table.h"
+#include "morphex/mesh.h"
 
 namespace morphex::detail {
 

@@ -52,10 +52,10 @@ std::pair<Solid, Solid> check_solids(Mesh a, const std::string& where_a, Mesh b,
 Solid transformed(const Solid& solid, const Kernel::Aff_transformation_3& map) {
   // An exact map with a non-zero determinant is a bijection that keeps a valid solid valid;
   // morphex::transformed turns the faces of a reflection so that the result stays outward.
-  const CGAL::Sign sign = CGAL::sign(
-      map.m(0, 0) * (map.m(1, 1) * map.m(2, 2) - map.m(1, 2) * map.m(2, 1)) -
-      map.m(0, 1) * (map.m(1, 0) * map.m(2, 2) - map.m(1, 2) * map.m(2, 0)) +
-      map.m(0, 2) * (map.m(1, 0) * map.m(2, 1) - map.m(1, 1) * map.m(2, 0)));
+  const CGAL::Sign sign =
+      CGAL::sign(map.m(0, 0) * (map.m(1, 1) * map.m(2, 2) - map.m(1, 2) * map.m(2, 1)) -
+                 map.m(0, 1) * (map.m(1, 0) * map.m(2, 2) - map.m(1, 2) * map.m(2, 0)) +
+                 map.m(0, 2) * (map.m(1, 0) * map.m(2, 1) - map.m(1, 1) * map.m(2, 0)));
   if (sign == CGAL::ZERO) throw InputError("transformed", "the map is singular (determinant 0)");
   Mesh moved = morphex::transformed(solid.mesh(), map);
   make_exact(moved);  // chains of motions would otherwise grow lazy-evaluation graphs

@@ -116,7 +116,9 @@ std::uint32_t PositionIndex::find_or_insert(const std::array<double, 3>& point, 
         return e.rational == kDoubles ? e.xyz == xyz
                                       : rationals_[e.rational] == Point(xyz[0], xyz[1], xyz[2]);
       },
-      [&] { return Entry{key, xyz, id, kDoubles}; });
+      [&] {
+        return Entry{key, xyz, id, kDoubles};
+      });
 }
 
 PointIndex::PointIndex(std::vector<Point>& points) : points_(points) {

@@ -14,8 +14,8 @@
 #include "boolean/facet_lines.h"
 #include "exact/filtered.h"
 #include "exact/fixed_integer.h"
-#include "morphex/internal/union_find.h"
 #include "exact/static_filter.h"
+#include "morphex/internal/union_find.h"
 
 namespace morphex::detail {
 

@@ -26,8 +26,8 @@
 #include <vector>
 
 #include "exact/fixed_integer.h"
-#include "morphex/mesh.h"
 #include "exact/stable_vector.h"
+#include "morphex/mesh.h"
 
 namespace morphex::detail {
 

@@ -29,7 +29,6 @@ class SoupIndexer {
   std::unordered_map<std::array<double, 3>, VertexIndex, DoublePointHash> index_;
 };
 
-
 Mesh read_stl_binary(const std::string& content, const std::string& name) {
   if (content.size() < 84)
     throw InputError(name, "truncated binary STL: shorter than its 84-byte header");

@@ -15,11 +15,11 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "morphex/check.h"
-#include "morphex/io.h"
-#include "morphex/internal/stopwatch.h"
-#include "morphex/winding.h"
 #include "mesh/rounding_check.h"
+#include "morphex/check.h"
+#include "morphex/internal/stopwatch.h"
+#include "morphex/io.h"
+#include "morphex/winding.h"
 
 namespace morphex {
 namespace {
@@ -237,8 +237,8 @@ std::size_t round_points(const Mesh& mesh, RoundingGrid grid, int drop, DoubleMe
   });
   if (overflow != SIZE_MAX)
     throw LossyOutputError("", std::string("the result cannot be written as ") + grid_name(grid) +
-                           ": vertex " + std::to_string(overflow.load()) +
-                           " lies outside the format's range");
+                                   ": vertex " + std::to_string(overflow.load()) +
+                                   " lies outside the format's range");
   largest = max_change;
   return moved;
 }
@@ -262,8 +262,8 @@ Mesh resolve(const Mesh& chain, const std::vector<std::pair<std::uint32_t, std::
     return winding_solid(chain);
   } catch (const std::logic_error& e) {
     throw LossyOutputError("", std::string("the result cannot be written as ") + grid_name(grid) +
-                           ": the rounded mesh could not be resolved (" + e.what() +
-                           "); write a finer format or the exact OFF");
+                                   ": the rounded mesh could not be resolved (" + e.what() +
+                                   "); write a finer format or the exact OFF");
   }
 }
 
@@ -301,12 +301,12 @@ RoundedMesh round_mesh(const Mesh& mesh, const RoundingOptions& options) {
       break;
     }
     if (r.rounds == options.max_rounds)
-      throw LossyOutputError("", std::string("the result cannot be written as ") +
-                             grid_name(options.grid) + ": rounding did not settle in " +
-                             std::to_string(options.max_rounds) +
-                             " rounds (a contact finer than the format's spacing keeps coming "
-                             "back); write a finer format (STL or glb floats, OFF, OBJ or PLY "
-                             "doubles) or the exact OFF");
+      throw LossyOutputError(
+          "", std::string("the result cannot be written as ") + grid_name(options.grid) +
+                  ": rounding did not settle in " + std::to_string(options.max_rounds) +
+                  " rounds (a contact finer than the format's spacing keeps coming "
+                  "back); write a finer format (STL or glb floats, OFF, OBJ or PLY "
+                  "doubles) or the exact OFF");
     const std::size_t size = damage.pairs.size() + damage.flattened_faces + damage.turned_shells;
     stalled = size < least_damage ? 0 : stalled + 1;
     least_damage = std::min(least_damage, size);
@@ -332,8 +332,7 @@ RoundedMesh round_mesh(const Mesh& mesh, const RoundingOptions& options) {
     const FT change = signed_volume(from_double(out.mesh)) - before;
     // + 0.0: an exact zero is reported as 0, not -0.
     r.volume_change = to_double_volume(change) + 0.0;
-    r.relative_volume_change =
-        CGAL::is_zero(before) ? 0 : to_double_volume(change / before) + 0.0;
+    r.relative_volume_change = CGAL::is_zero(before) ? 0 : to_double_volume(change / before) + 0.0;
   }
   return out;
 }

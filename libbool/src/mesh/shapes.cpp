@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "morphex/internal/fixtures.h"
 #include "morphex/shapes.h"
+#include "morphex/internal/fixtures.h"
 
 #include <cmath>
 #include <map>

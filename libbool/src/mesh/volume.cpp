@@ -20,9 +20,9 @@
 #include <type_traits>
 #include <vector>
 
-#include "morphex/mesh.h"
-#include "mesh/volume_internal.h"
 #include "exact/wide_integer.h"
+#include "mesh/volume_internal.h"
+#include "morphex/mesh.h"
 
 namespace morphex {
 namespace {

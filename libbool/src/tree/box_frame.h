@@ -15,10 +15,10 @@
 #include <array>
 #include <vector>
 
-#include "morphex/mesh.h"
 #include "exact/point_table.h"
-#include "tree/box_tree.h"
 #include "exact/static_filter.h"
+#include "morphex/mesh.h"
+#include "tree/box_tree.h"
 
 namespace morphex::detail {
 

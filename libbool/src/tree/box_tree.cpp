@@ -351,8 +351,8 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> TriangleTree::overlapping_p
         const TriangleTree& high = a_higher ? a : b;
         const Node h = a_higher ? na : nb;
         const std::uint32_t below = h.level - 2;
-        for (std::uint32_t hits = overlaps(high.quads_[below][h.index],
-                                           a_higher ? b.node_box(nb) : a.node_box(na));
+        for (std::uint32_t hits =
+                 overlaps(high.quads_[below][h.index], a_higher ? b.node_box(nb) : a.node_box(na));
              hits != 0; hits &= hits - 1) {
           const Node g{below, 4 * h.index + std::uint32_t(__builtin_ctz(hits))};
           stack[top++] = a_higher ? std::make_pair(g, nb) : std::make_pair(na, g);

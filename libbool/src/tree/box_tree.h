@@ -338,17 +338,18 @@ template <class F>
 void TriangleTree::for_each_on_ray(const CGAL::Bbox_3& origin,
                                    const std::array<double, 3>& direction, F&& f) const {
   auto keep = [&](const FloatBox& b) { return ray_may_hit(b, origin, direction); };
-  traverse(keep,
-           [&](const FourBoxes& four) {
-             std::uint32_t hits = 0;
-             for (std::uint32_t i = 0; i < 4; ++i) {
-               FloatBox b;
-               for (int k = 0; k < 3; ++k) b.lo[k] = four.lo[k][i], b.hi[k] = four.hi[k][i];
-               if (b.lo[0] <= b.hi[0] && keep(b)) hits |= 1u << i;  // not an empty slot
-             }
-             return hits;
-           },
-           f);
+  traverse(
+      keep,
+      [&](const FourBoxes& four) {
+        std::uint32_t hits = 0;
+        for (std::uint32_t i = 0; i < 4; ++i) {
+          FloatBox b;
+          for (int k = 0; k < 3; ++k) b.lo[k] = four.lo[k][i], b.hi[k] = four.hi[k][i];
+          if (b.lo[0] <= b.hi[0] && keep(b)) hits |= 1u << i;  // not an empty slot
+        }
+        return hits;
+      },
+      f);
 }
 
 // Interleaves the top 21 bits of three coordinates in [0, 1] (clamped): a position along the

@@ -21,8 +21,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
-#include <cmath>
 #include <climits>
+#include <cmath>
 #include <stdexcept>
 
 #include "winding/winding_internal.h"
@@ -55,9 +55,9 @@ std::vector<PointId> far_points(PointTable& table, std::size_t num_vertices) {
   std::vector<PointId> out;
   for (int sign : {1, -1})
     for (const auto& d : kDirections)
-      out.push_back(table.add_explicit(Point(centre[0] + sign * reach * d[0],
-                                             centre[1] + sign * reach * d[1],
-                                             centre[2] + sign * reach * d[2])));
+      out.push_back(
+          table.add_explicit(Point(centre[0] + sign * reach * d[0], centre[1] + sign * reach * d[1],
+                                   centre[2] + sign * reach * d[2])));
   return out;
 }
 
@@ -98,8 +98,8 @@ class WindingProbe {
   bool cast(PointId q, PointId z, int& winding) const {
     const ApproxPoint& aq = table_.approx(q);
     const ApproxPoint& az = table_.approx(z);
-    const CGAL::Bbox_3 origin(aq.x().inf(), aq.y().inf(), aq.z().inf(), aq.x().sup(),
-                              aq.y().sup(), aq.z().sup());
+    const CGAL::Bbox_3 origin(aq.x().inf(), aq.y().inf(), aq.z().inf(), aq.x().sup(), aq.y().sup(),
+                              aq.z().sup());
     const std::array<double, 3> direction = {CGAL::to_double(az.x()) - CGAL::to_double(aq.x()),
                                              CGAL::to_double(az.y()) - CGAL::to_double(aq.y()),
                                              CGAL::to_double(az.z()) - CGAL::to_double(aq.z())};

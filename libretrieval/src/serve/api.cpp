@@ -13,11 +13,11 @@
 #include <sstream>
 
 #include "morphex/descriptors.h"
+#include "morphex/internal/stopwatch.h"
 #include "morphex/io.h"
 #include "morphex/pipeline.h"
 #include "morphex/retrieval.h"
 #include "morphex/retrieval_json.h"
-#include "morphex/internal/stopwatch.h"
 #include "thumbnail.h"
 
 namespace morphex::serve {
