@@ -384,7 +384,8 @@ void print_legend() {
          "triangles per second of morphex; MiB = peak memory above the inputs, morphex / "
          "corefinement / Nef.\n"
          "morphex times the operation on trusted inputs, as corefinement does; check = "
-         "morphex's validity check of both inputs, which compute_boolean runs by default. Both "
+         "morphex's validity check of both inputs, which makes the Solids the Boolean takes "
+         "(check_solids). Both "
          "return exact output points that are evaluated lazily (as CGAL's Epeck constructions "
          "are); the volumes compared are exact.\n";
 }
