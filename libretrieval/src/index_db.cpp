@@ -39,7 +39,7 @@ constexpr long long kSchemaVersion = 1;
     throw InputError(where, "the index is damaged (" + message +
                                 "): restore it from a copy, or index the meshes again into a "
                                 "new file");
-  throw std::runtime_error(where + ": index database: " + message);
+  throw StorageError(where, "index database: " + message);
 }
 
 // A file name as an SQLite URI ("file:" and the path, percent-encoded), so that options such as
@@ -214,7 +214,7 @@ void IndexDb::open(int flags, const std::string& uri) {
     const std::string message = db_ ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
     db_ = nullptr;
-    throw std::runtime_error(path_ + ": cannot open the index database: " + message);
+    throw StorageError(path_, "cannot open the index database: " + message);
   }
   sqlite3_busy_timeout(db_, 5000);
 }
@@ -465,7 +465,7 @@ std::string hex(std::uint64_t h) {
 
 std::string content_hash(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot open");
+  if (!in) throw StorageError(path, "cannot open");
   std::uint64_t h = kFnvOffset;
   char buffer[65536];
   while (in.read(buffer, sizeof buffer) || in.gcount() > 0)

@@ -324,7 +324,7 @@ RoundingReport write_mesh(const Mesh& mesh, std::ostream& out, MeshFormat format
   const std::string bytes = std::move(text).str();
   out.write(bytes.data(), std::streamsize(bytes.size()));
   out.flush();
-  if (!out) throw std::runtime_error(name + ": write failed");
+  if (!out) throw StorageError(name, "write failed");
   return report;
 }
 

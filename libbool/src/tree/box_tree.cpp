@@ -550,7 +550,7 @@ int winding_number(const Mesh& closed_mesh, const TriangleTree& tree, const Poin
     });
     if (!degenerate) return winding;
   }
-  throw std::runtime_error("winding number: every ray direction was degenerate");
+  throw std::logic_error("winding number: every ray direction was degenerate");
 }
 
 }  // namespace morphex

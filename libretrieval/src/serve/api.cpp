@@ -35,7 +35,7 @@ class TemporaryFolder {
   TemporaryFolder() {
     std::string pattern = (fs::temp_directory_path() / "morphex-upload-XXXXXX").string();
     if (!mkdtemp(pattern.data()))
-      throw std::runtime_error("cannot make a temporary folder for the upload");
+      throw StorageError("", "cannot make a temporary folder for the upload");
     path_ = pattern;
   }
   ~TemporaryFolder() {
@@ -466,7 +466,7 @@ nlohmann::json IndexApi::query_upload(const std::string& filename, const std::st
   {
     std::ofstream out(file, std::ios::binary);
     out.write(content.data(), std::streamsize(content.size()));
-    if (!out.flush()) throw std::runtime_error("cannot write the upload to a temporary folder");
+    if (!out.flush()) throw StorageError("", "cannot write the upload to a temporary folder");
   }
   IndexPipeline pipeline;
   {
