@@ -50,18 +50,16 @@ Command add_morphology_command(CLI::App& app, MorphologyOp op, const std::string
             }
             const auto a = read_solid(args->in);
             if (!a) return kBadInput;
-            try {
-              check_structuring_element_scale(se, *a);
-            } catch (const StructuringElementError& e) {
-              print_error("--se " + args->se + ": " + e.what());
-              return kBadInput;
-            }
             const Stopwatch start;
             MorphologyStats stats;
             Solid result;
-            {
+            try {
               const OperationProgress progress(to_string(op));
+              // Refuses an element out of proportion with the mesh before any work.
               result = apply_morphology(op, *a, se, &stats);
+            } catch (const StructuringElementError& e) {
+              print_error("--se " + args->se + ": " + e.what());
+              return kBadInput;
             }
             const double seconds = start.seconds();
             write_result(result, args->output, [&] {
