@@ -3,6 +3,7 @@
 // as exact volume identities. Every result is checked to be a valid solid.
 #include <gtest/gtest.h>
 
+#include "minkowski_internal.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
 #include "morphex/minkowski.h"
@@ -221,6 +222,64 @@ TEST(Minkowski, GluedPiecesGiveTheFacetHullSolidOnABumpySurface) {
     EXPECT_EQ(valid_volume(eroded, "erosion"), valid_volume(eroded_by_hulls.solid, "hull erosion"));
     EXPECT_EQ(volume_outside(eroded_by_hulls.solid, eroded), 0);
   }
+}
+
+// The convolution's pieces become one solid with A + c either by one winding arrangement (when
+// they overlap shallowly) or by the union tree. Both routes, forced, must give the same solid,
+// for dilations and erosions, on the bumpy sphere (irregular patches, reflex edges), a torus
+// under a rational rotation and the dented sphere (facets parallel to a cube's faces, which an
+// octahedron's and a ball's faces meet at edges and vertices), by elements small and large beside
+// the facets.
+TEST(Minkowski, ArrangementAndTreeRoutesGiveTheSameSolid) {
+  using detail::PieceRoute;
+  const BooleanResult dented =
+      compute_boolean(check_solid(make_icosphere(1, FT(1))), check_solid(make_cube(FT(1) / 2)),
+                      BooleanOp::Difference);
+  const std::vector<std::pair<std::string, Mesh>> inputs = {
+      {"bumpy", bumpy_sphere(2)},
+      {"tilted torus", transformed(make_torus(8, 6, 1.0, 0.4), quaternion_rotation(3, 1, 2, 1))},
+      {"dented", dented.solid}};
+  for (const std::string spec : {"octahedron:r=1/20", "ball:r=1/3,level=1", "octahedron:r=1/2"}) {
+    const StructuringElement se = parse_structuring_element(spec);
+    for (const auto& [name, a] : inputs) {
+      SCOPED_TRACE(name + " by " + spec);
+      for (const bool erode : {false, true}) {
+        const Mesh surface = erode ? reversed(a) : a;
+        const Mesh b = erode ? reflected(se.mesh) : se.mesh;
+        const Point c = detail::interior_point(b);
+        const Mesh moved = translated(a, c - CGAL::ORIGIN);
+        Mesh results[2];
+        for (const PieceRoute route : {PieceRoute::Arrangement, PieceRoute::Tree}) {
+          auto pieces = detail::convolution_pieces(surface, b, c);
+          ASSERT_TRUE(pieces.has_value());
+          MinkowskiStats stats;
+          results[route == PieceRoute::Tree] = detail::combine_pieces(
+              surface, b, c, moved, std::move(*pieces), erode, route, &stats);
+          EXPECT_EQ(stats.arrangements, route == PieceRoute::Arrangement ? 1u : 0u);
+        }
+        EXPECT_EQ(valid_volume(results[0], "by the arrangement"),
+                  valid_volume(results[1], "by the tree"));
+        if (!results[0].empty()) {
+          EXPECT_EQ(volume_outside(results[0], results[1]), 0);
+          EXPECT_EQ(volume_outside(results[1], results[0]), 0);
+        }
+      }
+    }
+  }
+}
+
+// The automatic route takes the arrangement for an element small beside the facets and the tree
+// for one much larger (the stats say which ran).
+TEST(Minkowski, AutomaticRouteFollowsTheElementsSize) {
+  const Solid a = check_solid(bumpy_sphere(2));
+  MorphologyStats small, large;
+  const Solid by_small = dilation(a, parse_structuring_element("octahedron:r=1/20"), &small);
+  const Solid by_large = dilation(a, parse_structuring_element("octahedron:r=1"), &large);
+  EXPECT_EQ(small.arrangements, 1u);
+  EXPECT_EQ(small.binary_unions, 0u);
+  EXPECT_EQ(large.arrangements, 0u);
+  EXPECT_GT(large.binary_unions, 0u);
+  EXPECT_GT(signed_volume(by_large), signed_volume(by_small));
 }
 
 TEST(Morphology, ErosionToNothingIsAValidEmptyMesh) {

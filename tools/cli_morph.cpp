@@ -68,7 +68,8 @@ Command add_morphology_command(CLI::App& app, MorphologyOp op, const std::string
               j["se"] = se.spec;
               j["se_convex"] = se.convex;
               const nlohmann::json s = stats;
-              for (const char* key : {"pieces", "binary_unions"}) j[key] = s.at(key);
+              for (const char* key : {"pieces", "binary_unions", "arrangements"})
+                j[key] = s.at(key);
               return j;
             });
             return kSuccess;
@@ -103,7 +104,8 @@ Command add_minkowski_command(CLI::App& app) {
               nlohmann::json j = result_stats(result, seconds);
               j["operation"] = "minkowski";
               const nlohmann::json s = stats;
-              for (const char* key : {"pieces", "binary_unions", "phases"}) j[key] = s.at(key);
+              for (const char* key : {"pieces", "binary_unions", "arrangements", "phases"})
+                j[key] = s.at(key);
               return j;
             });
             return kSuccess;

@@ -294,9 +294,11 @@ namespace {
 struct Supports {
   std::vector<Vector> normal;
   std::vector<std::vector<VertexIndex>> of_facet;  // S(n_f), sorted
-  // Where S(n_f) is an edge or a facet of B (a facet of A parallel to one of B's), f + B itself is
-  // the piece: no larger in practice (conv(c u S(n_f)) is most of B) and it contains every edge and
-  // vertex piece at f, which are then skipped.
+  // Where S(n_f) is an edge or a facet of B (a facet of A parallel to one of B's), the piece is
+  // the hull f + conv(c u S(n_f)) (with the facet coplanar with f, see convex_facet_groups), not
+  // a prism, and edges and vertices at f get their pieces as anywhere else. (f + B, which holds
+  // those pieces, was used before: on an eroded surface, where many facets are parallel to B's,
+  // its pieces overlap each other many layers deep.)
   std::vector<std::uint8_t> whole;
 };
 
@@ -334,7 +336,7 @@ void edge_pieces(const Mesh& surface, const DirectedEdges& edges, const Supports
       const VertexIndex u = t[i], v = t[(i + 1) % 3], w = t[(i + 2) % 3];
       if (u > v) continue;  // each edge once
       const std::uint32_t g = edges.facet(v, u);
-      if (s.of_facet[f] == s.of_facet[g] || s.whole[f] || s.whole[g]) continue;
+      if (s.of_facet[f] == s.of_facet[g]) continue;
       const VertexIndex x = third_vertex(surface.triangles[g], u, v);
       if (CGAL::orientation(p[u], p[v], p[w], p[x]) != CGAL::NEGATIVE) continue;  // not convex
       Edge e{u, v, make_cone({s.normal[f], s.normal[g]}), s.of_facet[f], {}};
@@ -370,10 +372,9 @@ void vertex_pieces(const Mesh& surface, const Supports& s, const ConvexBody& bod
   std::vector<VertexIndex> corners;
   for (VertexIndex v = 0; v < p.size(); ++v) {
     const auto& around = facets_at[v];
-    if (!around.empty() &&
-        std::none_of(around.begin(), around.end(), [&](std::uint32_t f) { return s.whole[f]; }) &&
-        std::any_of(around.begin(), around.end(),
-                    [&](std::uint32_t f) { return s.of_facet[f] != s.of_facet[around.front()]; }))
+    if (!around.empty() && std::any_of(around.begin(), around.end(), [&](std::uint32_t f) {
+          return s.of_facet[f] != s.of_facet[around.front()];
+        }))
       corners.push_back(v);
   }
   std::vector<Mesh> built(corners.size());
@@ -396,7 +397,7 @@ void vertex_pieces(const Mesh& surface, const Supports& s, const ConvexBody& bod
 
 }  // namespace
 
-std::optional<std::vector<Mesh>> convolution_pieces(const Mesh& surface, const Mesh& b,
+std::optional<ConvolutionPieces> convolution_pieces(const Mesh& surface, const Mesh& b,
                                                     const Point& c) {
   // Every edge must have exactly two facets, one each way, for edges and vertices to be read.
   const DirectedEdges edges(surface);
@@ -422,15 +423,17 @@ std::optional<std::vector<Mesh>> convolution_pieces(const Mesh& surface, const M
     for (Mesh& m : list) pieces.push_back(std::move(m));
   // f + B where B's support is an edge or a facet; coplanar pairs share one piece.
   std::vector<std::vector<VertexIndex>> whole_groups;
+  std::vector<std::uint32_t> whole_facet;  // a facet of each group
   for (const FacetGroup& group : convex_facet_groups(surface))
-    if (s.whole[group.facets.front()]) whole_groups.push_back(group.vertices);
-  std::vector<VertexIndex> all_of_b(b.points.size());
-  for (VertexIndex i = 0; i < all_of_b.size(); ++i) all_of_b[i] = i;
+    if (s.whole[group.facets.front()]) {
+      whole_groups.push_back(group.vertices);
+      whole_facet.push_back(group.facets.front());
+    }
   std::vector<Mesh> whole(whole_groups.size());
   tbb::parallel_for(std::size_t(0), whole_groups.size(), [&](std::size_t i) {
     std::vector<Point> corners;
     for (VertexIndex v : whole_groups[i]) corners.push_back(p[v]);
-    whole[i] = hull_of_sums(corners, body, all_of_b, nullptr);
+    whole[i] = hull_of_sums(corners, body, s.of_facet[whole_facet[i]], &c);
   });
   for (Mesh& m : whole) pieces.push_back(std::move(m));
   // Edge and vertex pieces.
@@ -438,7 +441,9 @@ std::optional<std::vector<Mesh>> convolution_pieces(const Mesh& surface, const M
   edge_pieces(surface, edges, s, body, c, triangle_edges, pieces);
   triangle_edge_pieces(surface, triangle_edges, b.points, c, pieces);
   vertex_pieces(surface, s, body, c, pieces);
-  return pieces;
+  split_shared_quads_alike(pieces, surface, c);
+  return ConvolutionPieces{std::move(pieces),
+                           std::size_t(std::count(s.whole.begin(), s.whole.end(), 1))};
 }
 
 }  // namespace morphex::detail

@@ -50,4 +50,13 @@ struct TriangleEdge {
 void triangle_edge_pieces(const Mesh& surface, const std::vector<TriangleEdge>& edges,
                           const std::vector<Point>& b, const Point& c, std::vector<Mesh>& out);
 
+// Splits every quadrilateral face that two pieces may share alike in both, so that the two copies
+// cancel exactly when the pieces' boundaries are summed into one chain (minkowski.cpp's
+// arrangement route): a wall e + [c, s] is a prism's side in one piece and an edge piece's face in
+// another, each built (or found by a hull) with its own diagonal. A pair of coplanar triangles of
+// one piece that make a strictly convex parallelogram is split along the diagonal through its
+// lexicographically smallest corner, unless all four corners lie on A + c: those are facets of
+// A moved (prism bottoms), which must keep A's own triangulation to cancel against A + c.
+void split_shared_quads_alike(std::vector<Mesh>& pieces, const Mesh& surface, const Point& c);
+
 }  // namespace morphex::detail

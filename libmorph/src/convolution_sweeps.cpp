@@ -1,6 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Building the pieces of the reduced convolution: prisms, patch sweeps and swept triangles
 // (convolution_internal.h says why they are glued).
+#include <tbb/parallel_for.h>
+
+#include <array>
+#include <functional>
 #include <map>
 #include <unordered_map>
 
@@ -215,6 +219,95 @@ void triangle_edge_pieces(const Mesh& surface, const std::vector<TriangleEdge>& 
       out.push_back(swept_triangle(surface, chain, t));
     }
   }
+}
+
+namespace {
+
+// The points of A + c, found by exact position (keyed by their coordinates in doubles, which are
+// equal for equal exact points).
+class MovedSurface {
+ public:
+  MovedSurface(const Mesh& surface, const Point& c) {
+    points_.reserve(surface.points.size());
+    for (const Point& p : surface.points) {
+      points_.push_back(sum_point(p, c));
+      index_.emplace(key(points_.back()), VertexIndex(points_.size() - 1));
+    }
+  }
+  bool contains(const Point& q) const {
+    const auto [first, last] = index_.equal_range(key(q));
+    for (auto it = first; it != last; ++it)
+      if (points_[it->second] == q) return true;
+    return false;
+  }
+
+ private:
+  struct Hash {
+    std::size_t operator()(const std::array<double, 3>& k) const {
+      const std::hash<double> h;
+      return h(k[0]) ^ (h(k[1]) * 0x9e3779b97f4a7c15ull) ^ (h(k[2]) * 0xc2b2ae3d27d4eb4full);
+    }
+  };
+  static std::array<double, 3> key(const Point& q) {
+    const auto& e = CGAL::exact(q);
+    return {CGAL::to_double(e.x()), CGAL::to_double(e.y()), CGAL::to_double(e.z())};
+  }
+  std::vector<Point> points_;
+  std::unordered_multimap<std::array<double, 3>, VertexIndex, Hash> index_;
+};
+
+// Whether w, u, x, v (in this cyclic order) is a parallelogram: u - w = x - v, exactly.
+bool parallelogram(const Point& w, const Point& u, const Point& x, const Point& v) {
+  const auto &ew = CGAL::exact(w), &eu = CGAL::exact(u), &ex = CGAL::exact(x), &ev = CGAL::exact(v);
+  for (int k = 0; k < 3; ++k)
+    if (eu.cartesian(k) - ew.cartesian(k) != ex.cartesian(k) - ev.cartesian(k)) return false;
+  return true;
+}
+
+void split_quads_alike(Mesh& m, const MovedSurface& moved) {
+  const std::size_t nt = m.triangles.size();
+  const auto& p = m.points;
+  const auto key = [](VertexIndex u, VertexIndex v) { return (std::uint64_t(u) << 32) | v; };
+  std::unordered_map<std::uint64_t, std::uint32_t> by_edge;
+  by_edge.reserve(3 * nt);
+  for (std::uint32_t i = 0; i < nt; ++i)
+    for (int k = 0; k < 3; ++k)
+      by_edge.emplace(key(m.triangles[i][k], m.triangles[i][(k + 1) % 3]), i);
+  std::vector<std::uint8_t> done(nt, 0);
+  for (std::uint32_t i = 0; i < nt; ++i)
+    for (int k = 0; k < 3 && !done[i]; ++k) {
+      const Triangle t = m.triangles[i];
+      const VertexIndex u = t[k], v = t[(k + 1) % 3], w = t[(k + 2) % 3];
+      const auto it = by_edge.find(key(v, u));
+      if (it == by_edge.end() || it->second == i || done[it->second]) continue;
+      const std::uint32_t j = it->second;
+      const VertexIndex x = third_vertex(m.triangles[j], u, v);
+      // Triangles (u, v, w) and (v, u, x): the quadrilateral w, u, x, v.
+      if (!parallelogram(p[w], p[u], p[x], p[v]) ||
+          CGAL::orientation(p[u], p[v], p[w], p[x]) != CGAL::COPLANAR ||
+          CGAL::collinear(p[w], p[x], p[u]))
+        continue;
+      done[i] = done[j] = 1;  // a parallelogram with area: strictly convex
+      if (moved.contains(p[w]) && moved.contains(p[u]) && moved.contains(p[x]) &&
+          moved.contains(p[v]))
+        continue;
+      const std::array<VertexIndex, 4> corners = {w, u, x, v};
+      int smallest = 0;
+      for (int q = 1; q < 4; ++q)
+        if (CGAL::compare_xyz(p[corners[q]], p[corners[smallest]]) == CGAL::SMALLER) smallest = q;
+      if (smallest % 2 == 0) {  // the diagonal w-x instead of u-v
+        m.triangles[i] = {w, u, x};
+        m.triangles[j] = {x, v, w};
+      }
+    }
+}
+
+}  // namespace
+
+void split_shared_quads_alike(std::vector<Mesh>& pieces, const Mesh& surface, const Point& c) {
+  const MovedSurface moved(surface, c);
+  tbb::parallel_for(std::size_t(0), pieces.size(),
+                    [&](std::size_t i) { split_quads_alike(pieces[i], moved); });
 }
 
 }  // namespace morphex::detail

@@ -7,13 +7,17 @@
 namespace morphex {
 
 void to_json(nlohmann::json& j, const MorphologyStats& s) {
-  j = {{"pieces", s.pieces}, {"binary_unions", s.binary_unions}, {"seconds", s.seconds}};
+  j = {{"pieces", s.pieces},
+       {"binary_unions", s.binary_unions},
+       {"arrangements", s.arrangements},
+       {"seconds", s.seconds}};
 }
 
 void to_json(nlohmann::json& j, const MinkowskiStats& s) {
   j = {{"pieces", s.pieces},
        {"piece_triangles", s.piece_triangles},
        {"binary_unions", s.binary_unions},
+       {"arrangements", s.arrangements},
        {"phases", {{"pieces", s.seconds_pieces}, {"union", s.seconds_union}}}};
 }
 

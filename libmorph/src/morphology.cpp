@@ -81,19 +81,17 @@ Mesh erode_by_part(const Mesh& a, const SePart& b, MinkowskiStats& stats) {
   if (b.convex)
     if (const auto box = detail::axis_box(b.mesh)) return detail::box_morphology(a, *box, true);
   const Mesh minus_b = reflected(b.mesh);
-  Mesh shell, moved;
-  std::optional<std::vector<Mesh>> pieces;
-  const Point c = b.convex ? detail::interior_point(minus_b) : Point(CGAL::ORIGIN);
-  if (b.convex) pieces = detail::timed_convolution_pieces(reversed(a), minus_b, c, &stats);
-  if (pieces) {
-    const ProgressPhase phase(0.15, 0.8, "uniting pieces");
-    shell = detail::timed_union(std::move(*pieces), &stats);
-    moved = c == Point(CGAL::ORIGIN) ? a : translated(a, c - CGAL::ORIGIN);
-  } else {
-    shell = boundary_sum(a, minus_b, b.convex, &stats);
-    const bool origin_inside = b.convex && detail::convex_contains_origin(b.mesh);
-    moved = origin_inside ? a : translated(a, CGAL::ORIGIN - b.mesh.points.front());
+  if (b.convex) {
+    const Point c = detail::interior_point(minus_b);
+    const Mesh surface = reversed(a);
+    if (auto pieces = detail::timed_convolution_pieces(surface, minus_b, c, &stats))
+      return detail::combine_pieces(
+          surface, minus_b, c, c == Point(CGAL::ORIGIN) ? a : translated(a, c - CGAL::ORIGIN),
+          std::move(*pieces), true, detail::PieceRoute::Automatic, &stats);
   }
+  Mesh shell = boundary_sum(a, minus_b, b.convex, &stats);
+  const bool origin_inside = b.convex && detail::convex_contains_origin(b.mesh);
+  const Mesh moved = origin_inside ? a : translated(a, CGAL::ORIGIN - b.mesh.points.front());
   ++stats.binary_unions;
   const ProgressPhase phase(0.8, 1, "subtracting the shell");
   return binary(moved, shell, BooleanOp::Difference);
@@ -170,6 +168,7 @@ Mesh detail::morphology_of_valid(MorphologyOp op, const Mesh& a, const Structuri
   if (stats) {
     stats->pieces += minkowski.pieces;
     stats->binary_unions += minkowski.binary_unions;
+    stats->arrangements += minkowski.arrangements;
     stats->seconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }

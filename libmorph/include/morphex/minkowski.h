@@ -23,6 +23,7 @@ struct MinkowskiStats {
   std::size_t pieces = 0;           // convex pieces (and translated copies) united
   std::size_t piece_triangles = 0;  // their triangles in total
   std::size_t binary_unions = 0;
+  std::size_t arrangements = 0;  // pieces closed by one winding arrangement instead of a tree
   double seconds_pieces = 0, seconds_union = 0;
 };
 

@@ -12,9 +12,9 @@
 
 namespace morphex {
 
-// pieces, binary_unions, seconds.
+// pieces, binary_unions, arrangements, seconds.
 void to_json(nlohmann::json& j, const MorphologyStats& stats);
-// pieces, piece_triangles, binary_unions, phases {pieces, union}.
+// pieces, piece_triangles, binary_unions, arrangements, phases {pieces, union}.
 void to_json(nlohmann::json& j, const MinkowskiStats& stats);
 // scale_length, thickness, filtered_facets, simplified, the curves open_radii, close_radii,
 // granulometry, pattern_spectrum, anti_granulometry, opening_residue, closing_residue,
