@@ -142,6 +142,24 @@ bool may_meet(const DirectionCone& p, const DirectionCone& q) {
   return false;
 }
 
+// The sign of m . (p - q), in intervals first (no lazy construction), exactly when they cannot
+// tell.
+CGAL::Sign climb_sign(const Vector& m, const Point& p, const Point& q) {
+  {
+    CGAL::Protect_FPU_rounding<true> rounding;
+    const auto& am = CGAL::approx(m);
+    const auto &ap = CGAL::approx(p), &aq = CGAL::approx(q);
+    const auto dot =
+        am.x() * (ap.x() - aq.x()) + am.y() * (ap.y() - aq.y()) + am.z() * (ap.z() - aq.z());
+    const CGAL::Uncertain<CGAL::Sign> s = CGAL::sign(dot);
+    if (CGAL::is_certain(s)) return CGAL::get_certain(s);
+  }
+  const auto& em = CGAL::exact(m);
+  const auto &ep = CGAL::exact(p), &eq = CGAL::exact(q);
+  return CGAL::sign(em.x() * (ep.x() - eq.x()) + em.y() * (ep.y() - eq.y()) +
+                    em.z() * (ep.z() - eq.z()));
+}
+
 // B with its vertex graph and the normal cone at each vertex, for exact support queries.
 class ConvexBody {
  public:
@@ -182,7 +200,7 @@ class ConvexBody {
       for (std::size_t k = 0; k < plateau.size() && !climbed; ++k)
         for (VertexIndex w : neighbours_[plateau[k]]) {
           if (std::find(plateau.begin(), plateau.end(), w) != plateau.end()) continue;
-          const CGAL::Sign s = CGAL::sign(m * (mesh_.points[w] - mesh_.points[plateau[k]]));
+          const CGAL::Sign s = climb_sign(m, mesh_.points[w], mesh_.points[plateau[k]]);
           if (s == CGAL::POSITIVE) {
             best = w, climbed = true;
             break;

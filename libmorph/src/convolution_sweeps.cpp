@@ -256,8 +256,19 @@ class MovedSurface {
   std::unordered_multimap<std::array<double, 3>, VertexIndex, Hash> index_;
 };
 
-// Whether w, u, x, v (in this cyclic order) is a parallelogram: u - w = x - v, exactly.
+// Whether w, u, x, v (in this cyclic order) is a parallelogram: u - w = x - v, exactly (in
+// intervals first: most neighbouring triangles of a piece are not one).
 bool parallelogram(const Point& w, const Point& u, const Point& x, const Point& v) {
+  {
+    CGAL::Protect_FPU_rounding<true> rounding;
+    const auto &aw = CGAL::approx(w), &au = CGAL::approx(u), &ax = CGAL::approx(x),
+               &av = CGAL::approx(v);
+    for (int k = 0; k < 3; ++k) {
+      const CGAL::Uncertain<bool> differ =
+          (au.cartesian(k) - aw.cartesian(k)) != (ax.cartesian(k) - av.cartesian(k));
+      if (CGAL::is_certain(differ) && CGAL::get_certain(differ)) return false;
+    }
+  }
   const auto &ew = CGAL::exact(w), &eu = CGAL::exact(u), &ex = CGAL::exact(x), &ev = CGAL::exact(v);
   for (int k = 0; k < 3; ++k)
     if (eu.cartesian(k) - ew.cartesian(k) != ex.cartesian(k) - ev.cartesian(k)) return false;
@@ -283,11 +294,9 @@ void split_quads_alike(Mesh& m, const MovedSurface& moved) {
       const std::uint32_t j = it->second;
       const VertexIndex x = third_vertex(m.triangles[j], u, v);
       // Triangles (u, v, w) and (v, u, x): the quadrilateral w, u, x, v.
-      if (!parallelogram(p[w], p[u], p[x], p[v]) ||
-          CGAL::orientation(p[u], p[v], p[w], p[x]) != CGAL::COPLANAR ||
-          CGAL::collinear(p[w], p[x], p[u]))
-        continue;
-      done[i] = done[j] = 1;  // a parallelogram with area: strictly convex
+      // (A parallelogram is planar; one with area is strictly convex.)
+      if (!parallelogram(p[w], p[u], p[x], p[v]) || CGAL::collinear(p[w], p[x], p[u])) continue;
+      done[i] = done[j] = 1;
       if (moved.contains(p[w]) && moved.contains(p[u]) && moved.contains(p[x]) &&
           moved.contains(p[v]))
         continue;
