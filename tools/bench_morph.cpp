@@ -1,16 +1,18 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// bench_morph: morphex morphology against CGAL's minkowski_sum_3 (Nef polyhedra, exact) on the
-// same input in the same run, with exact volumes compared, wall time and peak memory.
+// bench_morph: morphex morphology against CGAL's minkowski_sum_3 (Nef polyhedra, exact) and
+// Manifold's MinkowskiSum/MinkowskiDifference (floating point) on the same input in the same run,
+// with volumes compared, wall time and peak memory.
 //
-//   bench_morph [--se SPEC] [--ops dilate,erode,open,close] [--peer] [--nary] [--chain N]
-//               [--threads N] [--normalize] [--repair] [--json FILE] INPUT...
+//   bench_morph [--se SPEC] [--ops dilate,erode,open,close] [--peer] [--manifold] [--nary]
+//               [--chain N] [--threads N] [--normalize] [--repair] [--json FILE] INPUT...
 // INPUT is a mesh file or a generated mesh: torus:U,V (U*V*2 facets, non-convex), l-shape,
 // icosphere:L. --normalize scales each input by a power of two so that its bounding-box
 // diagonal lies in [1, 2) (one SE size for every input, coordinates still doubles); --repair
 // makes inputs that are not valid solids valid first (morphex repair). --peer runs
-// minkowski_sum_3 on every dilation; --nary also times the dilation with
-// the pieces united by one winding arrangement instead of the binary-union tree (the default);
-// --chain N dilates N times in a row and reports the first and the last step.
+// minkowski_sum_3 on every dilation; --manifold runs Manifold (when bench_morph was built with it:
+// tools/peers/build-manifold) on every operation, under the same --threads; --nary also times
+// the dilation with the pieces united by one winding arrangement instead of the binary-union tree
+// (the default); --chain N dilates N times in a row and reports the first and the last step.
 #include <sys/resource.h>
 #include <tbb/global_control.h>
 
@@ -24,6 +26,7 @@
 
 #include "bench_common.h"
 #include "bench_harness.h"
+#include "manifold_peer.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
 #include "morphex/internal/solid_access.h"
@@ -73,7 +76,7 @@ Mesh scaled_to_unit_diagonal(const Mesh& m) {
 struct Options {
   std::string se_spec = "cube:r=1/20";
   std::vector<std::string> ops = {"dilate"}, inputs;
-  bool peer = false, nary = false, normalize = false, repair = false;
+  bool peer = false, nary = false, normalize = false, repair = false, manifold = false;
   int chain = 0;
   unsigned threads = 0;  // 0: all cores
 };
@@ -86,6 +89,8 @@ void add_options(bench::Harness& harness, Options& o) {
       ->delimiter(',')
       ->capture_default_str();
   app.add_flag("--peer", o.peer, "Run CGAL's minkowski_sum_3 on every dilation");
+  app.add_flag("--manifold", o.manifold,
+               "Run Manifold's MinkowskiSum/MinkowskiDifference on every operation");
   app.add_flag("--nary", o.nary,
                "Also time the dilation with the pieces united by one winding arrangement");
   app.add_option("--chain", o.chain, "Dilate N times in a row, report the first and the last step");
@@ -97,6 +102,104 @@ void add_options(bench::Harness& harness, Options& o) {
   app.add_option("INPUT", o.inputs, "Mesh files or torus:U,V, l-shape, icosphere:L")->required();
 }
 
+// Manifold's run of one operation on the same input and structuring element, or why there is none.
+struct ManifoldRun {
+  std::optional<peers::ManifoldResult> result;
+  std::string note;
+};
+
+// MinkowskiSum by B for a dilation; MinkowskiDifference by -B for an erosion (Manifold removes
+// dA + B'; morphex's erosion removes dA + (-B) for a B that holds the origin, as the SEs do, see
+// morphex/morphology.h); the two chained for an opening (erode, dilate) and a closing (dilate,
+// erode). Manifold's intermediate result of a chain is its own floating-point one.
+ManifoldRun run_manifold(const Mesh& a, MorphologyOp op, const StructuringElement& se) {
+  const Mesh minus_b = reflected(se.mesh);
+  const peers::MinkowskiStep dilate{&se.mesh, false}, erode{&minus_b, true};
+  ManifoldRun run;
+  switch (op) {
+    case MorphologyOp::Dilate:
+      run.result = peers::manifold_minkowski(a, se.mesh, false, {}, &run.note);
+      break;
+    case MorphologyOp::Erode:
+      run.result = peers::manifold_minkowski(a, minus_b, true, {}, &run.note);
+      break;
+    case MorphologyOp::Open:
+      run.result = peers::manifold_minkowski_chain(a, {erode, dilate}, {}, &run.note);
+      break;
+    case MorphologyOp::Close:
+      run.result = peers::manifold_minkowski_chain(a, {dilate, erode}, {}, &run.note);
+      break;
+  }
+  return run;
+}
+
+// |Manifold's volume - morphex's exact volume| / |morphex's| (the absolute difference when
+// morphex's result is empty).
+double relative_volume_difference(const FT& exact, double floating) {
+  const FT difference = CGAL::abs(FT(floating) - exact);
+  return CGAL::to_double(exact == 0 ? difference : difference / CGAL::abs(exact));
+}
+
+// Manifold's figures in the JSON row, and the words the table's last column says about them.
+std::string record_manifold(const ManifoldRun& run, const FT& exact_volume, double our_seconds,
+                            nlohmann::json& row) {
+  if (!peers::kHaveManifold) return "";
+  if (!run.result) {
+    row["manifold_error"] = run.note;
+    return ", Manifold FAILED (" + run.note + ")";
+  }
+  const peers::ManifoldResult& r = *run.result;
+  const double relative = relative_volume_difference(exact_volume, r.volume);
+  row["manifold_seconds"] = r.seconds;
+  row["manifold_ratio"] = r.seconds / our_seconds;
+  row["manifold_volume"] = r.volume;
+  row["manifold_volume_relative_difference"] = relative;
+  row["manifold_result_facets"] = r.triangles;
+  std::ostringstream words;
+  words << ", Manifold volume rel. diff " << std::setprecision(2) << relative;
+  return words.str();
+}
+
+// Manifold's cells of a table row: seconds, ms per input facet, its time over morphex's.
+std::string manifold_cells(const ManifoldRun& run, double our_seconds, std::size_t facets) {
+  std::ostringstream cells;
+  cells << std::setprecision(3);
+  if (!peers::kHaveManifold || !run.result) {
+    const char* word = peers::kHaveManifold ? "FAIL" : "n/a";
+    cells << std::setw(10) << word << std::setw(9) << word << std::setw(8) << word;
+  } else {
+    const double seconds = run.result->seconds;
+    cells << std::setw(10) << seconds << std::setw(9) << 1000 * seconds / double(facets)
+          << std::setw(8) << seconds / our_seconds;
+  }
+  return cells.str();
+}
+
+void print_header(bool manifold) {
+  std::cout << std::left << std::setw(28) << "input" << std::setw(8) << "op" << std::right
+            << std::setw(8) << "facets" << std::setw(10) << "morphex s" << std::setw(9)
+            << "ms/facet" << std::setw(10) << "CGAL s" << std::setw(9) << "ratio";
+  if (manifold)
+    std::cout << std::setw(10) << "Mf s" << std::setw(9) << "Mf ms/f" << std::setw(8) << "Mf/m";
+  std::cout << std::setw(9) << "result" << std::setw(10) << "peak MiB"
+            << "  exact volumes\n";
+}
+
+// What --manifold compares, said once above the table.
+void print_manifold_note() {
+  if (!peers::kHaveManifold) {
+    std::cout << "--manifold: bench_morph was built without Manifold (configure with "
+                 "-DMORPHEX_MANIFOLD_DIR=$(tools/peers/build-manifold SRC)); its columns say "
+                 "n/a\n";
+    return;
+  }
+  std::cout << "Mf = Manifold " << peers::manifold_version()
+            << " (floating point): MinkowskiSum (dilate), MinkowskiDifference by -B (erode), "
+               "chained for open/close; its time excludes the mesh conversions. Mf/m: "
+               "Manifold's time over morphex's (above 1: morphex is faster). peak MiB is the "
+               "process's high-water mark, Manifold's runs included\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -105,18 +208,15 @@ int main(int argc, char** argv) {
   Options o;
   add_options(harness, o);
   // The settings under the names the measuring code below has always used.
-  auto& [se_spec, ops, inputs, peer, nary, normalize, repair, chain, threads] = o;
+  auto& [se_spec, ops, inputs, peer, nary, normalize, repair, manifold, chain, threads] = o;
   if (const std::optional<int> stop = harness.parse(argc, argv)) return *stop;
   std::optional<tbb::global_control> limit;
   if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, threads);
   const StructuringElement se = parse_structuring_element(se_spec);
   nlohmann::json rows = nlohmann::json::array();
   bool all_agree = true;
-  std::cout << std::left << std::setw(28) << "input" << std::setw(8) << "op" << std::right
-            << std::setw(8) << "facets" << std::setw(10) << "morphex s" << std::setw(9)
-            << "ms/facet" << std::setw(10) << "CGAL s" << std::setw(9) << "ratio" << std::setw(9)
-            << "result" << std::setw(10) << "peak MiB"
-            << "  exact volumes\n";
+  if (manifold) print_manifold_note();
+  print_header(manifold);
   for (const std::string& input : inputs) {
     Mesh a = load(input);
     if (repair) a = repair_mesh(a).solid.mesh();
@@ -165,6 +265,12 @@ int main(int argc, char** argv) {
         std::cout << "  n-ary union of the pieces: " << nary_seconds << " s ("
                   << nary_seconds / our_seconds << "x the tree's time)\n";
       }
+      ManifoldRun mf;
+      if (manifold) {
+        // Under the same thread limit as morphex: Manifold's parallel backend is the same TBB.
+        mf = run_manifold(a, op, se);
+        agreement += record_manifold(mf, report.volume, our_seconds, row);
+      }
       all_agree = all_agree && report.valid_solid();
       // Rows are flushed as they come: a large input's opening can take minutes.
       std::cout << std::left << std::setw(27) << input << ' ' << std::setw(8) << op_name
@@ -175,6 +281,7 @@ int main(int argc, char** argv) {
                 << std::setw(9)
                 << (their_seconds > 0 ? std::to_string(their_seconds / our_seconds).substr(0, 6)
                                       : "-")
+                << (manifold ? manifold_cells(mf, our_seconds, a.num_triangles()) : "")
                 << std::setw(9) << ours.num_triangles() << std::setw(10) << int(peak_mib()) << "  "
                 << agreement << std::endl;
       rows.push_back(row);

@@ -103,6 +103,11 @@ if(MORPHEX_BUILD_BENCHMARKS)
   add_test(NAME bench.morph_smoke COMMAND bench_morph --se cube:r=1/4 --peer l-shape)
   set_tests_properties(bench.morph_smoke PROPERTIES PASS_REGULAR_EXPRESSION
                        "agree with minkowski_sum_3")
+  # Manifold's columns when bench_morph was built with it, the note that it was not otherwise.
+  add_test(NAME bench.morph_manifold_smoke
+           COMMAND bench_morph --se cube:r=1/4 --ops dilate,erode,open --manifold l-shape)
+  set_tests_properties(bench.morph_manifold_smoke PROPERTIES PASS_REGULAR_EXPRESSION
+                       "Manifold volume rel. diff|bench_morph was built without Manifold")
 endif()
 # Paths that are not mesh files say so (not "unknown mesh format ''").
 morphex_cli_test(check_directory 2 "tests/data: is a directory, not a mesh file" check ${data})

@@ -5,7 +5,7 @@
 #include <manifold/manifold.h>
 #include <manifold/version.h>
 
-#include <utility>
+#include <vector>
 
 #include "morphex/internal/stopwatch.h"
 
@@ -61,6 +61,23 @@ manifold::OpType to_op_type(BooleanOp op) {
   return manifold::OpType::Add;
 }
 
+// Whether Manifold took the input; `why` says otherwise ("input A: not manifold").
+bool accepted(const manifold::Manifold& input, const std::string& name, std::string* why) {
+  if (input.Status() == manifold::Manifold::Error::NoError) return true;
+  if (why) *why = "input " + name + ": " + error_name(input.Status());
+  return false;
+}
+
+// The timed result as reported: empty when Manifold failed on it (`why` says how).
+std::optional<ManifoldResult> reported(const manifold::Manifold& result, double seconds,
+                                       std::string* why) {
+  if (result.Status() != manifold::Manifold::Error::NoError) {
+    if (why) *why = "result: " + error_name(result.Status());
+    return std::nullopt;
+  }
+  return ManifoldResult{seconds, result.Volume(), result.NumTri()};
+}
+
 }  // namespace
 
 std::string manifold_version() {
@@ -71,11 +88,7 @@ std::string manifold_version() {
 std::optional<ManifoldResult> manifold_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
                                                const Timing& timing, std::string* why) {
   const manifold::Manifold ma(to_meshgl(a)), mb(to_meshgl(b));
-  for (const auto& [input, name] : {std::pair{&ma, "A"}, std::pair{&mb, "B"}})
-    if (input->Status() != manifold::Manifold::Error::NoError) {
-      if (why) *why = std::string("input ") + name + ": " + error_name(input->Status());
-      return std::nullopt;
-    }
+  if (!accepted(ma, "A", why) || !accepted(mb, "B", why)) return std::nullopt;
   manifold::Manifold result;
   auto once = [&] {
     result = manifold::Manifold();  // the previous result is freed off the clock
@@ -87,14 +100,39 @@ std::optional<ManifoldResult> manifold_boolean(const Mesh& a, const Mesh& b, Boo
     result.Status();
     return start.seconds();
   };
-  ManifoldResult out;
-  out.seconds = timing ? timing(once) : once();
-  if (result.Status() != manifold::Manifold::Error::NoError) {
-    if (why) *why = "result: " + error_name(result.Status());
-    return std::nullopt;
+  const double seconds = timing ? timing(once) : once();
+  return reported(result, seconds, why);
+}
+
+std::optional<ManifoldResult> manifold_minkowski(const Mesh& a, const Mesh& b, bool difference,
+                                                 const Timing& timing, std::string* why) {
+  return manifold_minkowski_chain(a, {MinkowskiStep{&b, difference}}, timing, why);
+}
+
+std::optional<ManifoldResult> manifold_minkowski_chain(const Mesh& a,
+                                                       const std::vector<MinkowskiStep>& steps,
+                                                       const Timing& timing, std::string* why) {
+  const manifold::Manifold ma(to_meshgl(a));
+  if (!accepted(ma, "A", why)) return std::nullopt;
+  std::vector<manifold::Manifold> bs;
+  for (const MinkowskiStep& step : steps) {
+    bs.emplace_back(to_meshgl(*step.b));
+    if (!accepted(bs.back(), "B", why)) return std::nullopt;
   }
-  out.volume = result.Volume();
-  return out;
+  manifold::Manifold result;
+  auto once = [&] {
+    result = manifold::Manifold();  // the previous result is freed off the clock
+    const Stopwatch start;
+    result = ma;
+    // MinkowskiSum and MinkowskiDifference are eager (their pieces' Booleans are evaluated
+    // inside); Status() forces whatever remains, as in manifold_boolean.
+    for (std::size_t i = 0; i < steps.size(); ++i)
+      result = steps[i].difference ? result.MinkowskiDifference(bs[i]) : result.MinkowskiSum(bs[i]);
+    result.Status();
+    return start.seconds();
+  };
+  const double seconds = timing ? timing(once) : once();
+  return reported(result, seconds, why);
 }
 
 }  // namespace morphex::peers

@@ -1,13 +1,15 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Manifold (github.com/elalish/manifold, floating point) as an optional benchmark peer of the
-// exact Booleans: bench_bool compiles manifold_peer.cpp only when CMake finds a Manifold built by
-// tools/peers/build-manifold, and defines MORPHEX_HAVE_MANIFOLD. Without it these functions
-// report that Manifold is absent, and the benchmark's Manifold columns say "n/a".
+// exact Booleans and morphology: bench_bool and bench_morph compile manifold_peer.cpp only when
+// CMake finds a Manifold built by tools/peers/build-manifold, and define MORPHEX_HAVE_MANIFOLD.
+// Without it these functions report that Manifold is absent, and the Manifold columns say "n/a".
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "morphex/boolean.h"
 #include "morphex/mesh.h"
@@ -15,11 +17,20 @@
 namespace morphex::peers {
 
 struct ManifoldResult {
-  double seconds = 0;  // the Boolean alone, with its lazy evaluation forced; no conversions
+  double seconds = 0;  // the operation alone, with its lazy evaluation forced; no conversions
   double volume = 0;   // floating point: compare it to an exact volume with a tolerance
+  std::size_t triangles = 0;  // the result's
 };
 
-// Times one Boolean: called with a function that runs it once and returns its seconds, returns
+// One step of a chain of Manifold's Minkowski operations by `b`: MinkowskiSum, a + b, or
+// (`difference`) MinkowskiDifference, a less the sweep of b over a's surface: a - (dA + b). That
+// is morphex's erosion by -b (morphex/morphology.h): pass the reflected structuring element.
+struct MinkowskiStep {
+  const Mesh* b = nullptr;
+  bool difference = false;
+};
+
+// Times one operation: called with a function that runs it once and returns its seconds, returns
 // the seconds to report (bench_bool's median over repeated runs). The default runs it once.
 using Timing = std::function<double(const std::function<double()>& once)>;
 
@@ -33,6 +44,17 @@ std::string manifold_version();
 std::optional<ManifoldResult> manifold_boolean(const Mesh& a, const Mesh& b, BooleanOp op,
                                                const Timing& timing = {},
                                                std::string* why = nullptr);
+// a + b or (`difference`) a - (dA + b), as manifold_boolean times the Boolean: the conversions
+// off the clock, the operation (eager in Manifold) and its result's status on it.
+std::optional<ManifoldResult> manifold_minkowski(const Mesh& a, const Mesh& b, bool difference,
+                                                 const Timing& timing = {},
+                                                 std::string* why = nullptr);
+// The steps applied in order, each to the previous result (an opening: the difference, then the
+// sum), all of them timed together; the intermediate results stay Manifold's floating point.
+std::optional<ManifoldResult> manifold_minkowski_chain(const Mesh& a,
+                                                       const std::vector<MinkowskiStep>& steps,
+                                                       const Timing& timing = {},
+                                                       std::string* why = nullptr);
 #else
 inline constexpr bool kHaveManifold = false;
 inline std::string manifold_version() {
@@ -41,6 +63,19 @@ inline std::string manifold_version() {
 inline std::optional<ManifoldResult> manifold_boolean(const Mesh&, const Mesh&, BooleanOp,
                                                       const Timing& = {},
                                                       std::string* why = nullptr) {
+  if (why) *why = "not built with Manifold";
+  return std::nullopt;
+}
+inline std::optional<ManifoldResult> manifold_minkowski(const Mesh&, const Mesh&, bool,
+                                                        const Timing& = {},
+                                                        std::string* why = nullptr) {
+  if (why) *why = "not built with Manifold";
+  return std::nullopt;
+}
+inline std::optional<ManifoldResult> manifold_minkowski_chain(const Mesh&,
+                                                              const std::vector<MinkowskiStep>&,
+                                                              const Timing& = {},
+                                                              std::string* why = nullptr) {
   if (why) *why = "not built with Manifold";
   return std::nullopt;
 }
