@@ -274,7 +274,7 @@ TEST(Minkowski, AutomaticRouteFollowsTheElementsSize) {
   const Solid a = check_solid(bumpy_sphere(2));
   MorphologyStats small, large;
   const Solid by_small = dilation(a, parse_structuring_element("octahedron:r=1/20"), &small);
-  const Solid by_large = dilation(a, parse_structuring_element("octahedron:r=1"), &large);
+  const Solid by_large = dilation(a, parse_structuring_element("octahedron:r=4"), &large);
   EXPECT_EQ(small.arrangements, 1u);
   EXPECT_EQ(small.binary_unions, 0u);
   EXPECT_EQ(large.arrangements, 0u);

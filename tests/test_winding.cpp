@@ -62,6 +62,27 @@ TEST(Winding, TwoOverlappingCubesInOneMesh) {
   EXPECT_EQ(valid_volume(winding_solid(concatenate(a, b), {}, twice)), 1);
 }
 
+// Within a work budget the arrangement either gives up after pairing (more candidate pairs per
+// triangle than allowed) or gives exactly winding_solid's solid.
+TEST(Winding, WithinABudgetGivesUpOrAgrees) {
+  // Ten cubes, each overlapping the next: every triangle's box meets several others.
+  Mesh stack;
+  for (int i = 0; i < 10; ++i)
+    stack = concatenate(stack, box(FT(i) / 3, FT(i) / 5, 0, FT(i) / 3 + 1, FT(i) / 5 + 1, 1));
+  WindingStats stats;
+  const Mesh whole = winding_solid(stack, {}, {}, &stats);
+  const double per_triangle = double(stats.candidate_pairs) / double(stack.triangles.size());
+  ASSERT_GT(per_triangle, 1);
+  WindingStats gave_up;
+  EXPECT_FALSE(winding_solid_within(per_triangle / 2, stack, {}, {}, &gave_up).has_value());
+  EXPECT_EQ(gave_up.candidate_pairs, stats.candidate_pairs);  // it paired, then stopped
+  EXPECT_EQ(gave_up.intersecting_pairs, 0u);
+  const std::optional<Mesh> within = winding_solid_within(per_triangle * 2, stack);
+  ASSERT_TRUE(within.has_value());
+  EXPECT_EQ(valid_volume(*within), valid_volume(whole));
+  EXPECT_EQ(within->triangles.size(), whole.triangles.size());
+}
+
 TEST(Winding, CoplanarFacesAndContacts) {
   // Shared faces, edges and vertices, coplanar overlaps, identical and nested solids.
   const Mesh unit = box(0, 0, 0, 1, 1, 1);

@@ -415,7 +415,7 @@ void vertex_pieces(const Mesh& surface, const Supports& s, const ConvexBody& bod
 
 }  // namespace
 
-std::optional<ConvolutionPieces> convolution_pieces(const Mesh& surface, const Mesh& b,
+std::optional<std::vector<Mesh>> convolution_pieces(const Mesh& surface, const Mesh& b,
                                                     const Point& c) {
   // Every edge must have exactly two facets, one each way, for edges and vertices to be read.
   const DirectedEdges edges(surface);
@@ -460,8 +460,7 @@ std::optional<ConvolutionPieces> convolution_pieces(const Mesh& surface, const M
   triangle_edge_pieces(surface, triangle_edges, b.points, c, pieces);
   vertex_pieces(surface, s, body, c, pieces);
   split_shared_quads_alike(pieces, surface, c);
-  return ConvolutionPieces{std::move(pieces),
-                           std::size_t(std::count(s.whole.begin(), s.whole.end(), 1))};
+  return pieces;
 }
 
 }  // namespace morphex::detail

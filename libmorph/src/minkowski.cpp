@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -154,7 +155,7 @@ bool convex_contains_origin(const Mesh& convex) {
   return true;
 }
 
-std::optional<ConvolutionPieces> timed_convolution_pieces(const Mesh& surface, const Mesh& b,
+std::optional<std::vector<Mesh>> timed_convolution_pieces(const Mesh& surface, const Mesh& b,
                                                           const Point& c, MinkowskiStats* stats) {
   const Stopwatch start;
   // The pieces are a small part of a Minkowski sum's time; their union, the rest.
@@ -162,8 +163,8 @@ std::optional<ConvolutionPieces> timed_convolution_pieces(const Mesh& surface, c
   auto pieces = convolution_pieces(surface, b, c);
   if (pieces && stats) {
     stats->seconds_pieces += start.seconds();
-    stats->pieces += pieces->solids.size();
-    for (const Mesh& piece : pieces->solids) stats->piece_triangles += piece.triangles.size();
+    stats->pieces += pieces->size();
+    for (const Mesh& piece : *pieces) stats->piece_triangles += piece.triangles.size();
   }
   return pieces;
 }
@@ -179,15 +180,8 @@ Mesh timed_union(std::vector<Mesh> solids, MinkowskiStats* stats) {
   return united;
 }
 
-bool shallow_pieces(const Mesh& surface, const Mesh& b, const Point& c,
-                    std::size_t face_supported) {
-  // Measured on CGAL's elephant, knot1 and cow by octahedra and level-1 balls of radii 1/100 to
-  // 1/10 of the diagonal, and their openings (docs/morphology-design.md): the arrangement wins up
-  // to a ratio of about 2.5 for balls and 3-5 for octahedra, and loses up to 3x beyond; the
-  // eroded elephant, with 13-23% of its facets parallel to a face of B, is 1.3x slower by it.
-  constexpr double kShallowRatio = 2;
+bool small_beside_facets(const Mesh& surface, const Mesh& b, const Point& c) {
   if (surface.triangles.empty()) return true;
-  if (20 * face_supported > surface.triangles.size()) return false;
   std::vector<double> lengths;
   lengths.reserve(surface.triangles.size());
   for (const Triangle& t : surface.triangles)  // one edge per facet is a fair sample
@@ -201,8 +195,9 @@ bool shallow_pieces(const Mesh& surface, const Mesh& b, const Point& c,
   return radius <= kShallowRatio * *middle;
 }
 
-Mesh pieces_arrangement(const Mesh& moved_a, const std::vector<Mesh>& pieces, bool subtract,
-                        MinkowskiStats* stats) {
+std::optional<Mesh> pieces_arrangement(const Mesh& moved_a, const std::vector<Mesh>& pieces,
+                                       bool subtract, double max_pairs_per_triangle,
+                                       MinkowskiStats* stats) {
   const Stopwatch start;
   std::size_t points = moved_a.points.size(), triangles = moved_a.triangles.size();
   for (const Mesh& p : pieces) points += p.points.size(), triangles += p.triangles.size();
@@ -218,7 +213,8 @@ Mesh pieces_arrangement(const Mesh& moved_a, const std::vector<Mesh>& pieces, bo
       chain.triangles.push_back(subtract ? Triangle{t[0] + offset, t[2] + offset, t[1] + offset}
                                          : Triangle{t[0] + offset, t[1] + offset, t[2] + offset});
   }
-  Mesh result = winding_solid(chain);
+  std::optional<Mesh> result = winding_solid_within(max_pairs_per_triangle, chain);
+  if (!result) return std::nullopt;
   if (stats) {
     stats->seconds_union += start.seconds();
     ++stats->arrangements;
@@ -227,15 +223,14 @@ Mesh pieces_arrangement(const Mesh& moved_a, const std::vector<Mesh>& pieces, bo
 }
 
 Mesh combine_pieces(const Mesh& surface, const Mesh& b, const Point& c, const Mesh& moved_a,
-                    ConvolutionPieces convolution, bool subtract, PieceRoute route,
+                    std::vector<Mesh> pieces, bool subtract, PieceRoute route,
                     MinkowskiStats* stats) {
-  std::vector<Mesh> pieces = std::move(convolution.solids);
-  if (route == PieceRoute::Automatic)
-    route = shallow_pieces(surface, b, c, convolution.face_supported) ? PieceRoute::Arrangement
-                                                                      : PieceRoute::Tree;
-  if (route == PieceRoute::Arrangement) {
+  if (route != PieceRoute::Tree &&
+      (route == PieceRoute::Arrangement || small_beside_facets(surface, b, c))) {
     const ProgressPhase phase(0.15, 1, subtract ? "subtracting pieces" : "uniting pieces");
-    return pieces_arrangement(moved_a, pieces, subtract, stats);
+    const double budget = route == PieceRoute::Arrangement ? 0 : kShallowPairs;
+    if (auto result = pieces_arrangement(moved_a, pieces, subtract, budget, stats))
+      return std::move(*result);
   }
   // The pieces first: A + c spans them all and would be carried through every level.
   Mesh shell;

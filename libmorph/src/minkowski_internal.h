@@ -60,40 +60,40 @@ Point interior_point(const Mesh& convex);
 // The convex pieces whose union with (A + c) is A + B, for the solid A bounded by `surface`, a
 // convex B and c = interior_point(B) (convolution.cpp). Empty optional when an edge of the
 // surface does not have exactly two facets, one each way.
-struct ConvolutionPieces {
-  std::vector<Mesh> solids;
-  std::size_t face_supported = 0;  // facets whose S(n_f) is an edge or a facet of B
-};
-std::optional<ConvolutionPieces> convolution_pieces(const Mesh& surface, const Mesh& b,
+std::optional<std::vector<Mesh>> convolution_pieces(const Mesh& surface, const Mesh& b,
                                                     const Point& c);
 
 // convolution_pieces and compute_union, with their times and counts added to `stats`.
-std::optional<ConvolutionPieces> timed_convolution_pieces(const Mesh& surface, const Mesh& b,
+std::optional<std::vector<Mesh>> timed_convolution_pieces(const Mesh& surface, const Mesh& b,
                                                           const Point& c, MinkowskiStats* stats);
 Mesh timed_union(std::vector<Mesh> solids, MinkowskiStats* stats);
 
 // How the convolution's pieces become one solid with A + c.
 enum class PieceRoute {
-  Automatic,    // the arrangement when the pieces overlap shallowly (shallow_pieces), else the tree
-  Arrangement,  // one winding arrangement of A + c and every piece
+  Automatic,    // the arrangement when the pieces overlap shallowly, else the tree
+  Arrangement,  // one winding arrangement of A + c and every piece, however deep (tests)
   Tree,         // the balanced tree of exact binary unions (compute_union), then A + c
 };
-// Whether the pieces overlap shallowly: B's radius about c at most twice the surface's median
-// edge length, and at most one facet in 20 parallel to a face of B. One arrangement of all the
-// pieces then beats the union tree (2-3x on CGAL's organic meshes). For a B much larger than the
-// facets, the pieces of a concave region overlap many layers deep; facets parallel to B's faces
-// (an eroded surface has many) get thick hulls instead of prisms; in both cases the tree, whose
-// intermediate unions shed the buried sheets early, wins.
-bool shallow_pieces(const Mesh& surface, const Mesh& b, const Point& c, std::size_t face_supported);
 // (A + c) u U pieces (subtract: (A + c) minus U pieces) as one winding arrangement. Every piece
 // is a valid solid, so the chain of A + c's boundary and the pieces' counts the solids holding a
 // point: the union is where that count is >= 1; with the pieces reversed, the difference is.
-// Faces shared by two pieces, or by a prism and A + c, cancel before any intersection.
-Mesh pieces_arrangement(const Mesh& moved_a, const std::vector<Mesh>& pieces, bool subtract,
-                        MinkowskiStats* stats);
+// Faces shared by two pieces, or by a prism and A + c, cancel before any intersection. Nullopt,
+// after the arrangement's cheap first steps, when the chain that is left has more than
+// `max_pairs_per_triangle` candidate pairs per triangle (0: no limit). The automatic route allows
+// kShallowPairs: beyond, the pieces overlap many layers deep (a B large beside the facets, a thin
+// part of A eroded, facets parallel to B's faces) and the union tree, whose intermediate unions
+// shed the buried sheets early, was faster on every case measured (docs/morphology-design.md).
+constexpr double kShallowPairs = 20;
+std::optional<Mesh> pieces_arrangement(const Mesh& moved_a, const std::vector<Mesh>& pieces,
+                                       bool subtract, double max_pairs_per_triangle,
+                                       MinkowskiStats* stats);
+// Whether the arrangement is worth trying at all: B's radius about c at most kShallowRatio times
+// the surface's median edge length (beyond, the pairs exceed the budget on every mesh measured).
+constexpr double kShallowRatio = 4;
+bool small_beside_facets(const Mesh& surface, const Mesh& b, const Point& c);
 // A + c united with (or, subtract, minus) the pieces by the chosen route.
 Mesh combine_pieces(const Mesh& surface, const Mesh& b, const Point& c, const Mesh& moved_a,
-                    ConvolutionPieces pieces, bool subtract, PieceRoute route,
+                    std::vector<Mesh> pieces, bool subtract, PieceRoute route,
                     MinkowskiStats* stats);
 
 // An axis-aligned box: its centre and half sizes.

@@ -31,6 +31,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -73,5 +74,14 @@ struct WindingStats {
 // is closed (see above); an open chain has no winding number and gives an unspecified result.
 Mesh winding_solid(const Mesh& surface, const std::vector<int>& weights = {},
                    const WindingOptions& options = {}, WindingStats* stats = nullptr);
+
+// winding_solid within a work budget: nullopt, after the cheap first two steps, when the chain's
+// triangles (once equal ones are summed) have more than `max_pairs_per_triangle` candidate pairs
+// each on average. The arrangement's cost follows the pairs it intersects, so a caller with
+// another way to the same solid (morphology's union tree) can take it instead of a deep one.
+std::optional<Mesh> winding_solid_within(double max_pairs_per_triangle, const Mesh& surface,
+                                         const std::vector<int>& weights = {},
+                                         const WindingOptions& options = {},
+                                         WindingStats* stats = nullptr);
 
 }  // namespace morphex

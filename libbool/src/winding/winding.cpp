@@ -191,6 +191,12 @@ namespace morphex {
 
 Mesh winding_solid(const Mesh& surface, const std::vector<int>& weights,
                    const WindingOptions& options, WindingStats* stats_out) {
+  return *winding_solid_within(0, surface, weights, options, stats_out);
+}
+
+std::optional<Mesh> winding_solid_within(double max_pairs_per_triangle, const Mesh& surface,
+                                         const std::vector<int>& weights,
+                                         const WindingOptions& options, WindingStats* stats_out) {
   using namespace detail;
   if (!weights.empty() && weights.size() != surface.triangles.size())
     throw InputError("", "winding_solid: one weight per triangle expected");
@@ -210,6 +216,11 @@ Mesh winding_solid(const Mesh& surface, const std::vector<int>& weights,
     const Pairs pairs = options.pairs ? known_pairs(chain, *options.pairs) : self_pairs(tree);
     stats.candidate_pairs = pairs.size();
     stats.seconds_pairs = clock.lap();
+    if (max_pairs_per_triangle > 0 &&
+        double(pairs.size()) > max_pairs_per_triangle * double(chain.soup.triangles.size())) {
+      if (stats_out) *stats_out = stats;
+      return std::nullopt;
+    }
 
     steps.next(0.55, "intersecting");
     IntersectOptions soup;

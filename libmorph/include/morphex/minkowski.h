@@ -8,8 +8,10 @@
 // B (connected), with any point b0 of B:
 //   A + B = (A + b0)  u  (dA + B),         dA + B = union over facets f of A of (f + B),
 // f + B = (f + dB) u (p_f + B) for any point p_f of f, and f + dB = union over facets g of B of
-// conv(f + g). A B with several components is summed component by component. compute_union
-// (libbool) closes the pieces into one valid solid.
+// conv(f + g). A B with several components is summed component by component. One winding
+// arrangement of A + c and the convolution's pieces closes them into one valid solid when they
+// overlap shallowly (B small beside A's facets), compute_union's tree of binary unions otherwise
+// (docs/morphology-design.md, "One arrangement of the pieces").
 #pragma once
 
 #include <cstddef>
@@ -33,7 +35,8 @@ Solid minkowski_sum(const Solid& a, const Solid& b, MinkowskiStats* stats = null
 // How the pieces are united: the balanced tree of binary unions (compute_union, the default:
 // intermediate unions shed the overlap early) or one winding arrangement of all of them
 // (winding_solid on their concatenated boundaries), which bench_morph --nary measures: exact too,
-// but slower on these heavily overlapping pieces (every piece/piece pair is intersected at once).
+// but slower on these fat, heavily overlapping hulls (every piece/piece pair is intersected at
+// once; the convolution's thin pieces, whose shared faces cancel, are another matter).
 enum class PieceUnion { BinaryTree, Arrangement };
 
 // dA + B: the union of the sums of every facet of `surface` with the solid b (the "offset shell"
