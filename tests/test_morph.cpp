@@ -250,11 +250,11 @@ TEST(Minkowski, ArrangementAndTreeRoutesGiveTheSameSolid) {
         const Mesh moved = translated(a, c - CGAL::ORIGIN);
         Mesh results[2];
         for (const PieceRoute route : {PieceRoute::Arrangement, PieceRoute::Tree}) {
-          auto pieces = detail::convolution_pieces(surface, b, c);
-          ASSERT_TRUE(pieces.has_value());
           MinkowskiStats stats;
-          results[route == PieceRoute::Tree] = detail::combine_pieces(
-              surface, b, c, moved, std::move(*pieces), erode, route, &stats);
+          const std::optional<Mesh> result =
+              detail::convolution_union(surface, b, c, moved, erode, route, &stats);
+          ASSERT_TRUE(result.has_value());
+          results[route == PieceRoute::Tree] = *result;
           EXPECT_EQ(stats.arrangements, route == PieceRoute::Arrangement ? 1u : 0u);
         }
         EXPECT_EQ(valid_volume(results[0], "by the arrangement"),

@@ -416,7 +416,7 @@ void vertex_pieces(const Mesh& surface, const Supports& s, const ConvexBody& bod
 }  // namespace
 
 std::optional<std::vector<Mesh>> convolution_pieces(const Mesh& surface, const Mesh& b,
-                                                    const Point& c) {
+                                                    const Point& c, bool solids) {
   // Every edge must have exactly two facets, one each way, for edges and vertices to be read.
   const DirectedEdges edges(surface);
   if (!edges.paired()) return std::nullopt;
@@ -435,7 +435,8 @@ std::optional<std::vector<Mesh>> convolution_pieces(const Mesh& surface, const M
   const auto patches = same_support_patches(surface, edges, s.of_facet, s.whole);
   std::vector<std::vector<Mesh>> swept(patches.size());
   tbb::parallel_for(std::size_t(0), patches.size(), [&](std::size_t i) {
-    patch_pieces(surface, edges, patches[i], body.point(s.of_facet[patches[i][0]][0]), c, swept[i]);
+    patch_pieces(surface, edges, patches[i], body.point(s.of_facet[patches[i][0]][0]), c, solids,
+                 swept[i]);
   });
   for (auto& list : swept)
     for (Mesh& m : list) pieces.push_back(std::move(m));

@@ -35,9 +35,11 @@ std::vector<std::vector<std::uint32_t>> same_support_patches(
     const Mesh& surface, const DirectedEdges& edges,
     const std::vector<std::vector<VertexIndex>>& support, const std::vector<std::uint8_t>& whole);
 // The prisms f + [c, s] of one patch as few valid solids, appended to `out`: the patch's sweep
-// when it is a valid solid, else the sweeps of its halves, down to single prisms.
+// when it is a valid solid, else the sweeps of its halves, down to single prisms. Without
+// `solids`, the sweep as it is (not checked): its chain is the sum of its prisms' boundaries all
+// the same, which is all a winding arrangement of the pieces needs.
 void patch_pieces(const Mesh& surface, const DirectedEdges& edges, std::vector<std::uint32_t> patch,
-                  const Point& s, const Point& c, std::vector<Mesh>& out);
+                  const Point& s, const Point& c, bool solids, std::vector<Mesh>& out);
 
 // A convex edge u-v of the surface whose piece is e + T, T = (c, B[s0], B[s1]) with s0 < s1.
 struct TriangleEdge {

@@ -127,7 +127,7 @@ Mesh sweep(const Mesh& surface, const std::vector<std::uint32_t>& patch, const P
 }  // namespace
 
 void patch_pieces(const Mesh& surface, const DirectedEdges& edges, std::vector<std::uint32_t> patch,
-                  const Point& s, const Point& c, std::vector<Mesh>& out) {
+                  const Point& s, const Point& c, bool solids, std::vector<Mesh>& out) {
   if (patch.size() == 1) {
     const Triangle& t = surface.triangles[patch[0]];
     const auto& p = surface.points;
@@ -135,7 +135,7 @@ void patch_pieces(const Mesh& surface, const DirectedEdges& edges, std::vector<s
     return;
   }
   Mesh m = sweep(surface, patch, s, c);
-  if (check_mesh(m, kValidityOnly).valid_solid()) {
+  if (!solids || check_mesh(m, kValidityOnly).valid_solid()) {
     out.push_back(std::move(m));
     return;
   }
@@ -159,8 +159,8 @@ void patch_pieces(const Mesh& surface, const DirectedEdges& edges, std::vector<s
     }
   }
   const auto half = order.begin() + std::ptrdiff_t(order.size() / 2);
-  patch_pieces(surface, edges, {order.begin(), half}, s, c, out);
-  patch_pieces(surface, edges, {half, order.end()}, s, c, out);
+  patch_pieces(surface, edges, {order.begin(), half}, s, c, solids, out);
+  patch_pieces(surface, edges, {half, order.end()}, s, c, solids, out);
 }
 
 namespace {

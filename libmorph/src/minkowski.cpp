@@ -156,11 +156,12 @@ bool convex_contains_origin(const Mesh& convex) {
 }
 
 std::optional<std::vector<Mesh>> timed_convolution_pieces(const Mesh& surface, const Mesh& b,
-                                                          const Point& c, MinkowskiStats* stats) {
+                                                          const Point& c, bool solids,
+                                                          MinkowskiStats* stats) {
   const Stopwatch start;
   // The pieces are a small part of a Minkowski sum's time; their union, the rest.
   const ProgressPhase phase(0, 0.15, "Minkowski pieces");
-  auto pieces = convolution_pieces(surface, b, c);
+  auto pieces = convolution_pieces(surface, b, c, solids);
   if (pieces && stats) {
     stats->seconds_pieces += start.seconds();
     stats->pieces += pieces->size();
@@ -222,21 +223,25 @@ std::optional<Mesh> pieces_arrangement(const Mesh& moved_a, const std::vector<Me
   return result;
 }
 
-Mesh combine_pieces(const Mesh& surface, const Mesh& b, const Point& c, const Mesh& moved_a,
-                    std::vector<Mesh> pieces, bool subtract, PieceRoute route,
-                    MinkowskiStats* stats) {
+std::optional<Mesh> convolution_union(const Mesh& surface, const Mesh& b, const Point& c,
+                                      const Mesh& moved_a, bool subtract, PieceRoute route,
+                                      MinkowskiStats* stats) {
   if (route != PieceRoute::Tree &&
       (route == PieceRoute::Arrangement || small_beside_facets(surface, b, c))) {
+    // Pieces for a chain only: the patches' sweeps are not checked or split.
+    auto pieces = timed_convolution_pieces(surface, b, c, false, stats);
+    if (!pieces) return std::nullopt;
     const ProgressPhase phase(0.15, 1, subtract ? "subtracting pieces" : "uniting pieces");
     const double budget = route == PieceRoute::Arrangement ? 0 : kShallowPairs;
-    if (auto result = pieces_arrangement(moved_a, pieces, subtract, budget, stats))
-      return std::move(*result);
+    if (auto result = pieces_arrangement(moved_a, *pieces, subtract, budget, stats)) return result;
   }
+  auto pieces = timed_convolution_pieces(surface, b, c, true, stats);
+  if (!pieces) return std::nullopt;
   // The pieces first: A + c spans them all and would be carried through every level.
   Mesh shell;
   {
     const ProgressPhase phase(0.15, 0.85, "uniting pieces");
-    shell = timed_union(std::move(pieces), stats);
+    shell = timed_union(std::move(*pieces), stats);
   }
   const ProgressPhase phase(0.85, 1, subtract ? "subtracting the shell" : "uniting with the input");
   if (subtract) {
@@ -261,9 +266,8 @@ Mesh sum_with_component(const Mesh& a, const Mesh& b, bool b_convex, MinkowskiSt
     if (const auto box = axis_box(b)) return box_morphology(a, *box, false);
   if (b_convex) {
     const Point c = interior_point(b);
-    if (auto pieces = timed_convolution_pieces(a, b, c, stats))
-      return combine_pieces(a, b, c, c == Point(CGAL::ORIGIN) ? a : translated(a, c - CGAL::ORIGIN),
-                            std::move(*pieces), false, route, stats);
+    const Mesh moved = c == Point(CGAL::ORIGIN) ? a : translated(a, c - CGAL::ORIGIN);
+    if (auto sum = convolution_union(a, b, c, moved, false, route, stats)) return std::move(*sum);
   }
   Mesh shell = boundary_sum(a, b, b_convex, stats);
   // A + b0 for a point b0 of B; when B is convex and holds the origin, A itself.

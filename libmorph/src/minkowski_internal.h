@@ -59,13 +59,15 @@ Point interior_point(const Mesh& convex);
 
 // The convex pieces whose union with (A + c) is A + B, for the solid A bounded by `surface`, a
 // convex B and c = interior_point(B) (convolution.cpp). Empty optional when an edge of the
-// surface does not have exactly two facets, one each way.
+// surface does not have exactly two facets, one each way. Without `solids`, a patch's sweep may
+// overlap itself (see patch_pieces): the pieces then only feed a winding arrangement.
 std::optional<std::vector<Mesh>> convolution_pieces(const Mesh& surface, const Mesh& b,
-                                                    const Point& c);
+                                                    const Point& c, bool solids = true);
 
 // convolution_pieces and compute_union, with their times and counts added to `stats`.
 std::optional<std::vector<Mesh>> timed_convolution_pieces(const Mesh& surface, const Mesh& b,
-                                                          const Point& c, MinkowskiStats* stats);
+                                                          const Point& c, bool solids,
+                                                          MinkowskiStats* stats);
 Mesh timed_union(std::vector<Mesh> solids, MinkowskiStats* stats);
 
 // How the convolution's pieces become one solid with A + c.
@@ -74,11 +76,11 @@ enum class PieceRoute {
   Arrangement,  // one winding arrangement of A + c and every piece, however deep (tests)
   Tree,         // the balanced tree of exact binary unions (compute_union), then A + c
 };
-// (A + c) u U pieces (subtract: (A + c) minus U pieces) as one winding arrangement. Every piece
-// is a valid solid, so the chain of A + c's boundary and the pieces' counts the solids holding a
-// point: the union is where that count is >= 1; with the pieces reversed, the difference is.
-// Faces shared by two pieces, or by a prism and A + c, cancel before any intersection. Nullopt,
-// after the arrangement's cheap first steps, when the chain that is left has more than
+// (A + c) u U pieces (subtract: (A + c) minus U pieces) as one winding arrangement. The chain of
+// A + c's boundary and the pieces' counts the prisms and solids holding a point: the union is
+// where that count is >= 1; with the pieces reversed, the difference is. Faces shared by two
+// pieces, or by a prism and A + c, cancel before any intersection. Nullopt, after the
+// arrangement's cheap first steps, when the chain that is left has more than
 // `max_pairs_per_triangle` candidate pairs per triangle (0: no limit). The automatic route allows
 // kShallowPairs: beyond, the pieces overlap many layers deep (a B large beside the facets, a thin
 // part of A eroded, facets parallel to B's faces) and the union tree, whose intermediate unions
@@ -91,10 +93,12 @@ std::optional<Mesh> pieces_arrangement(const Mesh& moved_a, const std::vector<Me
 // the surface's median edge length (beyond, the pairs exceed the budget on every mesh measured).
 constexpr double kShallowRatio = 4;
 bool small_beside_facets(const Mesh& surface, const Mesh& b, const Point& c);
-// A + c united with (or, subtract, minus) the pieces by the chosen route.
-Mesh combine_pieces(const Mesh& surface, const Mesh& b, const Point& c, const Mesh& moved_a,
-                    std::vector<Mesh> pieces, bool subtract, PieceRoute route,
-                    MinkowskiStats* stats);
+// (A + c) united with (or, subtract, minus) the convolution's pieces of `surface` (A's, or its
+// reverse for an erosion) and B, by the chosen route; moved_a is A + c. Empty optional when the
+// pieces cannot be built (convolution_pieces).
+std::optional<Mesh> convolution_union(const Mesh& surface, const Mesh& b, const Point& c,
+                                      const Mesh& moved_a, bool subtract, PieceRoute route,
+                                      MinkowskiStats* stats);
 
 // An axis-aligned box: its centre and half sizes.
 struct AxisBox {

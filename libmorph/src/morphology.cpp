@@ -84,10 +84,10 @@ Mesh erode_by_part(const Mesh& a, const SePart& b, MinkowskiStats& stats) {
   if (b.convex) {
     const Point c = detail::interior_point(minus_b);
     const Mesh surface = reversed(a);
-    if (auto pieces = detail::timed_convolution_pieces(surface, minus_b, c, &stats))
-      return detail::combine_pieces(
-          surface, minus_b, c, c == Point(CGAL::ORIGIN) ? a : translated(a, c - CGAL::ORIGIN),
-          std::move(*pieces), true, detail::PieceRoute::Automatic, &stats);
+    const Mesh moved = c == Point(CGAL::ORIGIN) ? a : translated(a, c - CGAL::ORIGIN);
+    if (auto eroded = detail::convolution_union(surface, minus_b, c, moved, true,
+                                                detail::PieceRoute::Automatic, &stats))
+      return std::move(*eroded);
   }
   Mesh shell = boundary_sum(a, minus_b, b.convex, &stats);
   const bool origin_inside = b.convex && detail::convex_contains_origin(b.mesh);
