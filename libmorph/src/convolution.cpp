@@ -416,7 +416,8 @@ void vertex_pieces(const Mesh& surface, const Supports& s, const ConvexBody& bod
 }  // namespace
 
 std::optional<std::vector<Mesh>> convolution_pieces(const Mesh& surface, const Mesh& b,
-                                                    const Point& c, bool solids) {
+                                                    const Point& c, bool solids,
+                                                    std::vector<std::size_t>* unchecked) {
   // Every edge must have exactly two facets, one each way, for edges and vertices to be read.
   const DirectedEdges edges(surface);
   if (!edges.paired()) return std::nullopt;
@@ -438,9 +439,12 @@ std::optional<std::vector<Mesh>> convolution_pieces(const Mesh& surface, const M
     patch_pieces(surface, edges, patches[i], body.point(s.of_facet[patches[i][0]][0]), c, solids,
                  swept[i]);
   });
-  for (auto& list : swept)
-    for (Mesh& m : list) pieces.push_back(std::move(m));
-  // f + B where B's support is an edge or a facet; coplanar pairs share one piece.
+  for (std::size_t i = 0; i < swept.size(); ++i)
+    for (Mesh& m : swept[i]) {
+      if (!solids && unchecked && patches[i].size() > 1) unchecked->push_back(pieces.size());
+      pieces.push_back(std::move(m));
+    }
+  // f + conv(c u S(n_f)) where S(n_f) is an edge or a facet of B; coplanar pairs share one piece.
   std::vector<std::vector<VertexIndex>> whole_groups;
   std::vector<std::uint32_t> whole_facet;  // a facet of each group
   for (const FacetGroup& group : convex_facet_groups(surface))

@@ -157,11 +157,12 @@ bool convex_contains_origin(const Mesh& convex) {
 
 std::optional<std::vector<Mesh>> timed_convolution_pieces(const Mesh& surface, const Mesh& b,
                                                           const Point& c, bool solids,
+                                                          std::vector<std::size_t>* unchecked,
                                                           MinkowskiStats* stats) {
   const Stopwatch start;
   // The pieces are a small part of a Minkowski sum's time; their union, the rest.
   const ProgressPhase phase(0, 0.15, "Minkowski pieces");
-  auto pieces = convolution_pieces(surface, b, c, solids);
+  auto pieces = convolution_pieces(surface, b, c, solids, unchecked);
   if (pieces && stats) {
     stats->seconds_pieces += start.seconds();
     stats->pieces += pieces->size();
@@ -225,18 +226,30 @@ std::optional<Mesh> pieces_arrangement(const Mesh& moved_a, const std::vector<Me
 
 std::optional<Mesh> convolution_union(const Mesh& surface, const Mesh& b, const Point& c,
                                       const Mesh& moved_a, bool subtract, PieceRoute route,
-                                      MinkowskiStats* stats) {
+                                      MinkowskiStats* stats, double max_pairs_per_triangle) {
+  std::optional<std::vector<Mesh>> pieces;
   if (route != PieceRoute::Tree &&
       (route == PieceRoute::Arrangement || small_beside_facets(surface, b, c))) {
-    // Pieces for a chain only: the patches' sweeps are not checked or split.
-    auto pieces = timed_convolution_pieces(surface, b, c, false, stats);
+    // Pieces for a chain: the patches' sweeps as they are, neither checked nor split.
+    std::vector<std::size_t> unchecked;
+    pieces = timed_convolution_pieces(surface, b, c, false, &unchecked, stats);
     if (!pieces) return std::nullopt;
-    const ProgressPhase phase(0.15, 1, subtract ? "subtracting pieces" : "uniting pieces");
-    const double budget = route == PieceRoute::Arrangement ? 0 : kShallowPairs;
-    if (auto result = pieces_arrangement(moved_a, *pieces, subtract, budget, stats)) return result;
+    {
+      const ProgressPhase phase(0.15, 1, subtract ? "subtracting pieces" : "uniting pieces");
+      const double budget = route == PieceRoute::Arrangement ? 0 : max_pairs_per_triangle;
+      if (auto result = pieces_arrangement(moved_a, *pieces, subtract, budget, stats))
+        return result;
+    }
+    // Too deep: the tree needs valid solids. A sweep that overlaps itself is replaced by the
+    // region its chain winds around at least once, the union of its prisms.
+    tbb::parallel_for(std::size_t(0), unchecked.size(), [&](std::size_t k) {
+      Mesh& sweep = (*pieces)[unchecked[k]];
+      if (!check_mesh(sweep, kValidityOnly).valid_solid()) sweep = winding_solid(sweep);
+    });
+  } else {
+    pieces = timed_convolution_pieces(surface, b, c, true, nullptr, stats);
+    if (!pieces) return std::nullopt;
   }
-  auto pieces = timed_convolution_pieces(surface, b, c, true, stats);
-  if (!pieces) return std::nullopt;
   // The pieces first: A + c spans them all and would be carried through every level.
   Mesh shell;
   {

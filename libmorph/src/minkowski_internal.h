@@ -60,13 +60,16 @@ Point interior_point(const Mesh& convex);
 // The convex pieces whose union with (A + c) is A + B, for the solid A bounded by `surface`, a
 // convex B and c = interior_point(B) (convolution.cpp). Empty optional when an edge of the
 // surface does not have exactly two facets, one each way. Without `solids`, a patch's sweep may
-// overlap itself (see patch_pieces): the pieces then only feed a winding arrangement.
+// overlap itself (see patch_pieces), and `unchecked` receives the indices of those sweeps: the
+// pieces feed a winding arrangement as they are, and a union tree once those are made valid.
 std::optional<std::vector<Mesh>> convolution_pieces(const Mesh& surface, const Mesh& b,
-                                                    const Point& c, bool solids = true);
+                                                    const Point& c, bool solids = true,
+                                                    std::vector<std::size_t>* unchecked = nullptr);
 
 // convolution_pieces and compute_union, with their times and counts added to `stats`.
 std::optional<std::vector<Mesh>> timed_convolution_pieces(const Mesh& surface, const Mesh& b,
                                                           const Point& c, bool solids,
+                                                          std::vector<std::size_t>* unchecked,
                                                           MinkowskiStats* stats);
 Mesh timed_union(std::vector<Mesh> solids, MinkowskiStats* stats);
 
@@ -94,11 +97,13 @@ std::optional<Mesh> pieces_arrangement(const Mesh& moved_a, const std::vector<Me
 constexpr double kShallowRatio = 4;
 bool small_beside_facets(const Mesh& surface, const Mesh& b, const Point& c);
 // (A + c) united with (or, subtract, minus) the convolution's pieces of `surface` (A's, or its
-// reverse for an erosion) and B, by the chosen route; moved_a is A + c. Empty optional when the
-// pieces cannot be built (convolution_pieces).
+// reverse for an erosion) and B, by the chosen route; moved_a is A + c. The automatic route
+// gives the arrangement up beyond `max_pairs_per_triangle` (tests make it give up at once).
+// Empty optional when the pieces cannot be built (convolution_pieces).
 std::optional<Mesh> convolution_union(const Mesh& surface, const Mesh& b, const Point& c,
                                       const Mesh& moved_a, bool subtract, PieceRoute route,
-                                      MinkowskiStats* stats);
+                                      MinkowskiStats* stats,
+                                      double max_pairs_per_triangle = kShallowPairs);
 
 // An axis-aligned box: its centre and half sizes.
 struct AxisBox {
