@@ -264,8 +264,7 @@ std::optional<Mesh> convolution_union(const Mesh& surface, const Mesh& b, const 
   return timed_union({std::move(shell), moved_a}, stats);
 }
 
-Mesh sum_with_component(const Mesh& a, const Mesh& b, bool b_convex, MinkowskiStats* stats,
-                        PieceRoute route) {
+Mesh sum_with_component(const Mesh& a, const Mesh& b, bool b_convex, MinkowskiStats* stats) {
   if (b_convex && convex_by_edges(a)) {
     std::vector<Point> sums;
     sums.reserve(a.points.size() * b.points.size());
@@ -280,7 +279,8 @@ Mesh sum_with_component(const Mesh& a, const Mesh& b, bool b_convex, MinkowskiSt
   if (b_convex) {
     const Point c = interior_point(b);
     const Mesh moved = c == Point(CGAL::ORIGIN) ? a : translated(a, c - CGAL::ORIGIN);
-    if (auto sum = convolution_union(a, b, c, moved, false, route, stats)) return std::move(*sum);
+    if (auto sum = convolution_union(a, b, c, moved, false, PieceRoute::Automatic, stats))
+      return std::move(*sum);
   }
   Mesh shell = boundary_sum(a, b, b_convex, stats);
   // A + b0 for a point b0 of B; when B is convex and holds the origin, A itself.

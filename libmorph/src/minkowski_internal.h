@@ -126,7 +126,6 @@ LabelledSolid box_morphology(LabelledSolid a, const AxisBox& box, bool erode);
 Mesh box_morphology(const Mesh& a, const AxisBox& box, bool erode);
 
 // A + B for one connected B whose convexity is known.
-Mesh sum_with_component(const Mesh& a, const Mesh& b, bool b_convex, MinkowskiStats* stats,
-                        PieceRoute route = PieceRoute::Automatic);
+Mesh sum_with_component(const Mesh& a, const Mesh& b, bool b_convex, MinkowskiStats* stats);
 
 }  // namespace morphex::detail
