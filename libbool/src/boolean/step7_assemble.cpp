@@ -20,6 +20,8 @@
 #include <memory>
 #include <numeric>
 #include <stdexcept>
+#include <tuple>
+#include <unordered_map>
 #include <vector>
 
 #include "boolean/boolean_internal.h"
@@ -90,9 +92,11 @@ struct WedgePair {
 class Fans {
  public:
   Fans(const PointTable& points, const std::vector<Triangle>& faces,
+       const std::vector<std::uint8_t>& special,
        std::vector<std::pair<PointId, std::uint32_t>> corners)
       : points_(points),
         faces_{faces},
+        special_(special),
         corners_(std::move(corners)),
         sets_(corners_.size()),
         slot_of_corner_(corners_.size()) {
@@ -182,12 +186,16 @@ class Fans {
       const HalfEdge& before = hs[(t + hs.size() - 1) % hs.size()];
       // One of the two leaves v and the other arrives at it: their corners at v share a fan.
       sets_.join(*slot_of_corner_.find(hs[t].corner), *slot_of_corner_.find(before.corner));
-      if (v == lo) wedge_pairs_.push_back({lo, hi, {face_of(hs[t]), face_of(before)}});
+      // Each pair once: from its lower end, or from v when only v is examined (w is not special:
+      // an input vertex whose one fan the edge keeps, so the pairs may share it).
+      if (v == lo || !special_[w])
+        wedge_pairs_.push_back({lo, hi, {face_of(hs[t]), face_of(before)}});
     }
   }
 
   const PointTable& points_;
   const FaceCorners faces_;
+  const std::vector<std::uint8_t>& special_;
   const std::vector<std::pair<PointId, std::uint32_t>> corners_;  // see special_corners
   UnionFind sets_;  // over the special corners, by their index in `corners_`
   FlatMap<std::uint64_t, std::uint32_t, Hash64> slot_of_corner_;
@@ -246,13 +254,41 @@ IdMesh number_vertices(const PointTable& points, const std::vector<Triangle>& fa
   return out;
 }
 
-// Pairs of one non-manifold edge that still share both vertex copies: each is split at its own
-// copy of the midpoint, so that the halves of different pairs meet only at common edges. The
-// split faces' second halves are appended to `out` (and their origins to `origin`).
+// The face among f and the halves split off it that holds the edge (a, b), and the edge's place
+// in it. A face can belong to pairs of two of its edges: after the first split, the second edge
+// may have moved to the appended half.
+std::pair<std::uint32_t, int> face_holding(
+    const IdMesh& out, const std::unordered_map<std::uint32_t, std::vector<std::uint32_t>>& halves,
+    std::uint32_t f, VertexIndex a, VertexIndex b) {
+  std::vector<std::uint32_t> todo{f};
+  while (!todo.empty()) {
+    const std::uint32_t g = todo.back();
+    todo.pop_back();
+    const Triangle& t = out.triangles[g];
+    for (int k = 0; k < 3; ++k)
+      if ((t[k] == a && t[(k + 1) % 3] == b) || (t[k] == b && t[(k + 1) % 3] == a)) return {g, k};
+    if (const auto it = halves.find(g); it != halves.end())
+      todo.insert(todo.end(), it->second.begin(), it->second.end());
+  }
+  throw std::logic_error("Boolean: a face of a non-manifold edge lost the edge");
+}
+
+// Non-manifold edges where two pairs still share both vertex copies: every pair of such an edge
+// is split at its own copy of the midpoint, so that the halves of different pairs meet only at
+// common edges. All pairs of the edge are split, not only those sharing: where three solids meet
+// along it, an unsplit pair's edge would hold the others' midpoints in its interior. The split
+// faces' second halves are appended to `out` (and their origins to `origin`).
 void split_shared_pairs(PointTable& points, const std::vector<Triangle>& faces,
                         const std::vector<WedgePair>& wedge_pairs, IdMesh& out,
                         std::vector<FaceOrigin>* origin) {
-  std::vector<std::pair<std::uint64_t, std::size_t>> copies;  // (output edge, pair)
+  struct Copy {
+    std::uint64_t edge, copies;  // (lo, hi) as point ids, and as the pair's output vertices
+    std::size_t pair;
+    bool operator<(const Copy& o) const {
+      return std::tie(edge, copies, pair) < std::tie(o.edge, o.copies, o.pair);
+    }
+  };
+  std::vector<Copy> copies;
   for (std::size_t i = 0; i < wedge_pairs.size(); ++i) {
     const WedgePair& w = wedge_pairs[i];
     const Triangle& t = out.triangles[w.faces[0]];
@@ -262,25 +298,30 @@ void split_shared_pairs(PointTable& points, const std::vector<Triangle>& faces,
       if (input[k] == w.lo) a = t[k];
       if (input[k] == w.hi) b = t[k];
     }
-    copies.emplace_back((std::uint64_t(a) << 32) | b, i);
+    copies.push_back({(std::uint64_t(w.lo) << 32) | w.hi, (std::uint64_t(a) << 32) | b, i});
   }
   std::sort(copies.begin(), copies.end());
-  for (std::size_t i = 0; i < copies.size(); ++i) {
-    const bool shared = (i > 0 && copies[i].first == copies[i - 1].first) ||
-                        (i + 1 < copies.size() && copies[i].first == copies[i + 1].first);
-    if (!shared) continue;
-    const VertexIndex a = VertexIndex(copies[i].first >> 32), b = VertexIndex(copies[i].first);
-    const auto m = VertexIndex(out.vertex_point.size());
-    out.vertex_point.push_back(points.add_explicit(
-        CGAL::midpoint(points.point(out.vertex_point[a]), points.point(out.vertex_point[b]))));
-    for (const std::uint32_t f : wedge_pairs[copies[i].second].faces) {
-      const Triangle t = out.triangles[f];
-      int k = 0;
-      while (!((t[k] == a && t[(k + 1) % 3] == b) || (t[k] == b && t[(k + 1) % 3] == a))) ++k;
-      out.triangles[f] = {t[k], m, t[(k + 2) % 3]};
-      out.triangles.push_back({m, t[(k + 1) % 3], t[(k + 2) % 3]});
-      if (origin) origin->push_back((*origin)[f]);
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> halves;
+  for (std::size_t begin = 0; begin < copies.size();) {
+    std::size_t end = begin + 1;
+    bool shared = false;
+    for (; end < copies.size() && copies[end].edge == copies[begin].edge; ++end)
+      shared = shared || copies[end].copies == copies[end - 1].copies;
+    for (std::size_t i = begin; shared && i < end; ++i) {
+      const auto a = VertexIndex(copies[i].copies >> 32), b = VertexIndex(copies[i].copies);
+      const auto m = VertexIndex(out.vertex_point.size());
+      out.vertex_point.push_back(points.add_explicit(
+          CGAL::midpoint(points.point(out.vertex_point[a]), points.point(out.vertex_point[b]))));
+      for (const std::uint32_t face : wedge_pairs[copies[i].pair].faces) {
+        const auto [f, k] = face_holding(out, halves, face, a, b);
+        const Triangle t = out.triangles[f];
+        out.triangles[f] = {t[k], m, t[(k + 2) % 3]};
+        halves[f].push_back(std::uint32_t(out.triangles.size()));
+        out.triangles.push_back({m, t[(k + 1) % 3], t[(k + 2) % 3]});
+        if (origin) origin->push_back((*origin)[f]);
+      }
     }
+    begin = end;
   }
 }
 
@@ -326,7 +367,7 @@ IdMesh separate_non_manifold(PointTable& points, const std::vector<Triangle>& fa
 IdMesh separate_non_manifold(PointTable& points, const std::vector<Triangle>& faces,
                              const std::vector<std::uint8_t>& special, SpecialCorners corners,
                              std::vector<FaceOrigin>* origin) {
-  Fans fans(points, faces, std::move(corners));
+  Fans fans(points, faces, special, std::move(corners));
   fans.join_all();
   IdMesh out = number_vertices(points, faces, special, fans);
   split_shared_pairs(points, faces, fans.wedge_pairs(), out, origin);

@@ -256,13 +256,23 @@ Candidates find_candidates(const Regions& s, const std::vector<VertexIndex>* act
   return c;
 }
 
-// A region holding a candidate whose position another vertex shares (a separated non-manifold
-// feature or a contact) keeps all its triangles and vertices: its edges may be needed to keep
-// the touching parts meeting only at common vertices and edges.
+// A region holding a candidate and a vertex whose position another vertex shares (a separated
+// non-manifold feature or a contact) keeps all its triangles and vertices: its edges may be
+// needed to keep the touching parts meeting only at common vertices and edges. The shared vertex
+// need not be the candidate: where two sheets touch along a segment, one end of it has a copy
+// per sheet, and a candidate beside the segment would take the segment's edge with it.
 std::vector<std::uint8_t> frozen_regions(const Regions& s, const Candidates& c) {
   const auto& tri = s.surface.triangles;
+  std::vector<std::uint8_t> with_candidate(s.count, 0);
+  for (std::uint32_t f = 0; f < tri.size(); ++f)
+    for (VertexIndex v : tri[f])
+      if (c.flag[v]) with_candidate[s.region[f]] = 1;
+  std::vector<std::uint8_t> in_such_region(s.surface.vertex_point.size(), 0);
+  for (std::uint32_t f = 0; f < tri.size(); ++f)
+    if (with_candidate[s.region[f]])
+      for (VertexIndex v : tri[f]) in_such_region[v] = 1;
   std::vector<std::uint8_t> frozen(s.count, 0);
-  const std::vector<std::uint8_t> shared = coincident(s.table, s.surface, c.flag);
+  const std::vector<std::uint8_t> shared = coincident(s.table, s.surface, in_such_region);
   for (std::uint32_t f = 0; f < tri.size(); ++f)
     for (VertexIndex v : tri[f])
       if (shared[v]) frozen[s.region[f]] = 1;
