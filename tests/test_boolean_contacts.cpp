@@ -87,6 +87,24 @@ TEST(Contacts, DoubledEdgeWithOneVertexCopyIsCutAcross) {
   EXPECT_EQ(unite, 6 + FT(3) / 2 - FT(1) / 4);
 }
 
+// The same solid subtracted from a box around the edge's top end: the result is two wedges that
+// touch along the edge, so the top end, an input vertex strictly inside the box that nothing
+// else touches, splits into two vertices. (The difference pairs each face of the edge with one
+// of the other wedge, not as the input paired them.)
+TEST(Contacts, InputVertexOnADoubledEdgeSplitsWhenTheEdgeIsPairedAnew) {
+  const Mesh cubes = valid_result(make_box(Point(0, 0, 0), Point(1, 1, 1)),
+                                  make_box(Point(1, 1, 0), Point(2, 2, 1)), BooleanOp::Union,
+                                  "cubes");
+  const Mesh joined =
+      valid_result(cubes, make_box(Point(0, 0, 1), Point(2, 2, 2)), BooleanOp::Union, "slab");
+  const FT h = FT(1) / 2;
+  const Mesh box = make_box(Point(h, h, h), Point(3 * h, 3 * h, 3 * h));
+  const Mesh wedges = valid_result(box, joined, BooleanOp::Difference, "box - joined");
+  EXPECT_EQ(signed_volume(wedges), FT(1) / 4);  // two (1/2)^3 boxes
+  EXPECT_EQ(check_mesh(wedges).components, 2u);
+  expect_exact(box, joined, "around the top end");
+}
+
 // A face of the result belongs to pairs on two of its edges that both need splitting: the second
 // split must find its edge in the half the first one split off.
 TEST(Contacts, FaceSplitOnTwoOfItsEdges) {

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // stress [--seed S] [--count N] [--out DIR]: randomized exact Booleans and morphology.
 // Random solids (boxes on a 1/4 grid, cubes, tetrahedra, octahedra, icospheres, L-shapes, cube
-// pairs sharing only an edge or a vertex, whose contact is separated) under
-// random rational rigid motions, chosen so that coplanar faces, shared edges and vertices and
-// nesting are frequent. Every result must be a valid solid and satisfy the exact identities
+// pairs sharing only an edge or a vertex, whose contact is separated, and the results of earlier
+// cases, as morphology chains them) under random rational rigid motions, chosen so that coplanar
+// faces, shared edges and vertices and nesting are frequent. Every result must be a valid solid and
+// satisfy the exact identities
 //   vol(A u B) + vol(A n B) = vol(A) + vol(B),   vol(A - B) = vol(A) - vol(A n B);
 // the two written as one mesh must give the same solids through repair and winding_solid (its
 // union; {w >= 2}, the intersection; with B reversed, the difference); every 20th case also checks
@@ -16,6 +17,7 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "bench_harness.h"
 #include "morphex/boolean.h"
@@ -38,6 +40,25 @@ class RandomSolids {
 
   int pick(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng_); }
   FT grid(int lo, int hi) { return FT(pick(lo, hi)) / 4; }  // quarters: contacts are frequent
+
+  // A solid of the cases so far, or a new shape. Results are what morphology feeds to the next
+  // Boolean (separated non-manifold features, coincident vertices, merged coplanar regions), so
+  // a quarter of the operands are earlier results, moved again.
+  Mesh operand() {
+    if (!results_.empty() && pick(0, 3) == 0)
+      return results_[std::size_t(pick(0, int(results_.size()) - 1))];
+    return shape();
+  }
+
+  // Keeps a result as a later operand: small ones only (chains stay fast), the last kKept.
+  void remember(const Mesh& result) {
+    constexpr std::size_t kKept = 64, kMaxTriangles = 1500;
+    if (result.empty() || result.num_triangles() > kMaxTriangles) return;
+    if (results_.size() < kKept)
+      results_.push_back(result);
+    else
+      results_[next_++ % kKept] = result;
+  }
 
   Mesh shape() {
     switch (pick(0, 7)) {
@@ -86,6 +107,8 @@ class RandomSolids {
 
  private:
   std::mt19937_64 rng_;
+  std::vector<Mesh> results_;
+  std::size_t next_ = 0;
 };
 
 std::string problem_with(const Mesh& m) {
@@ -112,7 +135,7 @@ int main(int argc, char** argv) {
   RandomSolids random(seed);
   long failures = 0;
   for (long c = 0; c < count; ++c) {
-    const Mesh am = random.moved(random.shape()), bm = random.moved(random.shape());
+    const Mesh am = random.moved(random.operand()), bm = random.moved(random.operand());
     std::string failure;
     Solid a, b;
     try {
@@ -134,6 +157,7 @@ int main(int argc, char** argv) {
         failure = "vol(A u B) + vol(A n B) != vol(A) + vol(B)";
       else if (vd != va - vi)
         failure = "vol(A - B) != vol(A) - vol(A n B)";
+      for (const BooleanResult& result : r) random.remember(result.solid.mesh());
     }
     if (failure.empty()) {
       // The two solids written as one mesh: its repair is their union, and its winding regions

@@ -92,11 +92,9 @@ struct WedgePair {
 class Fans {
  public:
   Fans(const PointTable& points, const std::vector<Triangle>& faces,
-       const std::vector<std::uint8_t>& special,
        std::vector<std::pair<PointId, std::uint32_t>> corners)
       : points_(points),
         faces_{faces},
-        special_(special),
         corners_(std::move(corners)),
         sets_(corners_.size()),
         slot_of_corner_(corners_.size()) {
@@ -186,16 +184,13 @@ class Fans {
       const HalfEdge& before = hs[(t + hs.size() - 1) % hs.size()];
       // One of the two leaves v and the other arrives at it: their corners at v share a fan.
       sets_.join(*slot_of_corner_.find(hs[t].corner), *slot_of_corner_.find(before.corner));
-      // Each pair once: from its lower end, or from v when only v is examined (w is not special:
-      // an input vertex whose one fan the edge keeps, so the pairs may share it).
-      if (v == lo || !special_[w])
-        wedge_pairs_.push_back({lo, hi, {face_of(hs[t]), face_of(before)}});
+      // Each pair once, from the lower end (both ends of the edge are examined).
+      if (v == lo) wedge_pairs_.push_back({lo, hi, {face_of(hs[t]), face_of(before)}});
     }
   }
 
   const PointTable& points_;
   const FaceCorners faces_;
-  const std::vector<std::uint8_t>& special_;
   const std::vector<std::pair<PointId, std::uint32_t>> corners_;  // see special_corners
   UnionFind sets_;  // over the special corners, by their index in `corners_`
   FlatMap<std::uint64_t, std::uint32_t, Hash64> slot_of_corner_;
@@ -350,6 +345,41 @@ SpecialCorners special_corners(const std::vector<Triangle>& faces,
   return corners;
 }
 
+// The points that are not special but end a non-manifold edge at a special point: an input
+// vertex whose fan runs through a doubled edge of its input (two pairs of faces on one segment,
+// told apart there by a copy of the other end). The operation may pair that edge's faces
+// otherwise than the input did (a difference pairs each face with one of the other wedge, whose
+// faces the input kept apart), which splits or joins the vertex's fan, so it must be examined
+// too. The faces of edge vw are the corners at v whose next or previous point is w.
+namespace {
+
+std::vector<PointId> unexamined_ends(const std::vector<Triangle>& faces,
+                                     const std::vector<std::uint8_t>& special,
+                                     const SpecialCorners& corners) {
+  const FaceCorners at{faces};
+  std::vector<PointId> ends, around;
+  for (std::size_t begin = 0; begin < corners.size();) {
+    std::size_t end = begin + 1;
+    while (end < corners.size() && corners[end].first == corners[begin].first) ++end;
+    around.clear();
+    for (std::size_t i = begin; i < end; ++i) {
+      around.push_back(at.next(corners[i].second));
+      around.push_back(at.previous(corners[i].second));
+    }
+    std::sort(around.begin(), around.end());
+    for (std::size_t i = 0, j; i < around.size(); i = j) {
+      for (j = i + 1; j < around.size() && around[j] == around[i];) ++j;
+      if (j - i > 2 && !special[around[i]]) ends.push_back(around[i]);
+    }
+    begin = end;
+  }
+  std::sort(ends.begin(), ends.end());
+  ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+  return ends;
+}
+
+}  // namespace
+
 // At a special point, each corner is attached to the corner of the face across each of its two
 // edges there; a non-manifold edge pairs its faces by the solid wedges between them. Each fan of
 // attached corners becomes one vertex.
@@ -367,9 +397,21 @@ IdMesh separate_non_manifold(PointTable& points, const std::vector<Triangle>& fa
 IdMesh separate_non_manifold(PointTable& points, const std::vector<Triangle>& faces,
                              const std::vector<std::uint8_t>& special, SpecialCorners corners,
                              std::vector<FaceOrigin>* origin) {
-  Fans fans(points, faces, special, std::move(corners));
+  // Rare: the far ends of non-manifold edges join the special points, with their corners.
+  std::vector<std::uint8_t> extended;
+  for (std::vector<PointId> ends = unexamined_ends(faces, special, corners); !ends.empty();
+       ends = unexamined_ends(faces, extended, corners)) {
+    if (extended.empty()) extended = special;
+    std::vector<std::uint8_t> added(special.size(), 0);
+    for (const PointId p : ends) extended[p] = added[p] = 1;
+    const SpecialCorners more = special_corners(faces, added);
+    corners.insert(corners.end(), more.begin(), more.end());
+    sort_id_pairs(corners.begin(), corners.end());
+  }
+  const std::vector<std::uint8_t>& examined = extended.empty() ? special : extended;
+  Fans fans(points, faces, std::move(corners));
   fans.join_all();
-  IdMesh out = number_vertices(points, faces, special, fans);
+  IdMesh out = number_vertices(points, faces, examined, fans);
   split_shared_pairs(points, faces, fans.wedge_pairs(), out, origin);
   return out;
 }
