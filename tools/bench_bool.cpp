@@ -6,9 +6,9 @@
 //              [--json FILE] [--demo-dir DIR] [--only SUBSTRING] [--phases]
 //              [--no-peers]   (morphex alone, for profiling) [--threads N]
 //   bench_bool A B [--rotate DEG] [--translate X Y Z] [--op OP]      (one pair from files)
-//   bench_bool --set real [--op OP] [--demo-dir DIR] [--prusa-dir DIR] [--ember-dir DIR]
-//              [--only SUBSTRING] [--json FILE] [--busy-retries N] [--write-cases DIR]
-//              (pairs of real meshes against Manifold: bench_bool_real.cpp)
+//   bench_bool --set real [--pairs tuning|held-out|all] [--op OP] [--demo-dir DIR]
+//              [--prusa-dir DIR] [--ember-dir DIR] [--only SUBSTRING] [--json FILE] [--busy-retries
+//              N] [--write-cases DIR] (pairs of real meshes against Manifold: bench_bool_real.cpp)
 //
 // Cases: icosphere pairs crossing each other from level 2 up to --max-level (a scaling curve),
 // dense intersections (a sphere against a slightly rotated copy), coplanar contacts (a box grid
@@ -96,6 +96,7 @@ struct Options {
   std::size_t nef_max_faces = 3000;
   std::string only, a_path, b_path;
   std::string set = "generated";  // or "real"
+  std::string pairs = "tuning";   // --set real only: tuning, held-out or all
   int busy_retries = 2;           // --set real only
   bool phases = false, peers_too = true;
   unsigned threads = 0;  // 0: all cores
@@ -136,6 +137,11 @@ void add_real_options(CLI::App& app, Options& o) {
                  "generated: icospheres, contacts, demo meshes against CGAL; "
                  "real: pairs of real meshes against Manifold")
       ->check(CLI::IsMember({"generated", "real"}))
+      ->capture_default_str();
+  app.add_option("--pairs", o.pairs,
+                 "tuning: the pairs the Boolean was tuned on; held-out: pairs never used to "
+                 "tune anything; all (--set real)")
+      ->check(CLI::IsMember({"tuning", "held-out", "all"}))
       ->capture_default_str();
   app.add_option("--prusa-dir", o.prusa_dir, "PrusaSlicer's sample shapes (--set real)")
       ->capture_default_str();
@@ -400,9 +406,9 @@ int main(int argc, char** argv) {
   if (const std::optional<int> stop = parse_arguments(harness, o, argc, argv)) return *stop;
   // The real set runs each engine at the thread counts it compares (1, 2, 4), set in each child.
   if (o.set == "real")
-    return run_real_set(
-        {o.op, o.only, o.demo_dir, o.prusa_dir, o.ember_dir, o.busy_retries, o.write_cases},
-        harness);
+    return run_real_set({o.op, o.pairs, o.only, o.demo_dir, o.prusa_dir, o.ember_dir,
+                         o.busy_retries, o.write_cases},
+                        harness);
   const std::vector<Case> cases = make_cases(o);
 
   // Limits morphex's TBB phases; CGAL's corefinement and Nef run sequentially anyway.

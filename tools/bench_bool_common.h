@@ -141,6 +141,9 @@ inline void own_inputs(const Case& c) {
 // The real-mesh pairs set (bench_bool --set real, bench_bool_real.cpp).
 struct RealSetOptions {
   BooleanOp op = BooleanOp::Union;
+  // "tuning": the pairs the work was measured and tuned on; "held-out": pairs never used to tune
+  // anything; "all": both.
+  std::string pairs = "tuning";
   std::string only, demo_dir, prusa_dir;
   // Manifold's EMBER cases (ember-benchmark-cases.json and the meshes, ID.stl), as
   // tools/peers/extract-ember-meshes leaves them; the EMBER pairs are skipped without it.
