@@ -16,6 +16,7 @@
 #include "morphex/boolean.h"
 #include "morphex/check.h"
 #include "morphex/io.h"
+#include "morphex/repair.h"
 #include "morphex/shapes.h"
 #include "morphex/winding.h"
 
@@ -121,4 +122,34 @@ TEST(Contacts, FlatRegionKeepsTheSegmentAnotherSheetTouches) {
 // edge is split, or the unsplit pair's edge would hold the others' midpoints.
 TEST(Contacts, ThreeWedgesAlongOneEdge) {
   expect_exact_pair("three_wedges");
+}
+
+// Two closed surfaces that meet only along three common edges, yet cross there: the unit cube,
+// its faces at the origin split by the diagonals that miss the origin, and the octahedron of
+// radius 1 around the origin, whose face x + y + z = 1 runs along those diagonals into the cube.
+// No two triangles meet improperly, but around each diagonal the cube's faces and the
+// octahedron's alternate: the check must refuse the pair as one mesh, and repair must unite it.
+TEST(Contacts, FoldsCrossingAlongASharedSegmentAreRefused) {
+  Mesh cube;
+  for (int v = 0; v < 8; ++v) cube.points.push_back(Point(v >> 2, (v >> 1) & 1, v & 1));
+  cube.triangles = {{0, 2, 4}, {4, 2, 6}, {0, 4, 1}, {4, 5, 1}, {0, 1, 2}, {2, 1, 3},
+                    {1, 5, 7}, {1, 7, 3}, {2, 3, 7}, {2, 7, 6}, {4, 6, 7}, {4, 7, 5}};
+  const Mesh octahedron = make_octahedron(FT(1));
+  ASSERT_TRUE(check_mesh(cube).valid_solid());
+  ASSERT_TRUE(check_mesh(octahedron).valid_solid());
+  const Mesh both = concatenate(cube, octahedron);
+  CheckOptions list;
+  list.list_self_intersections = true;
+  const MeshReport report = check_mesh(both, list);
+  EXPECT_FALSE(report.valid_solid());
+  // each of the three diagonals: the cube's two faces on it against the octahedron's two
+  EXPECT_GE(report.self_intersections, 3u);
+  for (const auto& [i, j] : report.self_intersecting_pairs) {  // a cube face and an octahedron face
+    EXPECT_LT(i, 12u);
+    EXPECT_GE(j, 12u);
+  }
+  // the octant x, y, z >= 0 of the octahedron (volume 1/6) lies in the cube
+  const FT unite = 1 + FT(4) / 3 - FT(1) / 6;
+  EXPECT_EQ(signed_volume(repair_mesh(both).solid), unite);
+  EXPECT_EQ(expect_exact(cube, octahedron, "cube and octahedron").first, unite);
 }

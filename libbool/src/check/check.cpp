@@ -14,6 +14,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "check/check_edge_fans.h"
 #include "check/check_internal.h"
 #include "check/check_planar.h"
 #include "check/check_planes.h"
@@ -499,7 +500,11 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
       }
     });
   }
-  std::vector<Found> found(tree.self_pair_tasks() + planar.patches.size());
+  // The last slot: faces crossing along a segment that several edges share (no pair of
+  // triangles meets improperly there).
+  std::vector<Found> found(tree.self_pair_tasks() + planar.patches.size() + 1);
+  for (const auto& [i, j] : detail::interleaved_edge_fans(mesh, table, position))
+    found.back().add(i, j, options.list_self_intersections);
   tree.for_each_self_pair<detail::UpwardRounding>(
       [&](std::size_t task, std::uint32_t i, std::uint32_t j) {
         // Degenerate faces are reported on their own (the tree over all faces holds them).
