@@ -306,14 +306,17 @@ std::optional<PlanarPatch> prove_embedded(const Mesh& mesh, const PointTable& ta
   if (p.turn == CGAL::ZERO) return std::nullopt;
   std::vector<Wedge> wedges;
   wedges.reserve(3 * triangles.size());
-  std::vector<std::array<PointId, 2>> directed;
-  directed.reserve(3 * triangles.size());
+  // Each edge use as its key (least id first) and whether it runs that way: one sort of them
+  // gives both the patch's edges and its border.
+  std::vector<std::pair<std::uint64_t, bool>> uses;
+  uses.reserve(3 * triangles.size());
   for (const std::uint32_t f : triangles) {
     const auto c = corners(mesh, position, f);
     if (p.orient(c[0], c[1], c[2]) != CGAL::POSITIVE) return std::nullopt;
     for (int k = 0; k < 3; ++k) {
-      wedges.push_back({c[k], c[(k + 1) % 3], c[(k + 2) % 3]});
-      directed.push_back({c[k], c[(k + 1) % 3]});
+      const PointId from = c[k], to = c[(k + 1) % 3];
+      wedges.push_back({from, to, c[(k + 2) % 3]});
+      uses.emplace_back(edge_key(from, to), from < to);
     }
   }
   std::sort(wedges.begin(), wedges.end());
@@ -324,16 +327,20 @@ std::optional<PlanarPatch> prove_embedded(const Mesh& mesh, const PointTable& ta
     patch.vertices.push_back(wedges[i].apex);
     i = j;
   }
-  // The border: directed edges whose reverse is not in the patch.
+  // The border: the edge uses whose reverse is not in the patch (an edge used one way only).
+  std::sort(uses.begin(), uses.end());
   std::vector<std::array<PointId, 2>> border;
-  for (const auto& e : directed) patch.edges.push_back(edge_key(e[0], e[1]));
-  std::sort(directed.begin(), directed.end());
-  for (const auto& e : directed)
-    if (!std::binary_search(directed.begin(), directed.end(), std::array<PointId, 2>{e[1], e[0]}))
-      border.push_back(e);
+  for (std::size_t i = 0, j; i < uses.size(); i = j) {
+    bool ways[2] = {false, false};
+    for (j = i; j < uses.size() && uses[j].first == uses[i].first; ++j) ways[uses[j].second] = true;
+    patch.edges.push_back(uses[i].first);
+    if (ways[0] && ways[1]) continue;
+    const auto lo = PointId(uses[i].first >> 32), hi = PointId(uses[i].first);
+    for (std::size_t k = i; k < j; ++k)
+      border.push_back(uses[k].second ? std::array<PointId, 2>{lo, hi}
+                                      : std::array<PointId, 2>{hi, lo});
+  }
   if (!border_bounds_an_embedded_patch(p, std::move(border))) return std::nullopt;
-  std::sort(patch.edges.begin(), patch.edges.end());
-  patch.edges.erase(std::unique(patch.edges.begin(), patch.edges.end()), patch.edges.end());
   for (const PointId v : patch.vertices) patch.box += table.approx(v).bbox();
   patch.triangles = std::move(triangles);
   return patch;
