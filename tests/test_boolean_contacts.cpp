@@ -10,6 +10,7 @@
 // tree operands, cropped to a box around the failing spot with `morphex bool intersection`).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <utility>
 
@@ -93,9 +94,9 @@ TEST(Contacts, DoubledEdgeWithOneVertexCopyIsCutAcross) {
 // else touches, splits into two vertices. (The difference pairs each face of the edge with one
 // of the other wedge, not as the input paired them.)
 TEST(Contacts, InputVertexOnADoubledEdgeSplitsWhenTheEdgeIsPairedAnew) {
-  const Mesh cubes = valid_result(make_box(Point(0, 0, 0), Point(1, 1, 1)),
-                                  make_box(Point(1, 1, 0), Point(2, 2, 1)), BooleanOp::Union,
-                                  "cubes");
+  const Mesh cubes =
+      valid_result(make_box(Point(0, 0, 0), Point(1, 1, 1)),
+                   make_box(Point(1, 1, 0), Point(2, 2, 1)), BooleanOp::Union, "cubes");
   const Mesh joined =
       valid_result(cubes, make_box(Point(0, 0, 1), Point(2, 2, 2)), BooleanOp::Union, "slab");
   const FT h = FT(1) / 2;
@@ -152,4 +153,46 @@ TEST(Contacts, FoldsCrossingAlongASharedSegmentAreRefused) {
   const FT unite = 1 + FT(4) / 3 - FT(1) / 6;
   EXPECT_EQ(signed_volume(repair_mesh(both).solid), unite);
   EXPECT_EQ(expect_exact(cube, octahedron, "cube and octahedron").first, unite);
+}
+
+// The octahedron of radius 1 inscribed in the cube [-1, 1]^3 (its faces fanned from their centres,
+// where the octahedron's vertices are): every vertex of the inner shell lies on the outer one, so
+// the nesting test must look at a face's centre. Turned outward the two are not one solid; turned
+// inward the octahedron is a cavity touching the walls at six points.
+TEST(Contacts, ShellInscribedInAnotherIsNestedByItsFaces) {
+  Mesh cube;
+  for (int axis = 0; axis < 3; ++axis)
+    for (const int side : {-1, 1}) {
+      const int b = (axis + 1) % 3, d = (axis + 2) % 3;
+      auto at = [&](int u, int v) {
+        FT c[3];
+        c[axis] = side;
+        c[b] = u;
+        c[d] = v;
+        const Point p(c[0], c[1], c[2]);
+        const auto found = std::find(cube.points.begin(), cube.points.end(), p);
+        if (found != cube.points.end()) return VertexIndex(found - cube.points.begin());
+        cube.points.push_back(p);
+        return VertexIndex(cube.points.size() - 1);
+      };
+      const VertexIndex centre = at(0, 0);
+      const VertexIndex ring[4] = {at(-1, -1), at(1, -1), at(1, 1), at(-1, 1)};
+      for (int i = 0; i < 4; ++i) {
+        Triangle t = {centre, ring[i], ring[(i + 1) % 4]};
+        // (b, d, axis) is a right-handed frame: the ring turns about +axis, outward for side 1
+        if (side < 0) std::swap(t[1], t[2]);
+        cube.triangles.push_back(t);
+      }
+    }
+  const Mesh octahedron = make_octahedron(FT(1));
+  ASSERT_TRUE(check_mesh(concatenate(cube, make_octahedron(FT(1) / 2))).self_intersections == 0);
+  const MeshReport cube_report = check_mesh(cube);
+  ASSERT_TRUE(cube_report.valid_solid()) << describe_problems(cube_report);
+  const MeshReport both = check_mesh(concatenate(cube, octahedron));
+  EXPECT_EQ(both.self_intersections, 0u);
+  EXPECT_FALSE(both.outward);
+  EXPECT_EQ(signed_volume(repair_mesh(concatenate(cube, octahedron)).solid), FT(8));
+  const MeshReport hollow = check_mesh(concatenate(cube, reversed(octahedron)));
+  EXPECT_TRUE(hollow.valid_solid()) << describe_problems(hollow);
+  EXPECT_EQ(hollow.volume, 8 - FT(4) / 3);
 }

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <sstream>
 
 #include "check/check_edge_fans.h"
@@ -597,15 +598,25 @@ bool is_outward(const Mesh& mesh, const PointTable& table,
     int depth = 0;
     for (std::size_t o = 0; o < shells.size(); ++o) {
       if (o == c) continue;
-      // a vertex of shell c that is not on shell o (touching shells share positions)
-      for (const Point& p : shells[c].points) {
+      // A point of shell c that is not on shell o: a vertex (touching shells share positions),
+      // or when every vertex is on o (a shell inscribed in another), the centre of a face, which
+      // without self-intersections is off o (else the face would meet one of o's improperly).
+      const auto winding_at = [&](const Point& p) -> std::optional<int> {
         try {
-          depth += winding_number(shells[o], trees[o], p) != 0;
-          break;
+          return winding_number(shells[o], trees[o], p);
         } catch (const std::domain_error&) {
-          continue;
+          return std::nullopt;
         }
+      };
+      std::optional<int> w;
+      for (std::size_t v = 0; v < shells[c].points.size() && !w; ++v)
+        w = winding_at(shells[c].points[v]);
+      for (std::size_t f = 0; f < shells[c].triangles.size() && !w; ++f) {
+        const Triangle& t = shells[c].triangles[f];
+        w = winding_at(
+            CGAL::centroid(shells[c].points[t[0]], shells[c].points[t[1]], shells[c].points[t[2]]));
       }
+      depth += w && *w != 0;
     }
     if (volume_sign(shells[c]) != (depth % 2 == 0 ? CGAL::POSITIVE : CGAL::NEGATIVE))
       outward = false;
