@@ -8,8 +8,9 @@
 //   vol(A u B) + vol(A n B) = vol(A) + vol(B),   vol(A - B) = vol(A) - vol(A n B);
 // the two written as one mesh must give the same solids through repair and winding_solid (its
 // union; {w >= 2}, the intersection; with B reversed, the difference); every 20th case also checks
-// that an opening is inside A and a closing contains it. A failing
-// case is written to DIR as exact OFF files with a line saying how to replay it; exit code 1.
+// that an opening is inside A and a closing contains it (by a cube, an octahedron or a ball). A
+// failing case is written to DIR as exact OFF files with a line saying how to replay it; exit
+// code 1.
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -28,6 +29,7 @@
 #include "morphex/repair.h"
 #include "morphex/shapes.h"
 #include "morphex/solid.h"
+#include "morphex/structuring_element.h"
 #include "morphex/winding.h"
 
 using namespace morphex;
@@ -184,9 +186,11 @@ int main(int argc, char** argv) {
       }
     }
     if (failure.empty() && c % 20 == 0) {
-      StructuringElement se;
-      se.shape = "cube";
-      se.mesh = make_cube(FT(1) / 8);
+      // Cubes (segment sweeps), octahedra and balls (convolution pieces, their arrangement or
+      // the union tree) in turn.
+      static const char* const kElements[3] = {"cube:r=1/8", "octahedron:r=1/8",
+                                               "ball:r=1/8,level=0"};
+      const StructuringElement se = parse_structuring_element(kElements[(c / 20) % 3]);
       const Solid opened = opening(a, se), closed = closing(a, se);
       const BooleanResult outside = compute_boolean(opened, a, BooleanOp::Difference);
       const BooleanResult missing = compute_boolean(a, closed, BooleanOp::Difference);
