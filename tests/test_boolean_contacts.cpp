@@ -35,14 +35,9 @@ Mesh valid_result(const Mesh& a, const Mesh& b, BooleanOp op, const std::string&
 
 // The volume of {x : w(x) >= threshold} for the chain A + B (union: 1, intersection: 2).
 FT winding_volume(const Mesh& a, const Mesh& b, int threshold) {
-  Mesh chain = a;
-  const auto offset = VertexIndex(chain.points.size());
-  chain.points.insert(chain.points.end(), b.points.begin(), b.points.end());
-  for (const Triangle& t : b.triangles)
-    chain.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
   WindingOptions options;
   options.threshold = threshold;
-  const Mesh solid = winding_solid(chain, {}, options);
+  const Mesh solid = winding_solid(concatenate(a, b), {}, options);
   EXPECT_TRUE(check_mesh(solid, kValidityOnly).valid_solid()) << "winding " << threshold;
   return signed_volume(solid);
 }
@@ -67,6 +62,16 @@ void expect_exact_pair(const std::string& stem) {
   expect_exact(read_mesh(dir + stem + "_left.off"), read_mesh(dir + stem + "_right.off"), stem);
 }
 
+// Two unit cubes touching along the edge x = y = 1, 0 <= z <= 1, united with the slab
+// [0, 2]^2 x [1, 2] on top: the edge is doubled, with one vertex at its top end (the slab joins
+// the cubes there) and two copies at its bottom end.
+Mesh cubes_joined_by_a_slab() {
+  const Mesh cubes =
+      valid_result(make_box(Point(0, 0, 0), Point(1, 1, 1)),
+                   make_box(Point(1, 1, 0), Point(2, 2, 1)), BooleanOp::Union, "cubes");
+  return valid_result(cubes, make_box(Point(0, 0, 1), Point(2, 2, 2)), BooleanOp::Union, "slab");
+}
+
 }  // namespace
 
 // Two cubes touching along an edge under a slab that joins them at the top: the union has one
@@ -75,11 +80,7 @@ void expect_exact_pair(const std::string& stem) {
 // along it, and only the top end, an input vertex nobody else touches, sees the four faces.
 // The pairs must still be split apart.
 TEST(Contacts, DoubledEdgeWithOneVertexCopyIsCutAcross) {
-  const Mesh cubes =
-      valid_result(make_box(Point(0, 0, 0), Point(1, 1, 1)),
-                   make_box(Point(1, 1, 0), Point(2, 2, 1)), BooleanOp::Union, "cubes");
-  const Mesh joined =
-      valid_result(cubes, make_box(Point(0, 0, 1), Point(2, 2, 2)), BooleanOp::Union, "slab");
+  const Mesh joined = cubes_joined_by_a_slab();
   EXPECT_EQ(signed_volume(joined), FT(6));
   const FT h = FT(1) / 2;
   const auto [unite, common] =
@@ -94,11 +95,7 @@ TEST(Contacts, DoubledEdgeWithOneVertexCopyIsCutAcross) {
 // else touches, splits into two vertices. (The difference pairs each face of the edge with one
 // of the other wedge, not as the input paired them.)
 TEST(Contacts, InputVertexOnADoubledEdgeSplitsWhenTheEdgeIsPairedAnew) {
-  const Mesh cubes =
-      valid_result(make_box(Point(0, 0, 0), Point(1, 1, 1)),
-                   make_box(Point(1, 1, 0), Point(2, 2, 1)), BooleanOp::Union, "cubes");
-  const Mesh joined =
-      valid_result(cubes, make_box(Point(0, 0, 1), Point(2, 2, 2)), BooleanOp::Union, "slab");
+  const Mesh joined = cubes_joined_by_a_slab();
   const FT h = FT(1) / 2;
   const Mesh box = make_box(Point(h, h, h), Point(3 * h, 3 * h, 3 * h));
   const Mesh wedges = valid_result(box, joined, BooleanOp::Difference, "box - joined");
