@@ -137,6 +137,24 @@ TEST(Repair, CoincidentDuplicateShells) {
   EXPECT_EQ(signed_volume(s.solid), 8 + 2);  // [-1, 1]^3 and its copy shifted by 1/2 along x
 }
 
+// The same cube twice, the copy's bottom and front faces split by the other diagonals: eight of
+// its triangles repeat the first cube's and four do not. Dropping the repeated ones would leave an
+// open chain; both shells are kept instead, and the winding counts 2 inside.
+TEST(Repair, CoincidentShellsTriangulatedPartlyAlike) {
+  Mesh first, copy;
+  for (int v = 0; v < 8; ++v) first.points.push_back(Point(v >> 2, (v >> 1) & 1, v & 1));
+  copy.points = first.points;
+  first.triangles = {{0, 2, 4}, {4, 2, 6}, {0, 4, 1}, {4, 5, 1}, {0, 1, 2}, {2, 1, 3},
+                     {1, 5, 7}, {1, 7, 3}, {2, 3, 7}, {2, 7, 6}, {4, 6, 7}, {4, 7, 5}};
+  copy.triangles = {{0, 2, 6}, {0, 6, 4}, {0, 4, 5}, {0, 5, 1}, {0, 1, 2}, {2, 1, 3},
+                    {1, 5, 7}, {1, 7, 3}, {2, 3, 7}, {2, 7, 6}, {4, 6, 7}, {4, 7, 5}};
+  ASSERT_TRUE(check_mesh(first).valid_solid());
+  ASSERT_TRUE(check_mesh(copy).valid_solid());
+  const RepairResult r = repaired(concatenate(first, copy));
+  EXPECT_EQ(signed_volume(r.solid), 1);
+  EXPECT_EQ(r.report.duplicate_faces, 0u);  // every face kept
+}
+
 TEST(Repair, DegenerateAndDuplicateFaces) {
   // The unit cube with an edge split by its midpoint m on one side only, closed by a face
   // (a, b, m) without area: a degenerate face and a T-junction; plus a repeated face.

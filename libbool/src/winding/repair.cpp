@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <iomanip>
 #include <sstream>
+#include <string>
 
 #include "exact/point_index.h"
 #include "morphex/check.h"
@@ -37,10 +38,10 @@ std::size_t component_count(const Mesh& m) {
   return count;
 }
 
-// The mesh over distinct positions, each face once (a face repeated with the same orientation is
-// an error of the file, not a second shell: only the first is kept). `face_of` maps each input
-// face to its face in the result (a repeated face to its first copy).
-Mesh merged(const Mesh& mesh, RepairReport& r, std::vector<std::uint32_t>& face_of) {
+// The mesh over distinct positions, each face once when `once` (a face repeated with the same
+// orientation is usually an error of the file, not a second shell: only the first is kept).
+// `face_of` maps each input face to its face in the result (a repeated face to its first copy).
+Mesh merged(const Mesh& mesh, bool once, RepairReport& r, std::vector<std::uint32_t>& face_of) {
   Mesh out;
   std::vector<VertexIndex> id(mesh.points.size());
   {
@@ -64,7 +65,7 @@ Mesh merged(const Mesh& mesh, RepairReport& r, std::vector<std::uint32_t>& face_
                                  : keyed[i].second;
   face_of.assign(mesh.triangles.size(), 0);
   for (std::uint32_t f = 0; f < mesh.triangles.size(); ++f) {
-    if (first[f] != f) {
+    if (once && first[f] != f) {
       ++r.duplicate_faces;
       face_of[f] = face_of[first[f]];  // the least index of equal faces is the first copy
       continue;
@@ -76,9 +77,9 @@ Mesh merged(const Mesh& mesh, RepairReport& r, std::vector<std::uint32_t>& face_
   return out;
 }
 
-// Every edge run as often one way as the other, or the error that names the first one that is
-// not.
-void require_closed_chain(const Mesh& m) {
+// Every edge run as often one way as the other (empty), or the error that names the first one
+// that is not.
+std::string open_chain(const Mesh& m) {
   struct Use {
     std::uint64_t edge;  // (min, max)
     std::uint32_t face;
@@ -115,10 +116,11 @@ void require_closed_chain(const Mesh& m) {
                 << (j - i == 1 ? " has no face on its other side"
                                : " has more faces on one side than on the other");
       message << " (vertices and faces numbered after merging equal vertices and faces)";
-      throw InputError("", message.str());
+      return message.str();
     }
     i = j;
   }
+  return {};
 }
 
 // Refuses, before the arrangement is built, a mesh whose arrangement would exceed the budget
@@ -165,8 +167,19 @@ RepairResult repair_mesh(const Mesh& mesh, const RepairOptions& options) {
     return result;
   }
   std::vector<std::uint32_t> face_of;
-  Mesh chain = merged(mesh, r, face_of);
-  require_closed_chain(chain);
+  Mesh chain = merged(mesh, true, r, face_of);
+  if (const std::string problem = open_chain(chain); !problem.empty()) {
+    // Repeated faces may instead be where two shells coincide (a solid and a copy triangulated
+    // partly alike): keeping every face then closes the chain, and the winding counts both.
+    RepairReport all = r;
+    all.duplicate_faces = 0;
+    std::vector<std::uint32_t> face_of_all;
+    Mesh every = merged(mesh, false, all, face_of_all);
+    if (r.duplicate_faces == 0 || !open_chain(every).empty()) throw InputError("", problem);
+    chain = std::move(every);
+    face_of = std::move(face_of_all);
+    r = all;
+  }
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
   pairs.reserve(report.self_intersecting_pairs.size());
   for (const auto& [i, j] : report.self_intersecting_pairs)
