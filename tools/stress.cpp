@@ -43,9 +43,10 @@ class RandomSolids {
   int pick(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng_); }
   FT grid(int lo, int hi) { return FT(pick(lo, hi)) / 4; }  // quarters: contacts are frequent
 
-  // A solid of the cases so far, or a new shape. Results are what morphology feeds to the next
-  // Boolean (separated non-manifold features, coincident vertices, merged coplanar regions), so
-  // a quarter of the operands are earlier results, moved again.
+  // A solid of the cases so far, or a new shape. Results (of Booleans, openings and closings)
+  // are what morphology feeds to the next Boolean (separated non-manifold features, coincident
+  // vertices, merged coplanar regions), so a quarter of the operands are earlier results, moved
+  // again.
   Mesh operand() {
     if (!results_.empty() && pick(0, 3) == 0)
       return results_[std::size_t(pick(0, int(results_.size()) - 1))];
@@ -198,6 +199,8 @@ int main(int argc, char** argv) {
         failure = "opening or closing is not a valid solid: " + p;
       else if (signed_volume(outside.solid) != 0 || signed_volume(missing.solid) != 0)
         failure = "opening not inside A or closing not containing A";
+      else
+        for (const Solid* result : {&opened, &closed}) random.remember(result->mesh());
     }
     if (!failure.empty()) {
       ++failures;
