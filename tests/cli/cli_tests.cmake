@@ -76,7 +76,7 @@ add_test(NAME stress.booleans_and_morphology COMMAND stress --seed 1 --count 300
   --out ${PROJECT_BINARY_DIR}/stress-failures)
 set_tests_properties(stress.booleans_and_morphology PROPERTIES TIMEOUT 900)
 if(MORPHEX_SANITIZE)
-  # The sanitizer pass skips the 1,000 cases above (tests/slow-tests.txt) and runs other ones.
+  # The sanitizer pass skips the 3,000 cases above (tests/slow-tests.txt) and runs other ones.
   add_test(NAME stress.sanitized COMMAND stress --seed 2 --count 100
     --out ${PROJECT_BINARY_DIR}/stress-failures)
   set_tests_properties(stress.sanitized PROPERTIES TIMEOUT 1200)
