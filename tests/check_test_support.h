@@ -24,6 +24,15 @@ namespace morphex::test_support {
 
 using Pairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
 
+// Each vertex's position as the check names it: the least index of the vertices there.
+inline std::vector<detail::PointId> positions_of(const Mesh& m) {
+  std::vector<detail::PointId> position(m.num_vertices());
+  detail::PositionIndex index;
+  for (VertexIndex v = 0; v < m.num_vertices(); ++v)
+    position[v] = index.find_or_insert(m.points[v], v);
+  return position;
+}
+
 // Every pair tested one by one, plus the pairs that cross along a segment several edges share by
 // position (which no test of two triangles sees; check_edge_fans.h, tested on its own in
 // Contacts.FoldsCrossingAlongASharedSegmentAreRefused): what the check's shortcuts must reproduce.
@@ -33,10 +42,7 @@ inline Pairs improper_pairs_by_brute_force(const Mesh& m) {
     for (std::uint32_t b = a + 1; b < m.num_triangles(); ++b)
       if (triangles_intersect_improperly(m, a, b)) pairs.emplace_back(a, b);
   const detail::PointTable table(m, m, true);
-  std::vector<detail::PointId> position(m.num_vertices());
-  detail::PositionIndex index;
-  for (VertexIndex v = 0; v < m.num_vertices(); ++v)
-    position[v] = index.find_or_insert(m.points[v], v);
+  const std::vector<detail::PointId> position = positions_of(m);
   const Pairs crossing = detail::interleaved_edge_fans(m, table, position);
   pairs.insert(pairs.end(), crossing.begin(), crossing.end());
   std::sort(pairs.begin(), pairs.end());
@@ -53,10 +59,7 @@ inline Pairs improper_pairs_by_check(const Mesh& m) {
 // The patches the check proves embedded: exactly flat ones, then (near_flat) nearly flat ones.
 inline detail::PlanarPatches proved_patches_of(const Mesh& m, bool near_flat) {
   const detail::PointTable table(m, m, true);
-  std::vector<detail::PointId> position(m.num_vertices());
-  detail::PositionIndex index;
-  for (VertexIndex v = 0; v < m.num_vertices(); ++v)
-    position[v] = index.find_or_insert(m.points[v], v);
+  const std::vector<detail::PointId> position = positions_of(m);
   const std::vector<std::uint8_t> degenerate(m.num_triangles(), 0);
   std::map<std::uint64_t, std::vector<std::uint32_t>> uses;
   for (std::uint32_t f = 0; f < m.num_triangles(); ++f)

@@ -9,6 +9,7 @@
 #include "check/check_edge_fans.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <tuple>
 
 #include "exact/around_edge.h"
@@ -59,6 +60,44 @@ std::vector<OnSegment> faces_on_shared_segments(const Mesh& mesh,
   return out;
 }
 
+// The faces of each edge, a fold of the surface along the segment, enclose the folds they meet
+// between them, never half of one: as chords of the circle around the segment, on[begin, end)
+// in angular order, they nest like parentheses. Each fold that closes around one still open is
+// reported with it. Linear after a sort, however many faces a crafted file puts on one segment.
+template <class Report>
+void report_crossing_folds(const std::vector<OnSegment>& on, std::size_t begin, std::size_t end,
+                           Report&& report) {
+  const std::size_t k = end - begin;
+  std::vector<std::pair<std::uint64_t, std::size_t>> by_edge;  // (edge, place in the order)
+  by_edge.reserve(k);
+  for (std::size_t i = 0; i < k; ++i) by_edge.emplace_back(on[begin + i].edge, i);
+  std::sort(by_edge.begin(), by_edge.end());
+  constexpr std::size_t kNoMate = SIZE_MAX;
+  std::vector<std::size_t> mate(k, kNoMate);  // a border or non-manifold edge has none
+  for (std::size_t i = 0, j; i < k; i = j) {
+    for (j = i + 1; j < k && by_edge[j].first == by_edge[i].first;) ++j;
+    if (j - i != 2) continue;  // reported on its own
+    mate[by_edge[i].second] = by_edge[i + 1].second;
+    mate[by_edge[i + 1].second] = by_edge[i].second;
+  }
+  std::vector<std::size_t> open;  // folds whose second face is still to come, innermost last
+  std::vector<std::uint8_t> closed(k, 0);
+  for (std::size_t i = 0; i < k; ++i) {
+    if (mate[i] == kNoMate) continue;
+    if (mate[i] > i) {
+      open.push_back(i);
+      continue;
+    }
+    while (closed[open.back()]) open.pop_back();  // closed out of turn, below the top
+    if (open.back() == mate[i]) {
+      open.pop_back();
+    } else {
+      report(on[begin + i].face, on[begin + open.back()].face);  // they cross
+      closed[mate[i]] = 1;
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<std::pair<std::uint32_t, std::uint32_t>> interleaved_edge_fans(
@@ -68,7 +107,6 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> interleaved_edge_fans(
     found.emplace_back(std::min(f, g), std::max(f, g));
   };
   std::vector<OnSegment> on = faces_on_shared_segments(mesh, position);
-  std::vector<std::size_t> open;  // faces whose mate is still to come, innermost last
   for (std::size_t begin = 0; begin < on.size();) {
     std::size_t end = begin + 1;
     while (end < on.size() && on[end].segment == on[begin].segment) ++end;
@@ -85,25 +123,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> interleaved_edge_fans(
         const OnSegment& next = on[i + 1 == end ? begin : i + 1];
         if (next.runs_up == on[i].runs_up) report(on[i].face, next.face);
       }
-      // The faces of each edge, a fold of the surface along the segment, enclose the folds they
-      // meet between them, never half of one: as chords of the circle around the segment they
-      // nest like parentheses.
-      open.clear();
-      for (std::size_t i = begin; i < end; ++i) {
-        const auto mates =
-            std::count_if(first, last, [&](const OnSegment& o) { return o.edge == on[i].edge; });
-        if (mates != 2) continue;  // a border or non-manifold edge, reported on its own
-        if (!open.empty() && on[open.back()].edge == on[i].edge) {
-          open.pop_back();
-        } else if (std::any_of(open.begin(), open.end(),
-                               [&](std::size_t j) { return on[j].edge == on[i].edge; })) {
-          report(on[i].face, on[open.back()].face);  // closes around an open fold: they cross
-          open.erase(std::find_if(open.begin(), open.end(),
-                                  [&](std::size_t j) { return on[j].edge == on[i].edge; }));
-        } else {
-          open.push_back(i);
-        }
-      }
+      report_crossing_folds(on, begin, end, report);
     }
     begin = end;
   }
