@@ -105,6 +105,42 @@ TEST(Check, HollowSolidIsOutward) {
   EXPECT_FALSE(check_mesh(concatenate(make_cube(FT(2)), make_cube(FT(1)))).outward);
 }
 
+// Nesting is decided for every shell at once (one ray each against all faces): shells that share
+// a segment and its ends by position, shells nested many deep, and cavities that touch.
+TEST(Check, ManyShellsNestedAndTouching) {
+  const Mesh fan = make_tetrahedra_on_segment(200);
+  const MeshReport r = check_mesh(fan);
+  EXPECT_TRUE(r.valid_solid()) << describe_problems(r);
+  EXPECT_EQ(r.components, 200u);
+  // One shell turned inside out among 199 that share its segment: its folds no longer alternate.
+  Mesh one_flipped = fan;
+  for (int k = 0; k < 4; ++k)
+    std::swap(one_flipped.triangles[4 * 137 + k][1], one_flipped.triangles[4 * 137 + k][2]);
+  const MeshReport flipped = check_mesh(one_flipped);
+  EXPECT_GT(flipped.self_intersections, 0u) << describe_problems(flipped);
+  // The fan in the cavity of a hollow cube is material again (depth 2); turned inward inside a
+  // solid cube it is 200 cavities that touch along the segment (depth 1).
+  const Mesh fan_below = translated(fan, Vector(0, 0, -FT(1) / 2));
+  const Mesh hollow = concatenate(make_cube(FT(4)), reversed(make_cube(FT(3))));
+  expect_valid(concatenate(hollow, fan_below), "fan in a cavity");
+  EXPECT_FALSE(check_mesh(concatenate(hollow, reversed(fan_below))).outward);
+  const MeshReport cavities = check_mesh(concatenate(make_cube(FT(2)), reversed(fan_below)));
+  EXPECT_TRUE(cavities.valid_solid()) << describe_problems(cavities);
+  EXPECT_EQ(cavities.components, 201u);
+  EXPECT_FALSE(check_mesh(concatenate(make_cube(FT(2)), fan_below)).outward);
+  // Twelve cubes nested, orientations alternating from outward at the outside; one turned wrong.
+  Mesh nested;
+  for (int k = 12; k >= 1; --k)
+    nested = concatenate(nested, k % 2 == 0 ? make_cube(FT(k)) : reversed(make_cube(FT(k))));
+  expect_valid(nested, "nested cubes");
+  EXPECT_EQ(check_mesh(nested).volume,
+            FT(8 * (1728 - 1331 + 1000 - 729 + 512 - 343 + 216 - 125 + 64 - 27 + 8 - 1)));
+  Mesh wrong = nested;
+  for (int k = 0; k < 12; ++k)
+    std::swap(wrong.triangles[12 * 5 + k][1], wrong.triangles[12 * 5 + k][2]);
+  EXPECT_FALSE(check_mesh(wrong).outward);
+}
+
 TEST(Check, SelfIntersectionsAgreeWithCgal) {
   const Mesh crossing = concatenate(make_cube(FT(1)), make_cube(FT(1), Point(1, 1, 1)));
   const MeshReport r = check_mesh(crossing);

@@ -9,6 +9,8 @@
 //   cylinder:N    a prism whose caps are fans from their centres
 //   cone:N        a cone whose side triangles all meet at its apex, its base a fan from one vertex
 //   icosphere:L   the icosphere of level L (20 4^L facets)
+//   segment-shells:N  N thin tetrahedra around one segment: N shells that all touch there, every
+//                 pair of faces boxed together (a crafted file's worst case for the check)
 //   rotated:INPUT INPUT under a rational rotation (coordinates that are not doubles, as in the
 //                 second operand of bench_bool's real pairs and in every Boolean's output)
 // Columns: `morphex check` as the command runs it (exact volume included) on one thread; the
@@ -54,6 +56,7 @@ Mesh input_mesh(const std::string& spec) {
   if (kind == "cylinder") return make_cylinder(n, 10.0, 2.5);
   if (kind == "cone") return make_fan_cone(n, 10.0, 5.0);
   if (kind == "icosphere") return make_icosphere(n, FT(1));
+  if (kind == "segment-shells") return make_tetrahedra_on_segment(n);
   return read_mesh(spec);
 }
 
@@ -75,7 +78,8 @@ int main(int argc, char** argv) {
   harness.add_json();
   app.add_option("INPUT", inputs,
                  "Mesh files or generated shapes: fan-prism:N, cylinder:N, cone:N, icosphere:L, "
-                 "rotated:INPUT (default: fan-prism:7000 cone:7000 cylinder:7000 icosphere:7)");
+                 "segment-shells:N, rotated:INPUT (default: fan-prism:7000 cone:7000 cylinder:7000 "
+                 "icosphere:7)");
   if (const std::optional<int> stop = harness.parse(argc, argv)) return *stop;
   if (inputs.empty()) inputs = {"fan-prism:7000", "cone:7000", "cylinder:7000", "icosphere:7"};
   nlohmann::json rows = nlohmann::json::array();

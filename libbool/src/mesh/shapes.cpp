@@ -168,6 +168,26 @@ Mesh make_fan_cone(int n, double radius, double height) {
   return from_double(d);
 }
 
+Mesh make_tetrahedra_on_segment(int count) {
+  DoubleMesh d;
+  const double tau = 6.283185307179586;
+  for (int k = 0; k < count; ++k) {
+    const VertexIndex o = VertexIndex(d.points.size());
+    const double a = tau * k / count, b = tau * (k + 0.5) / count;
+    d.points.push_back({0, 0, 0});
+    d.points.push_back({0, 0, 1});
+    d.points.push_back({std::cos(a), std::sin(a), 0.5});
+    d.points.push_back({std::cos(b), std::sin(b), 0.5});
+    // Seen from outside counter-clockwise: the wedge from angle a to b lies to the left of the
+    // segment's direction (0,0,1).
+    d.triangles.push_back({o, o + 3, o + 2});
+    d.triangles.push_back({o + 1, o + 2, o + 3});
+    d.triangles.push_back({o, o + 2, o + 1});
+    d.triangles.push_back({o, o + 1, o + 3});
+  }
+  return from_double(d);
+}
+
 namespace {
 std::pair<Mesh, Mesh> unit_cube_and_shift(int dx, int dy, int dz) {
   const Mesh a = make_box(Point(0, 0, 0), Point(1, 1, 1));

@@ -19,6 +19,11 @@ Mesh make_fan_prism(int segments, double radius, double height);
 // from the polygon's first vertex: long thin facets on the side too, all meeting at the apex.
 Mesh make_fan_cone(int segments, double radius, double height);
 
+// `count` thin tetrahedra around the segment from (0,0,0) to (0,0,1), one in each of `count` equal
+// wedges: a valid mesh of `count` shells that all share that segment and its ends by position,
+// the worst case for a check that relates shells pair by pair.
+Mesh make_tetrahedra_on_segment(int count);
+
 // Unit cubes [0,1]^3 and a translated copy touching it along a face, an edge, a vertex.
 std::pair<Mesh, Mesh> make_cubes_sharing_face();
 std::pair<Mesh, Mesh> make_cubes_sharing_edge();
