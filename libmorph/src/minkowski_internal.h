@@ -119,8 +119,14 @@ struct LabelledSolid {
   std::vector<std::uint32_t> plane;
 };
 LabelledSolid labelled(const Mesh& m);  // every face its own label
-// A + [-h e, h e] (or the erosion by it) along the axis e, as one winding_solid (box_sweep.cpp).
-LabelledSolid segment_sweep(const LabelledSolid& a, int axis, const FT& half_length, bool erode);
+// A + [-h e, h e] (or the erosion by it) along the axis e, as one winding_solid (box_sweep.cpp);
+// as two sweeps of h / 2 when its arrangement has more than `max_pairs_per_triangle` candidate
+// pairs per triangle and halving thins them (sheets folded many layers deep; 0: never halved).
+// `arrangements` (when given) counts the winding_solid calls, begun ones included.
+constexpr double kDeepFoldPairs = 16;
+LabelledSolid segment_sweep(const LabelledSolid& a, int axis, const FT& half_length, bool erode,
+                            double max_pairs_per_triangle = kDeepFoldPairs,
+                            std::size_t* arrangements = nullptr);
 // A + B or A - B for an axis-aligned box B: the centre, then one sweep per axis.
 LabelledSolid box_morphology(LabelledSolid a, const AxisBox& box, bool erode);
 Mesh box_morphology(const Mesh& a, const AxisBox& box, bool erode);
