@@ -149,3 +149,32 @@ TEST(Winding, RandomSolidsAgreeWithBooleans) {
     expect_like_booleans(a, b);
   }
 }
+
+// Groups (a translated piece of a valid surface each) spare the pairs within a group and nothing
+// else: the same solids exactly, from fewer candidate pairs.
+TEST(Winding, GroupsSpareOnlyThePairsWithinThem) {
+  std::mt19937 random(11);
+  std::uniform_int_distribution<int> coordinate(-4, 4), turn(-3, 3);
+  for (int round = 0; round < 6; ++round) {
+    SCOPED_TRACE(round);
+    const Mesh a = transformed(make_icosphere(1 + round % 2, 2),
+                               quaternion_rotation(turn(random), turn(random), turn(random), 5));
+    const Mesh b = translated(a, Vector(FT(coordinate(random)) / 4, FT(coordinate(random)) / 4,
+                                        FT(coordinate(random) + 5) / 8));
+    const Mesh both = concatenate(a, b);
+    std::vector<std::uint32_t> groups(both.triangles.size(), 0);
+    std::fill(groups.begin() + std::ptrdiff_t(a.triangles.size()), groups.end(), 1);
+    for (const int threshold : {1, 2}) {
+      WindingOptions plain, grouped;
+      plain.threshold = grouped.threshold = threshold;
+      grouped.groups = &groups;
+      WindingStats plain_stats, grouped_stats;
+      const Mesh expected = winding_solid(both, {}, plain, &plain_stats);
+      const Mesh result = winding_solid(both, {}, grouped, &grouped_stats);
+      EXPECT_LT(grouped_stats.candidate_pairs, plain_stats.candidate_pairs / 2);
+      EXPECT_EQ(valid_volume(result), valid_volume(expected));
+      EXPECT_EQ(valid_volume(boolean(result, expected, BooleanOp::Difference)), 0);
+      EXPECT_EQ(valid_volume(boolean(expected, result, BooleanOp::Difference)), 0);
+    }
+  }
+}

@@ -60,10 +60,14 @@ Point shifted(const Kernel::Exact_kernel::Point_3& p, int axis, const Kernel::Ex
   return point_from_exact({c[0], c[1], c[2]});
 }
 
-// The chain of one sweep, with its plane labels.
+// The chain of one sweep, with its plane labels and its groups: the facets moved up are a
+// translate of part of a valid surface, and so are those moved down, so neither meets itself
+// other than at common corners and edges (WindingOptions::groups): the arrangement searches only
+// the pairs that can cross, those with a wall, a stretched facet or a facet moved the other way.
 struct SweepChain {
   Mesh chain;
   std::vector<std::uint32_t> planes;
+  std::vector<std::uint32_t> groups;
 };
 
 SweepChain sweep_chain(const LabelledSolid& in, int axis, const FT& half_length, bool erode) {
@@ -100,8 +104,9 @@ SweepChain sweep_chain(const LabelledSolid& in, int axis, const FT& half_length,
   };
   // Plane labels: a facet parallel to e stays in its plane; coplanar facets moved alike stay
   // coplanar; the two triangles of a wall share one.
-  std::vector<std::uint32_t> planes;
+  std::vector<std::uint32_t> planes, groups;
   planes.reserve(nf + nf / 2);
+  groups.reserve(nf + nf / 2);
   std::unordered_map<std::uint64_t, std::uint32_t> moved_plane;  // (label, side) -> label
   auto moved = [&](std::uint32_t f) {
     const std::uint64_t key = (std::uint64_t(in.plane[f]) << 2) | std::uint64_t(side[f] + 1);
@@ -114,6 +119,7 @@ SweepChain sweep_chain(const LabelledSolid& in, int axis, const FT& half_length,
     const Triangle& t = a.triangles[f];
     chain.triangles.push_back({copy(f, t[0]), copy(f, t[1]), copy(f, t[2])});
     planes.push_back(moved(f));
+    groups.push_back(side[f] > 0 ? 0 : side[f] < 0 ? 1 : WindingOptions::kNoGroup);
     // Where the facet across an edge u -> v (u < v: each edge once) takes other copies, the wall
     // the edge sweeps between them: (v', u', u'', v''), primes for this facet's copies.
     for (int i = 0; i < 3; ++i) {
@@ -126,15 +132,17 @@ SweepChain sweep_chain(const LabelledSolid& in, int axis, const FT& half_length,
       if (fu != gu) {
         chain.triangles.push_back({fv, fu, gu});
         planes.push_back(wall_plane);
+        groups.push_back(WindingOptions::kNoGroup);
       }
       if (fv != gv) {
         chain.triangles.push_back({fv, gu, gv});
         planes.push_back(wall_plane);
+        groups.push_back(WindingOptions::kNoGroup);
       }
       ++wall_plane;
     }
   }
-  return {std::move(chain), std::move(planes)};
+  return {std::move(chain), std::move(planes), std::move(groups)};
 }
 
 // A sweep whose sheets fold back within 2h many layers deep (a thin part wound along the axis, a
@@ -158,6 +166,7 @@ LabelledSolid sweep_in_steps(const LabelledSolid& in, int axis, const FT& half_l
   LabelledSolid out;
   WindingOptions options;
   options.planes = &sweep.planes;
+  options.groups = &sweep.groups;
   options.result_planes = &out.plane;
   WindingStats stats;
   if (auto solid =

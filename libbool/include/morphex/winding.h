@@ -53,6 +53,11 @@ struct WindingOptions {
   // the label of the surface triangle it lies on, for the next operation of a chain.
   const std::vector<std::uint32_t>* planes = nullptr;
   std::vector<std::uint32_t>* result_planes = nullptr;
+  // Optional groups, one per surface triangle (kNoGroup for none): triangles of one group are
+  // known to meet only at common corners or along common edges (a translated piece of a valid
+  // solid's surface), so their pairs are not searched. Ignored when `pairs` is given.
+  const std::vector<std::uint32_t>* groups = nullptr;
+  static constexpr std::uint32_t kNoGroup = UINT32_MAX;
 };
 
 struct WindingStats {

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <numeric>
+#include <optional>
 #include <unordered_map>
 
 #include "exact/point_index.h"
@@ -81,17 +82,36 @@ Chain prepare_chain(const Mesh& surface, const std::vector<int>& weights,
   return chain;
 }
 
-Pairs self_pairs(const TriangleTree& tree) {
+Pairs self_pairs(const TriangleTree& tree, const TriangleTree::TriangleKeys* keys) {
   std::vector<Pairs> per_task(tree.self_pair_tasks());
-  tree.for_each_self_pair([&](std::size_t task, std::uint32_t i, std::uint32_t j) {
-    per_task[task].emplace_back(i, j);
-  });
+  tree.for_each_self_pair([&](std::size_t task, std::uint32_t i,
+                              std::uint32_t j) { per_task[task].emplace_back(i, j); },
+                          keys);
   Pairs pairs;
   std::size_t total = 0;
   for (const Pairs& p : per_task) total += p.size();
   pairs.reserve(total);
   for (const Pairs& p : per_task) pairs.insert(pairs.end(), p.begin(), p.end());
   return pairs;
+}
+
+TriangleTree::TriangleKeys group_keys(const Chain& chain,
+                                      const std::vector<std::uint32_t>& groups) {
+  // A soup triangle keeps its input triangles' group when they all have the same one.
+  constexpr std::uint32_t kNone = TriangleTree::kNoKey;
+  TriangleTree::TriangleKeys keys(chain.soup.triangles.size(), {kNone, kNone, kNone});
+  std::vector<std::uint8_t> seen(chain.soup.triangles.size(), 0);
+  for (std::size_t f = 0; f < chain.face_of.size(); ++f) {
+    const std::uint32_t s = chain.face_of[f];
+    if (s == Chain::kNoFace) continue;
+    if (!seen[s]) {
+      seen[s] = 1;
+      keys[s][0] = groups[f];
+    } else if (keys[s][0] != groups[f]) {
+      keys[s][0] = kNone;
+    }
+  }
+  return keys;
 }
 
 Pairs known_pairs(const Chain& chain,
@@ -213,7 +233,12 @@ std::optional<Mesh> winding_solid_within(double max_pairs_per_triangle, const Me
   if (!chain.soup.triangles.empty()) {
     steps.next(0.15, "pairing triangles");
     const TriangleTree tree(chain.soup);
-    const Pairs pairs = options.pairs ? known_pairs(chain, *options.pairs) : self_pairs(tree);
+    if (options.groups && options.groups->size() != surface.triangles.size())
+      throw InputError("", "winding_solid: one group per triangle expected");
+    std::optional<TriangleTree::TriangleKeys> keys;
+    if (options.groups && !options.pairs) keys = group_keys(chain, *options.groups);
+    const Pairs pairs = options.pairs ? known_pairs(chain, *options.pairs)
+                                      : self_pairs(tree, keys ? &*keys : nullptr);
     stats.candidate_pairs = pairs.size();
     stats.seconds_pairs = clock.lap();
     if (max_pairs_per_triangle > 0 &&

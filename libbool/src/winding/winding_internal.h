@@ -29,8 +29,11 @@ Chain prepare_chain(const Mesh& surface, const std::vector<int>& weights,
                     const std::vector<std::uint32_t>* planes, WindingStats& stats);
 
 // Every pair of distinct triangles whose boxes overlap, each once, in an order that depends only
-// on the tree.
-Pairs self_pairs(const TriangleTree& tree);
+// on the tree; with `keys`, not the pairs that share a key (TriangleTree::for_each_self_pair).
+Pairs self_pairs(const TriangleTree& tree, const TriangleTree::TriangleKeys* keys = nullptr);
+// Per soup triangle, its input triangles' group (WindingOptions::groups) as its key, when they
+// all have the same one.
+TriangleTree::TriangleKeys group_keys(const Chain& chain, const std::vector<std::uint32_t>& groups);
 // The listed pairs of input triangles as pairs of soup triangles (dropped ones left out).
 Pairs known_pairs(const Chain& chain,
                   const std::vector<std::pair<std::uint32_t, std::uint32_t>>& of_input);
