@@ -24,6 +24,7 @@
 
 #include <array>
 #include <numeric>
+#include <optional>
 #include <unordered_map>
 
 #include "minkowski_internal.h"
@@ -154,13 +155,14 @@ SweepChain sweep_chain(const LabelledSolid& in, int axis, const FT& half_length,
 // overlap at any length: then the sweep runs whole), at most kMaxHalvings deep.
 constexpr int kMaxHalvings = 6;
 
-// `halvings`: how many more times the sweep may be halved; `parent_pairs`: the candidate pairs of
-// the sweep this one halves (0 for none). Sets `thinned` to whether halving thinned the pairs.
-LabelledSolid sweep_in_steps(const LabelledSolid& in, int axis, const FT& half_length, bool erode,
-                             double max_pairs, int halvings, std::size_t parent_pairs,
-                             bool& thinned, std::size_t* arrangements) {
-  thinned = true;
-  if (in.mesh.empty()) return {};
+// `halvings`: how many more times the sweep may be halved. `parent_pairs`: the candidate pairs of
+// the sweep whose first half this is (0 for none); nullopt, before any work, when this half has
+// more than three quarters of them, so that the caller runs whole.
+std::optional<LabelledSolid> sweep_in_steps(const LabelledSolid& in, int axis,
+                                            const FT& half_length, bool erode, double max_pairs,
+                                            int halvings, std::size_t parent_pairs,
+                                            std::size_t* arrangements) {
+  if (in.mesh.empty()) return LabelledSolid{};
   if (arrangements) ++*arrangements;
   const SweepChain sweep = sweep_chain(in, axis, half_length, erode);
   LabelledSolid out;
@@ -174,25 +176,21 @@ LabelledSolid sweep_in_steps(const LabelledSolid& in, int axis, const FT& half_l
     out.mesh = std::move(*solid);
     return out;
   }
-  if (parent_pairs > 0 && 4 * stats.candidate_pairs > 3 * parent_pairs) {
-    thinned = false;  // not folds: the whole sweep, and no more halving
-    out.mesh = winding_solid(sweep.chain, {}, options);
-    return out;
-  }
+  if (parent_pairs > 0 && 4 * stats.candidate_pairs > 3 * parent_pairs) return std::nullopt;
   const FT half = half_length / 2;
-  const LabelledSolid first = sweep_in_steps(in, axis, half, erode, max_pairs, halvings - 1,
-                                             stats.candidate_pairs, thinned, arrangements);
-  return sweep_in_steps(first, axis, half, erode, max_pairs, thinned ? halvings - 1 : 0, 0, thinned,
-                        arrangements);
+  if (auto first = sweep_in_steps(in, axis, half, erode, max_pairs, halvings - 1,
+                                  stats.candidate_pairs, arrangements))
+    return sweep_in_steps(*first, axis, half, erode, max_pairs, halvings - 1, 0, arrangements);
+  out.mesh = winding_solid(sweep.chain, {}, options);  // not folds: halving does not thin them
+  return out;
 }
 
 }  // namespace
 
 LabelledSolid segment_sweep(const LabelledSolid& in, int axis, const FT& half_length, bool erode,
                             double max_pairs_per_triangle, std::size_t* arrangements) {
-  bool thinned = true;
-  return sweep_in_steps(in, axis, half_length, erode, max_pairs_per_triangle,
-                        max_pairs_per_triangle > 0 ? kMaxHalvings : 0, 0, thinned, arrangements);
+  return *sweep_in_steps(in, axis, half_length, erode, max_pairs_per_triangle,
+                         max_pairs_per_triangle > 0 ? kMaxHalvings : 0, 0, arrangements);
 }
 
 }  // namespace morphex::detail
