@@ -105,7 +105,7 @@ TEST(NearFlat, PiecesAndSlabPartsHoldTheirTriangles) {
     std::optional<CGAL::Bbox_3> part;
     {
       const detail::UpwardRounding rounding;
-      const detail::Corners corners = detail::corners_in(table, frame, t);
+      const detail::ApproxCorners corners = detail::corners_in(table, frame, t);
       detail::add_pieces(corners, detail::pieces_for(corners), pieces);
       part = detail::part_in_slab(table, slab, t, frame);
     }

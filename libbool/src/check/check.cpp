@@ -424,7 +424,7 @@ void slab_pairs(const Mesh& mesh, const PointTable& table, const std::vector<Poi
   const int dropped = detail::dropped_in(frame, slab);
   for (std::uint32_t k = 0; k < slab.triangles.size(); ++k) {
     pieces.clear();
-    const detail::Corners c = detail::corners_in(table, frame, corners(slab.triangles[k]));
+    const detail::ApproxCorners c = detail::corners_in(table, frame, corners(slab.triangles[k]));
     lines[k] = detail::edge_lines(c, dropped);
     detail::add_pieces(c, detail::pieces_for(c), pieces);
     for (const CGAL::Bbox_3& b : pieces) {

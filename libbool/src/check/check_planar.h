@@ -80,8 +80,9 @@ void add_near_flat_patches(const Mesh& mesh, const PointTable& table, const Face
 // coordinate axes, or along the axes of a turned part (box_frame.h). The slab tests below hold
 // in any of them: a linear map keeps a triangle's part, its slices and its projections apart
 // from a box apart. The caller rounds upward.
-using Corners = std::array<ApproxPoint, 3>;
-Corners corners_in(const PointTable& table, const BoxFrame& frame, const std::array<PointId, 3>& t);
+using ApproxCorners = std::array<ApproxPoint, 3>;
+ApproxCorners corners_in(const PointTable& table, const BoxFrame& frame,
+                         const std::array<PointId, 3>& t);
 // The axis of `frame` to see the slab patch along: the one closest to its normal.
 int dropped_in(const BoxFrame& frame, const PlanarPatch& patch);
 
@@ -104,7 +105,7 @@ struct EdgeLines {
   int count = 0;
   Line line[3];
 };
-EdgeLines edge_lines(const Corners& t, int dropped);
+EdgeLines edge_lines(const ApproxCorners& t, int dropped);
 
 // Seen along the lines' axis, the triangle of `lines` and the box `part` (in the same
 // coordinates) are certainly apart (a line through an edge has the box strictly on its outer side):
@@ -118,10 +119,10 @@ std::array<double, 3> rough_cross(const PointTable& table, const std::array<Poin
 // How many pieces to box triangle t in: 1, or for a long thin triangle lying diagonally up to
 // 16 (its box is then far larger than itself, and a box traversal pairs it with everything
 // near it). A degenerate triangle gets 1.
-int pieces_for(const Corners& t);
+int pieces_for(const ApproxCorners& t);
 // Boxes that together hold triangle t: its box (pieces = 1), or the boxes of `pieces` slices
 // across its longest extent. The caller rounds upward.
-void add_pieces(const Corners& t, int pieces, std::vector<CGAL::Bbox_3>& out);
+void add_pieces(const ApproxCorners& t, int pieces, std::vector<CGAL::Bbox_3>& out);
 
 // Vertex stars of at least `min_triangles` triangles outside `groups` whose projection along
 // a coordinate axis is one fan turning one way and wrapping at most once: then no two of them

@@ -13,8 +13,8 @@ namespace {
 using I = CGAL::Interval_nt<false>;
 }  // namespace
 
-Corners corners_in(const PointTable& table, const BoxFrame& frame,
-                   const std::array<PointId, 3>& t) {
+ApproxCorners corners_in(const PointTable& table, const BoxFrame& frame,
+                         const std::array<PointId, 3>& t) {
   return {point_in_frame(frame, table.approx(t[0])), point_in_frame(frame, table.approx(t[1])),
           point_in_frame(frame, table.approx(t[2]))};
 }
@@ -31,7 +31,7 @@ int dropped_in(const BoxFrame& frame, const PlanarPatch& patch) {
   return best;
 }
 
-EdgeLines edge_lines(const Corners& t, int dropped) {
+EdgeLines edge_lines(const ApproxCorners& t, int dropped) {
   EdgeLines out;
   out.u = dropped == 0 ? 1 : 0, out.v = dropped == 2 ? 1 : 2;
   I x[3], y[3];
@@ -81,7 +81,7 @@ namespace {
 // The box of the part of triangle t where the affine function h (its values at the corners
 // given) lies in [low, high]: the hull of the corners in that range and of the points where the
 // edges cross h = low and h = high, each taken with its interval. Empty when no part is.
-CGAL::Bbox_3 part_between(const Corners& t, const I (&h)[3], double low, double high) {
+CGAL::Bbox_3 part_between(const ApproxCorners& t, const I (&h)[3], double low, double high) {
   CGAL::Bbox_3 part;
   for (int k = 0; k < 3; ++k) {
     const ApproxPoint& x = t[k];
@@ -126,7 +126,7 @@ std::optional<CGAL::Bbox_3> part_in_slab(const PointTable& table, const PlanarPa
   if (above || below) return std::nullopt;
   // The part's corners and crossings in the frame: the crossings' parameters along the edges are
   // the same in any coordinates. Both boxes hold the part; their intersection does too.
-  const Corners c = corners_in(table, frame, t);
+  const ApproxCorners c = corners_in(table, frame, t);
   CGAL::Bbox_3 whole;
   for (const ApproxPoint& x : c) whole += x.bbox();
   return common_box(part_between(c, h, patch.low, patch.high), whole);
@@ -134,7 +134,7 @@ std::optional<CGAL::Bbox_3> part_in_slab(const PointTable& table, const PlanarPa
 
 namespace {
 
-std::array<double, 3> rough_cross(const Corners& t) {
+std::array<double, 3> rough_cross(const ApproxCorners& t) {
   double p[3][3];
   for (int k = 0; k < 3; ++k)
     for (int a = 0; a < 3; ++a) p[k][a] = t[k].cartesian(a).inf();
@@ -146,10 +146,10 @@ std::array<double, 3> rough_cross(const Corners& t) {
 }  // namespace
 
 std::array<double, 3> rough_cross(const PointTable& table, const std::array<PointId, 3>& t) {
-  return rough_cross(Corners{table.approx(t[0]), table.approx(t[1]), table.approx(t[2])});
+  return rough_cross(ApproxCorners{table.approx(t[0]), table.approx(t[1]), table.approx(t[2])});
 }
 
-int pieces_for(const Corners& t) {
+int pieces_for(const ApproxCorners& t) {
   constexpr int kMaxPieces = 16;
   // The box's two largest extents against the triangle's area (in doubles: any count is sound).
   // A thin triangle lying diagonally has a box face about its length squared, one along an
@@ -165,7 +165,7 @@ int pieces_for(const Corners& t) {
   return std::max(1, int(pieces));
 }
 
-void add_pieces(const Corners& t, int pieces, std::vector<CGAL::Bbox_3>& out) {
+void add_pieces(const ApproxCorners& t, int pieces, std::vector<CGAL::Bbox_3>& out) {
   CGAL::Bbox_3 whole;
   for (const ApproxPoint& x : t) whole += x.bbox();
   if (pieces <= 1) {
