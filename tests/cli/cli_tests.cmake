@@ -110,6 +110,10 @@ if(MORPHEX_BUILD_BENCHMARKS)
            COMMAND bench_morph --se cube:r=1/4 --ops dilate,erode,open --manifold l-shape)
   set_tests_properties(bench.morph_manifold_smoke PROPERTIES PASS_REGULAR_EXPRESSION
                        "Manifold volume rel. diff|bench_morph was built without Manifold")
+  # scripts/bench-targets' summary reads what the benchmarks write and judges issue 47's targets.
+  add_test(NAME bench.targets_summary COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/bench_targets.sh
+    $<TARGET_FILE_DIR:bench_morph> ${PROJECT_SOURCE_DIR} ${PROJECT_BINARY_DIR}/bench-targets)
+  set_tests_properties(bench.targets_summary PROPERTIES PASS_REGULAR_EXPRESSION "PASS")
 endif()
 # Paths that are not mesh files say so (not "unknown mesh format ''").
 morphex_cli_test(check_directory 2 "tests/data: is a directory, not a mesh file" check ${data})
