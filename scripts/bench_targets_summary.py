@@ -73,7 +73,11 @@ def target1(out):
             if not rows:
                 continue
             ms = [r["ms_per_facet"] for r in rows]
-            ratios = [r["manifold_ratio"] for r in rows if "manifold_ratio" in r]
+            # A Manifold run stopped at its time limit bounds the ratio from below: counted at the
+            # bound, which only understates Manifold's time.
+            ratios = [r.get("manifold_ratio", r.get("manifold_ratio_at_least")) for r in rows
+                      if "manifold_ratio" in r or "manifold_ratio_at_least" in r]
+            stopped = [r for r in rows if "manifold_ratio_at_least" in r]
             worst = max(rows, key=lambda r: r["ms_per_facet"])
             ok_ms = sum(m <= 0.1 for m in ms)
             line = (f"    {op:7} {len(rows)} meshes: ms/facet median {statistics.median(ms):.3f}, "
@@ -83,6 +87,10 @@ def target1(out):
                 ok_r = sum(x >= 10 for x in ratios)
                 line += (f"; Manifold/morphex median {statistics.median(ratios):.1f}x, min "
                          f"{min(ratios):.1f}x, {ok_r}/{len(ratios)} at least 10x")
+                for r in stopped:
+                    line += (f" ({name_of(r['input'])}: Manifold stopped after "
+                             f"{r['manifold_stopped_after_seconds']:g} s, at least "
+                             f"{r['manifold_ratio_at_least']:.1f}x)")
             else:
                 line += "; Manifold n/a"
             invalid = [name_of(r["input"]) for r in rows if not r.get("valid", False)]
@@ -226,6 +234,14 @@ def target4(out):
     print(f"  target 4: {verdict(ok)}")
 
 
+def ratio_cell(row):
+    if "manifold_ratio" in row:
+        return f"{row['manifold_ratio']:.1f}"
+    if "manifold_ratio_at_least" in row:
+        return f">{row['manifold_ratio_at_least']:.1f}"
+    return "n/a" if row else "-"
+
+
 def markdown(out):
     """The rows behind targets 1 and 2 as Markdown tables."""
     for se in ("octahedron", "ball"):
@@ -241,8 +257,7 @@ def markdown(out):
         for (mesh, facets), ops in by_mesh.items():
             cells = [f"{ops[o]['ms_per_facet']:.3f}" if o in ops else "-"
                      for o in ("dilate", "erode", "open", "close")]
-            ratios = [f"{ops[o]['manifold_ratio']:.1f}" if "manifold_ratio" in ops.get(o, {})
-                      else "n/a" for o in ("dilate", "erode", "open", "close")]
+            ratios = [ratio_cell(ops.get(o, {})) for o in ("dilate", "erode", "open", "close")]
             print(f"| {mesh} ({facets:,}) | {' | '.join(cells)} | {' / '.join(ratios)} |")
     rows = check_rows(out)
     if rows:

@@ -3,18 +3,25 @@
 // Manifold's MinkowskiSum/MinkowskiDifference (floating point) on the same input in the same run,
 // with volumes compared, wall time and peak memory.
 //
-//   bench_morph [--se SPEC] [--ops dilate,erode,open,close] [--peer] [--manifold] [--nary]
-//               [--chain N] [--threads N] [--normalize] [--repair] [--json FILE] INPUT...
+//   bench_morph [--se SPEC] [--ops dilate,erode,open,close] [--peer] [--manifold]
+//               [--manifold-timeout S] [--nary] [--chain N] [--threads N] [--normalize]
+//               [--repair] [--json FILE] INPUT...
 // INPUT is a mesh file or a generated mesh: torus:U,V (U*V*2 facets, non-convex), l-shape,
 // icosphere:L. --normalize scales each input by a power of two so that its bounding-box
 // diagonal lies in [1, 2) (one SE size for every input, coordinates still doubles); --repair
 // makes inputs that are not valid solids valid first (morphex repair). --peer runs
 // minkowski_sum_3 on every dilation; --manifold runs Manifold (when bench_morph was built with it:
-// tools/peers/build-manifold) on every operation, under the same --threads; --nary also times
+// tools/peers/build-manifold) on every operation, under the same --threads, in a process of its
+// own that is stopped after --manifold-timeout seconds (default 900; its row then records the
+// limit and the ratio it bounds); --nary also times
 // the dilation with the pieces united by one winding arrangement instead of the binary-union tree
 // (the default); --chain N dilates N times in a row and reports the first and the last step.
+#include <poll.h>
+#include <signal.h>
 #include <sys/resource.h>
+#include <sys/wait.h>
 #include <tbb/global_control.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -77,9 +84,19 @@ struct Options {
   std::string se_spec = "cube:r=1/20";
   std::vector<std::string> ops = {"dilate"}, inputs;
   bool peer = false, nary = false, normalize = false, repair = false, manifold = false;
+  bool manifold_child = false;  // this process is the Manifold run of another (see below)
+  double manifold_timeout = 900;
   int chain = 0;
   unsigned threads = 0;  // 0: all cores
 };
+
+// The input as the benchmark runs it: read or generated, repaired and scaled as asked.
+Mesh prepared(const std::string& input, const Options& o) {
+  Mesh a = load(input);
+  if (o.repair) a = repair_mesh(a).solid.mesh();
+  if (o.normalize) a = scaled_to_unit_diagonal(a);
+  return a;
+}
 
 // The command line (see the top of this file) into `o`.
 void add_options(bench::Harness& harness, Options& o) {
@@ -93,6 +110,10 @@ void add_options(bench::Harness& harness, Options& o) {
                "Run Manifold's MinkowskiSum/MinkowskiDifference on every operation");
   app.add_flag("--nary", o.nary,
                "Also time the dilation with the pieces united by one winding arrangement");
+  app.add_option("--manifold-timeout", o.manifold_timeout,
+                 "Stop a Manifold run after this many seconds (its row records the limit)")
+      ->capture_default_str();
+  app.add_flag("--manifold-child", o.manifold_child)->group("");  // internal: see manifold_run
   app.add_option("--chain", o.chain, "Dilate N times in a row, report the first and the last step");
   app.add_flag("--normalize", o.normalize,
                "Scale each input by a power of two to a bounding-box diagonal in [1, 2)");
@@ -106,6 +127,7 @@ void add_options(bench::Harness& harness, Options& o) {
 struct ManifoldRun {
   std::optional<peers::ManifoldResult> result;
   std::string note;
+  double stopped_after = 0;  // seconds, when the run was stopped (manifold_in_child)
 };
 
 // MinkowskiSum by B for a dilation; MinkowskiDifference by -B for an erosion (Manifold removes
@@ -133,6 +155,95 @@ ManifoldRun run_manifold(const Mesh& a, MorphologyOp op, const StructuringElemen
   return run;
 }
 
+// Manifold in a process of its own: this program again with --manifold-child, the same settings
+// and one input and operation, which prints "ok SECONDS VOLUME TRIANGLES" or "failed WHY" (main).
+// A run past --manifold-timeout is killed, so that one slow case of the peer cannot hold the whole
+// benchmark (Manifold 3.5.1's closing of CGAL's man by an octahedron was still in its ear clipping
+// after several minutes; its opening took 50 s). The child reads, repairs and scales its own copy
+// of the input before its clock starts.
+ManifoldRun manifold_in_child(const std::string& input, const std::string& op, const Options& o) {
+  std::vector<std::string> args = {"bench_morph", "--manifold-child", "--se", o.se_spec,
+                                   "--ops", op};
+  if (o.threads > 0) args.insert(args.end(), {"--threads", std::to_string(o.threads)});
+  if (o.normalize) args.push_back("--normalize");
+  if (o.repair) args.push_back("--repair");
+  args.push_back(input);
+  std::vector<char*> argv;
+  for (std::string& arg : args) argv.push_back(arg.data());
+  argv.push_back(nullptr);
+  ManifoldRun run;
+  int fds[2];
+  if (pipe(fds) != 0) {
+    run.note = "no pipe for the Manifold process";
+    return run;
+  }
+  const pid_t pid = fork();
+  if (pid == 0) {  // only async-signal-safe calls until exec
+    dup2(fds[1], STDOUT_FILENO);
+    close(fds[0]);
+    close(fds[1]);
+    execv("/proc/self/exe", argv.data());
+    _exit(127);
+  }
+  close(fds[1]);
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point deadline =
+      Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                         std::chrono::duration<double>(o.manifold_timeout));
+  std::string message;
+  for (;;) {
+    const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
+    if (left <= 0) {
+      kill(pid, SIGKILL);
+      run.stopped_after = o.manifold_timeout;
+      break;
+    }
+    pollfd ready{fds[0], POLLIN, 0};
+    if (poll(&ready, 1, int(std::min(left, 60.0) * 1000) + 1) <= 0) continue;
+    char buffer[4096];
+    const ssize_t n = read(fds[0], buffer, sizeof buffer);
+    if (n <= 0) break;
+    message.append(buffer, std::size_t(n));
+  }
+  close(fds[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (run.stopped_after > 0) {
+    std::ostringstream words;
+    words << "stopped after " << o.manifold_timeout << " s";
+    run.note = words.str();
+    return run;
+  }
+  std::istringstream words(message);
+  std::string first;
+  words >> first;
+  peers::ManifoldResult result;
+  if (first == "ok" && words >> result.seconds >> result.volume >> result.triangles) {
+    run.result = result;
+  } else {
+    std::getline(words >> std::ws, run.note);
+    if (run.note.empty())
+      run.note = "the Manifold process ended with status " + std::to_string(status);
+  }
+  return run;
+}
+
+// The other side of manifold_in_child: one input, one operation, one line on standard output.
+// Manifold first runs once on a small cube, untimed, as morphex's first operation follows others
+// in the parent: a fresh process's one-time costs (thread pool, first allocations) are not the
+// operation's.
+int manifold_child(const Mesh& a, const Options& o) {
+  const StructuringElement se = parse_structuring_element(o.se_spec);
+  run_manifold(make_box(Point(0, 0, 0), Point(1, 1, 1)), MorphologyOp::Dilate, se);
+  const ManifoldRun run = run_manifold(a, parse_morphology_op(o.ops.at(0)), se);
+  if (run.result)
+    std::cout << "ok " << std::setprecision(17) << run.result->seconds << ' '
+              << run.result->volume << ' ' << run.result->triangles << std::endl;
+  else
+    std::cout << "failed " << run.note << std::endl;
+  return 0;
+}
+
 // |Manifold's volume - morphex's exact volume| / |morphex's| (the absolute difference when
 // morphex's result is empty).
 double relative_volume_difference(const FT& exact, double floating) {
@@ -144,6 +255,12 @@ double relative_volume_difference(const FT& exact, double floating) {
 std::string record_manifold(const ManifoldRun& run, const FT& exact_volume, double our_seconds,
                             nlohmann::json& row) {
   if (!peers::kHaveManifold) return "";
+  if (run.stopped_after > 0) {
+    // Manifold took longer than the limit: the limit bounds its time, and its ratio, from below.
+    row["manifold_stopped_after_seconds"] = run.stopped_after;
+    row["manifold_ratio_at_least"] = run.stopped_after / our_seconds;
+    return ", Manifold " + run.note;
+  }
   if (!run.result) {
     row["manifold_error"] = run.note;
     return ", Manifold FAILED (" + run.note + ")";
@@ -165,7 +282,7 @@ std::string manifold_cells(const ManifoldRun& run, double our_seconds, std::size
   std::ostringstream cells;
   cells << std::setprecision(3);
   if (!peers::kHaveManifold || !run.result) {
-    const char* word = peers::kHaveManifold ? "FAIL" : "n/a";
+    const char* word = !peers::kHaveManifold ? "n/a" : run.stopped_after > 0 ? "stopped" : "FAIL";
     cells << std::setw(10) << word << std::setw(9) << word << std::setw(8) << word;
   } else {
     const double seconds = run.result->seconds;
@@ -196,8 +313,9 @@ void print_manifold_note() {
   std::cout << "Mf = Manifold " << peers::manifold_version()
             << " (floating point): MinkowskiSum (dilate), MinkowskiDifference by -B (erode), "
                "chained for open/close; its time excludes the mesh conversions. Mf/m: "
-               "Manifold's time over morphex's (above 1: morphex is faster). peak MiB is the "
-               "process's high-water mark, Manifold's runs included\n";
+               "Manifold's time over morphex's (above 1: morphex is faster). Manifold runs in a "
+               "process of its own, stopped after --manifold-timeout seconds; peak MiB is "
+               "morphex's high-water mark\n";
 }
 
 }  // namespace
@@ -208,19 +326,19 @@ int main(int argc, char** argv) {
   Options o;
   add_options(harness, o);
   // The settings under the names the measuring code below has always used.
-  auto& [se_spec, ops, inputs, peer, nary, normalize, repair, manifold, chain, threads] = o;
+  auto& [se_spec, ops, inputs, peer, nary, normalize, repair, manifold, manifold_child_run,
+         manifold_timeout, chain, threads] = o;
   if (const std::optional<int> stop = harness.parse(argc, argv)) return *stop;
   std::optional<tbb::global_control> limit;
   if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, threads);
+  if (manifold_child_run) return manifold_child(prepared(inputs.at(0), o), o);
   const StructuringElement se = parse_structuring_element(se_spec);
   nlohmann::json rows = nlohmann::json::array();
   bool all_agree = true;
   if (manifold) print_manifold_note();
   print_header(manifold);
   for (const std::string& input : inputs) {
-    Mesh a = load(input);
-    if (repair) a = repair_mesh(a).solid.mesh();
-    if (normalize) a = scaled_to_unit_diagonal(a);
+    const Mesh a = prepared(input, o);
     for (const std::string& op_name : ops) {
       const MorphologyOp op = parse_morphology_op(op_name);
       MorphologyStats stats;
@@ -268,7 +386,7 @@ int main(int argc, char** argv) {
       ManifoldRun mf;
       if (manifold) {
         // Under the same thread limit as morphex: Manifold's parallel backend is the same TBB.
-        mf = run_manifold(a, op, se);
+        mf = manifold_in_child(input, op_name, o);
         agreement += record_manifold(mf, report.volume, our_seconds, row);
       }
       all_agree = all_agree && report.valid_solid();

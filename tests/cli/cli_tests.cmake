@@ -110,6 +110,11 @@ if(MORPHEX_BUILD_BENCHMARKS)
            COMMAND bench_morph --se cube:r=1/4 --ops dilate,erode,open --manifold l-shape)
   set_tests_properties(bench.morph_manifold_smoke PROPERTIES PASS_REGULAR_EXPRESSION
                        "Manifold volume rel. diff|bench_morph was built without Manifold")
+  # A Manifold run past --manifold-timeout is stopped, and its row says so.
+  add_test(NAME bench.morph_manifold_timeout COMMAND bench_morph --se octahedron:r=1/4 --ops close
+           --manifold --manifold-timeout 0.001 l-shape)
+  set_tests_properties(bench.morph_manifold_timeout PROPERTIES PASS_REGULAR_EXPRESSION
+                       "Manifold stopped after 0.001 s|bench_morph was built without Manifold")
   # scripts/bench-targets' summary reads what the benchmarks write and judges issue 47's targets.
   add_test(NAME bench.targets_summary COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/bench_targets.sh
     $<TARGET_FILE_DIR:bench_morph> ${PROJECT_SOURCE_DIR} ${PROJECT_BINARY_DIR}/bench-targets)
