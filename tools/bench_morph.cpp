@@ -162,8 +162,8 @@ ManifoldRun run_manifold(const Mesh& a, MorphologyOp op, const StructuringElemen
 // after several minutes; its opening took 50 s). The child reads, repairs and scales its own copy
 // of the input before its clock starts.
 ManifoldRun manifold_in_child(const std::string& input, const std::string& op, const Options& o) {
-  std::vector<std::string> args = {"bench_morph", "--manifold-child", "--se", o.se_spec,
-                                   "--ops", op};
+  std::vector<std::string> args = {
+      "bench_morph", "--manifold-child", "--se", o.se_spec, "--ops", op};
   if (o.threads > 0) args.insert(args.end(), {"--threads", std::to_string(o.threads)});
   if (o.normalize) args.push_back("--normalize");
   if (o.repair) args.push_back("--repair");
@@ -237,8 +237,8 @@ int manifold_child(const Mesh& a, const Options& o) {
   run_manifold(make_box(Point(0, 0, 0), Point(1, 1, 1)), MorphologyOp::Dilate, se);
   const ManifoldRun run = run_manifold(a, parse_morphology_op(o.ops.at(0)), se);
   if (run.result)
-    std::cout << "ok " << std::setprecision(17) << run.result->seconds << ' '
-              << run.result->volume << ' ' << run.result->triangles << std::endl;
+    std::cout << "ok " << std::setprecision(17) << run.result->seconds << ' ' << run.result->volume
+              << ' ' << run.result->triangles << std::endl;
   else
     std::cout << "failed " << run.note << std::endl;
   return 0;
