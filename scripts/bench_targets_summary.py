@@ -22,10 +22,15 @@ import time
 
 
 def load(path):
+    """A benchmark's JSON, or None when it is absent (not run) or unreadable (said on stderr)."""
     try:
         with open(path) as f:
             return json.load(f)
-    except (OSError, ValueError):
+    except FileNotFoundError:
+        return None
+    except (OSError, ValueError) as e:
+        print(f"bench_targets_summary: cannot read {path}: {e}; counted as not run",
+              file=sys.stderr)
         return None
 
 

@@ -112,6 +112,7 @@ void add_options(bench::Harness& harness, Options& o) {
                "Also time the dilation with the pieces united by one winding arrangement");
   app.add_option("--manifold-timeout", o.manifold_timeout,
                  "Stop a Manifold run after this many seconds (its row records the limit)")
+      ->check(CLI::Range(0.001, 1e6))
       ->capture_default_str();
   app.add_flag("--manifold-child", o.manifold_child)->group("");  // internal: see manifold_run
   app.add_option("--chain", o.chain, "Dilate N times in a row, report the first and the last step");
@@ -160,7 +161,9 @@ ManifoldRun run_manifold(const Mesh& a, MorphologyOp op, const StructuringElemen
 // A run past --manifold-timeout is killed, so that one slow case of the peer cannot hold the whole
 // benchmark (Manifold 3.5.1's closing of CGAL's man by an octahedron was still in its ear clipping
 // after several minutes; its opening took 50 s). The child reads, repairs and scales its own copy
-// of the input before its clock starts.
+// of the input before its clock starts. It is exec'd, not only forked as bench_bool's engines
+// are (bench_bool_common.h, in_child): by then this process has run morphex, and a forked child
+// would inherit a TBB pool whose worker threads it does not have.
 ManifoldRun manifold_in_child(const std::string& input, const std::string& op, const Options& o) {
   std::vector<std::string> args = {
       "bench_morph", "--manifold-child", "--se", o.se_spec, "--ops", op};
