@@ -4,7 +4,8 @@
 
 Usage: bench_targets_summary.py OUT [--markdown]
 
-Reads OUT/t1-*.json (bench_morph), OUT/t2-check.json (bench_check), OUT/t2-bool-*.json
+Reads OUT/t1-*.json (bench_morph), OUT/t2-check.json (bench_check) with the inputs' kinds in
+OUT/t2-check-kinds.txt, OUT/t2-bool-*.json
 (bench_bool --set real --pairs all), OUT/t3/times-B.txt (scripts/bench-describe) and
 OUT/t4-build.txt (scripts/bench-build), whichever exist, and prints per target each figure, its
 target and whether it is met. A figure whose peer did not run (Manifold not built in) is "n/a"
@@ -107,14 +108,28 @@ def target1(out):
     print(f"  target 1: {verdict(all_ok and shown)}")
 
 
+def check_kinds(out):
+    """Input spec -> smooth, CAD, rotated smooth or rotated CAD, as scripts/bench-targets wrote
+    them from scripts/bench-meshes.sh (OUT/t2-check-kinds.txt: spec, tab, kind). Inputs it does not
+    list (generated ones, or bench_check run by hand) are classified by their names."""
+    try:
+        with open(os.path.join(out, "t2-check-kinds.txt")) as f:
+            return dict(line.rstrip("\n").split("\t", 1) for line in f if "\t" in line)
+    except FileNotFoundError:
+        return {}
+
+
 def check_rows(out):
     """(category, input, facets, s per million facets of the check as `morphex check` runs it)."""
     rows = []
     doc = load(os.path.join(out, "t2-check.json"))
+    kinds = check_kinds(out)
     if doc:
         for r in doc["rows"]:
             spec = r["input"]
-            if spec.startswith("rotated:"):
+            if spec in kinds:
+                kind = kinds[spec]
+            elif spec.startswith("rotated:"):
                 kind = "rotated CAD" if any(c in spec for c in ("cheese", "fandisk")) else \
                     "rotated smooth"
             elif spec.split(":")[0] in ("fan-prism", "cone", "cylinder") or \

@@ -41,6 +41,19 @@ expect 0 "target 4: MISSED" python3 "$summary" "$work"
 printf '%s\n' "rev demo-build rest tests sanitizer total" \
   "HEAD 6:01.0 2:31.3 0:36.4 4:24.2 13:32.9" >"$work/t4-build.txt"
 expect 0 "target 4: MISSED" python3 "$summary" "$work"
+# The inputs' kinds from scripts/bench-targets' list file win over their names: here an
+# icosphere listed as CAD is counted as CAD.
+printf 'icosphere:2\tCAD\n' >"$work/t2-check-kinds.txt"
+expect 0 "check, CAD: 2 inputs, s/M median" python3 "$summary" "$work"
+! echo "$out" | grep -q "check, smooth:" || fail "the listed kind was not used: $out"
+rm "$work/t2-check-kinds.txt"
+
+# scripts/bench-targets refuses a misspelt target or mesh name before running anything.
+expect 2 "--open-close: 'elefant' is not one of target 1's meshes \\(cow elephant" \
+  "$src/scripts/bench-targets" --open-close cow,elefant --out "$work/refused"
+expect 2 "--targets: no target '5'" "$src/scripts/bench-targets" --targets 1,5 --out "$work/refused"
+[ ! -e "$work/refused" ] || fail "bench-targets made its output directory before refusing"
+
 # The rows as Markdown tables for docs/benchmarks.md.
 expect 0 "\| l-shape \([0-9]+\) \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \|.*\| fan-prism:40 \| CAD \|" \
   python3 "$summary" "$work" --markdown
