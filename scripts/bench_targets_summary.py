@@ -54,11 +54,20 @@ def name_of(path):
 
 
 def t1_rows(out, se):
-    """bench_morph's rows for one element: dilations and erosions, then openings and closings."""
+    """bench_morph's rows for one element: dilations and erosions, then openings and closings
+    from t1-SE-chained.json and any t1-SE-chained-*.json (the same bench_morph command run on
+    more meshes apart; a mesh and operation measured twice counts once, from the latest run)."""
     doc = load(os.path.join(out, f"t1-{se}.json"))
-    chained = load(os.path.join(out, f"t1-{se}-chained.json"))
-    if doc and chained:
-        doc["rows"] = doc["rows"] + chained["rows"]
+    if not doc:
+        return doc
+    chained = [d for d in (load(os.path.join(out, f)) for f in sorted(os.listdir(out))
+                           if re.fullmatch(rf"t1-{re.escape(se)}-chained(-.+)?\.json", f)) if d]
+    latest = {}
+    for d in sorted(chained, key=date_of):
+        for r in d["rows"]:
+            latest[(r["input"], r["op"])] = r
+    doc["rows"] = doc["rows"] + list(latest.values())
+    doc["chained_dates"] = sorted({date_of(d) for d in chained})
     return doc
 
 
@@ -73,7 +82,10 @@ def target1(out):
             all_ok = False
             continue
         shown = True
-        print(f"  {se} ({doc['rows'][0]['se'] if doc['rows'] else '?'}; {date_of(doc)}):")
+        dates = date_of(doc)
+        if doc["chained_dates"]:
+            dates += "; openings and closings " + ", ".join(doc["chained_dates"])
+        print(f"  {se} ({doc['rows'][0]['se'] if doc['rows'] else '?'}; {dates}):")
         for op in ("dilate", "erode", "open", "close"):
             rows = [r for r in doc["rows"] if r["op"] == op]
             if not rows:

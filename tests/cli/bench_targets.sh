@@ -19,6 +19,11 @@ expect 0 "octahedron: not run.*check: not run.*bool union: not run.*target 3: MI
   --json "$work/t1-octahedron.json" l-shape >/dev/null || fail "bench_morph failed"
 expect 0 "octahedron \(octahedron:r=1/4;.*dilate  1 meshes: ms/facet median.*close   1 meshes.*target 1: MISSED" \
   python3 "$summary" "$work"
+# Openings and closings run apart on more meshes (t1-SE-chained-*.json) join the same rows.
+"$tools/bench_morph" --threads 1 --se octahedron:r=1/4 --ops open \
+  --json "$work/t1-octahedron-chained-2.json" icosphere:1 >/dev/null || fail "bench_morph failed"
+expect 0 "dilate  1 meshes.*open    2 meshes: ms/facet median.*close   1 meshes" \
+  python3 "$summary" "$work"
 # Target 2's check from bench_check's JSON: a fanned prism counts as CAD, an icosphere as smooth.
 "$tools/bench_check" --threads 1 --no-peer --runs 1 --json "$work/t2-check.json" fan-prism:40 \
   icosphere:2 >/dev/null || fail "bench_check failed"
