@@ -626,6 +626,26 @@ TEST(Check, WoundFansAndSpiralStripsAreNotTakenAsEmbedded) {
     }
 }
 
+// A flat patch's border comes from its corners (an edge a -> s is inside when a corner at a ends
+// at s). A fan with one triangle repeated uses two edges twice one way: its triangles are not
+// proved embedded as one patch, and the pairs the check lists are those of all pairs tested one by
+// one (the two copies, which meet in more than an edge).
+TEST(Check, FlatFanWithARepeatedTriangle) {
+  Mesh m = wound_fan(41, 1);
+  m.triangles.push_back(m.triangles[7]);
+  for (const detail::PlanarPatch& patch : planar_patches_of(m).patches) {
+    const auto& t = patch.triangles;
+    EXPECT_FALSE(std::find(t.begin(), t.end(), 7u) != t.end() &&
+                 std::find(t.begin(), t.end(), 41u) != t.end());
+  }
+  CheckOptions options;
+  options.list_self_intersections = true;
+  const MeshReport r = check_mesh(m, options);
+  const auto expected = improper_pairs_by_brute_force(m);
+  EXPECT_FALSE(expected.empty());
+  EXPECT_EQ(r.self_intersecting_pairs, expected);
+}
+
 namespace {
 // A cone over a regular n-gon of radius 2 in z = 0 winding `turns` times, apex at `apex`, with a
 // flat fan cap from the polygon's first vertex: long thin facets meeting at the apex.

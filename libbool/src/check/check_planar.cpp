@@ -89,7 +89,9 @@ struct Projection {
 // The corner of a triangle at `apex`: the angle from the ray to `start` to the ray to `end`.
 struct Wedge {
   PointId apex, start, end;
-  bool operator<(const Wedge& o) const { return apex != o.apex ? apex < o.apex : start < o.start; }
+  // One comparison of 64-bit keys: patches sort three corners per triangle.
+  std::uint64_t key() const { return (std::uint64_t(apex) << 32) | start; }
+  bool operator<(const Wedge& o) const { return key() < o.key(); }
 };
 
 // The ray apex -> x lies in the half-open angle [start, end) of w.
@@ -110,8 +112,10 @@ bool same_direction(const Projection& p, PointId apex, PointId a, PointId b) {
 }
 
 // The corners at one vertex (sorted by start) chain into one fan that wraps exactly once
-// (a cycle: an interior vertex) or less than once (a chain: a border vertex).
-bool star_wraps_at_most_once(const Projection& p, const Wedge* begin, const Wedge* end) {
+// (a cycle: an interior vertex) or less than once (a chain: a border vertex). `ends` gets their
+// end rays' far vertices, sorted (the caller's buffer, reused from vertex to vertex).
+bool star_wraps_at_most_once(const Projection& p, const Wedge* begin, const Wedge* end,
+                             std::vector<PointId>& ends) {
   const std::size_t m = std::size_t(end - begin);
   auto by_start = [&](PointId s) -> const Wedge* {
     const Wedge key{begin->apex, s, 0};
@@ -121,8 +125,7 @@ bool star_wraps_at_most_once(const Projection& p, const Wedge* begin, const Wedg
   for (const Wedge* w = begin; w + 1 < end; ++w)
     if (w->start == (w + 1)->start) return false;  // two corners on one side of an edge
   // A chain starts at the corner whose start ray ends no other corner.
-  std::vector<PointId> ends;
-  ends.reserve(m);
+  ends.clear();
   for (const Wedge* w = begin; w != end; ++w) ends.push_back(w->end);
   std::sort(ends.begin(), ends.end());
   // Two corners ending on one ray: each corner then has at most one successor and predecessor.
@@ -304,42 +307,37 @@ std::optional<PlanarPatch> prove_embedded(const Mesh& mesh, const PointTable& ta
   const int dropped = table.dominant_axis(s[0], s[1], s[2]);
   const Projection p{table, dropped, table.orientation_2(dropped, s[0], s[1], s[2])};
   if (p.turn == CGAL::ZERO) return std::nullopt;
+  // Each triangle's corners: wedge (a, s, e) is triangle a, s, e, which uses the edge a -> s.
   std::vector<Wedge> wedges;
   wedges.reserve(3 * triangles.size());
-  // Each edge use as its key (least id first) and whether it runs that way: one sort of them
-  // gives both the patch's edges and its border.
-  std::vector<std::pair<std::uint64_t, bool>> uses;
-  uses.reserve(3 * triangles.size());
   for (const std::uint32_t f : triangles) {
     const auto c = corners(mesh, position, f);
     if (p.orient(c[0], c[1], c[2]) != CGAL::POSITIVE) return std::nullopt;
-    for (int k = 0; k < 3; ++k) {
-      const PointId from = c[k], to = c[(k + 1) % 3];
-      wedges.push_back({from, to, c[(k + 2) % 3]});
-      uses.emplace_back(edge_key(from, to), from < to);
-    }
+    for (int k = 0; k < 3; ++k) wedges.push_back({c[k], c[(k + 1) % 3], c[(k + 2) % 3]});
   }
   std::sort(wedges.begin(), wedges.end());
+  // Once the corners at a pass (each edge a -> s used once at most), the edge s -> a is used
+  // exactly when a corner at a ends at s: a -> s is then inside the patch, else on its border.
+  // Each edge is listed once: from its smaller end when inside, from the end it leaves when on
+  // the border (one use only).
+  std::vector<std::array<PointId, 2>> border;
+  std::vector<PointId> ends;
   for (std::size_t i = 0; i < wedges.size();) {
     std::size_t j = i + 1;
     while (j < wedges.size() && wedges[j].apex == wedges[i].apex) ++j;
-    if (!star_wraps_at_most_once(p, wedges.data() + i, wedges.data() + j)) return std::nullopt;
-    patch.vertices.push_back(wedges[i].apex);
+    if (!star_wraps_at_most_once(p, wedges.data() + i, wedges.data() + j, ends))
+      return std::nullopt;
+    const PointId a = wedges[i].apex;
+    patch.vertices.push_back(a);
+    for (std::size_t k = i; k < j; ++k) {
+      const PointId s = wedges[k].start;
+      const bool inside = std::binary_search(ends.begin(), ends.end(), s);
+      if (!inside) border.push_back({a, s});
+      if (!inside || a < s) patch.edges.push_back(edge_key(a, s));
+    }
     i = j;
   }
-  // The border: the edge uses whose reverse is not in the patch (an edge used one way only).
-  std::sort(uses.begin(), uses.end());
-  std::vector<std::array<PointId, 2>> border;
-  for (std::size_t i = 0, j; i < uses.size(); i = j) {
-    bool ways[2] = {false, false};
-    for (j = i; j < uses.size() && uses[j].first == uses[i].first; ++j) ways[uses[j].second] = true;
-    patch.edges.push_back(uses[i].first);
-    if (ways[0] && ways[1]) continue;
-    const auto lo = PointId(uses[i].first >> 32), hi = PointId(uses[i].first);
-    for (std::size_t k = i; k < j; ++k)
-      border.push_back(uses[k].second ? std::array<PointId, 2>{lo, hi}
-                                      : std::array<PointId, 2>{hi, lo});
-  }
+  std::sort(patch.edges.begin(), patch.edges.end());
   if (!border_bounds_an_embedded_patch(p, std::move(border))) return std::nullopt;
   for (const PointId v : patch.vertices) patch.box += table.approx(v).bbox();
   patch.triangles = std::move(triangles);
@@ -490,7 +488,9 @@ bool star_is_embedded(const PointTable& table, std::vector<Wedge>& wedges) {
     const bool one_way = std::all_of(wedges.begin(), wedges.end(), [&](const Wedge& x) {
       return p.orient(x.apex, x.start, x.end) == CGAL::POSITIVE;
     });
-    if (one_way) return star_wraps_at_most_once(p, wedges.data(), wedges.data() + wedges.size());
+    std::vector<PointId> ends;
+    if (one_way)
+      return star_wraps_at_most_once(p, wedges.data(), wedges.data() + wedges.size(), ends);
   }
   return false;
 }
