@@ -2,6 +2,7 @@
 // Coplanar patches proved embedded in their plane (see check_planar.h for the argument).
 #include "check/check_planar.h"
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 
 #include "exact/static_filter.h"
 #include "morphex/internal/union_find.h"
@@ -297,10 +299,55 @@ bool border_bounds_an_embedded_patch(const Projection& p,
   return true;
 }
 
-// The proof of check_planar.h for one patch, and its vertex and edge lists when it holds.
+// The corners of a patch's triangles grouped by apex, each group sorted by start: a counting
+// sort over the patch's own vertices (a sort of all corners costs a tenth of a CAD mesh's check),
+// through `slot`, a scratch array over all positions that holds kNoSlot outside each call.
+class CornersByApex {
+ public:
+  static constexpr std::uint32_t kNoSlot = 0xffffffffu;
+  CornersByApex(std::vector<std::uint32_t>& slot, const std::vector<Wedge>& corners)
+      : slot_(slot) {
+    for (const Wedge& w : corners) {
+      std::uint32_t& s = slot_[w.apex];
+      if (s == kNoSlot) {
+        s = std::uint32_t(apexes_.size());
+        apexes_.push_back(w.apex);
+        first_.push_back(0);
+      }
+      ++first_[s];
+    }
+    std::uint32_t sum = 0;
+    for (std::uint32_t& f : first_) sum += std::exchange(f, sum);
+    first_.push_back(sum);
+    grouped_.resize(corners.size());
+    std::vector<std::uint32_t> next(first_.begin(), first_.end() - 1);
+    for (const Wedge& w : corners) grouped_[next[slot_[w.apex]]++] = w;
+    for (std::size_t g = 0; g + 1 < first_.size(); ++g)
+      std::sort(grouped_.begin() + first_[g], grouped_.begin() + first_[g + 1]);
+  }
+  ~CornersByApex() {
+    for (const PointId a : apexes_) slot_[a] = kNoSlot;
+  }
+  CornersByApex(const CornersByApex&) = delete;
+  CornersByApex& operator=(const CornersByApex&) = delete;
+
+  std::size_t groups() const { return apexes_.size(); }
+  const Wedge* begin(std::size_t g) const { return grouped_.data() + first_[g]; }
+  const Wedge* end(std::size_t g) const { return grouped_.data() + first_[g + 1]; }
+
+ private:
+  std::vector<std::uint32_t>& slot_;
+  std::vector<PointId> apexes_;
+  std::vector<std::uint32_t> first_;  // group g: grouped_[first_[g], first_[g + 1])
+  std::vector<Wedge> grouped_;
+};
+
+// The proof of check_planar.h for one patch, and its vertex and edge lists when it holds. `slot`
+// is CornersByApex's scratch array.
 std::optional<PlanarPatch> prove_embedded(const Mesh& mesh, const PointTable& table,
                                           const std::vector<PointId>& position,
-                                          std::vector<std::uint32_t> triangles) {
+                                          std::vector<std::uint32_t> triangles,
+                                          std::vector<std::uint32_t>& slot) {
   PlanarPatch patch;
   patch.plane = corners(mesh, position, triangles[0]);
   const auto& s = patch.plane;
@@ -315,28 +362,24 @@ std::optional<PlanarPatch> prove_embedded(const Mesh& mesh, const PointTable& ta
     if (p.orient(c[0], c[1], c[2]) != CGAL::POSITIVE) return std::nullopt;
     for (int k = 0; k < 3; ++k) wedges.push_back({c[k], c[(k + 1) % 3], c[(k + 2) % 3]});
   }
-  std::sort(wedges.begin(), wedges.end());
+  const CornersByApex by_apex(slot, wedges);
   // Once the corners at a pass (each edge a -> s used once at most), the edge s -> a is used
   // exactly when a corner at a ends at s: a -> s is then inside the patch, else on its border.
   // Each edge is listed once: from its smaller end when inside, from the end it leaves when on
   // the border (one use only).
   std::vector<std::array<PointId, 2>> border;
   std::vector<PointId> ends;
-  for (std::size_t i = 0; i < wedges.size();) {
-    std::size_t j = i + 1;
-    while (j < wedges.size() && wedges[j].apex == wedges[i].apex) ++j;
-    if (!star_wraps_at_most_once(p, wedges.data() + i, wedges.data() + j, ends))
-      return std::nullopt;
-    const PointId a = wedges[i].apex;
+  for (std::size_t g = 0; g < by_apex.groups(); ++g) {
+    if (!star_wraps_at_most_once(p, by_apex.begin(g), by_apex.end(g), ends)) return std::nullopt;
+    const PointId a = by_apex.begin(g)->apex;
     patch.vertices.push_back(a);
-    for (std::size_t k = i; k < j; ++k) {
-      const PointId s = wedges[k].start;
-      const bool inside = std::binary_search(ends.begin(), ends.end(), s);
-      if (!inside) border.push_back({a, s});
-      if (!inside || a < s) patch.edges.push_back(edge_key(a, s));
+    for (const Wedge* w = by_apex.begin(g); w != by_apex.end(g); ++w) {
+      const bool inside = std::binary_search(ends.begin(), ends.end(), w->start);
+      if (!inside) border.push_back({a, w->start});
+      if (!inside || a < w->start) patch.edges.push_back(edge_key(a, w->start));
     }
-    i = j;
   }
+  std::sort(patch.vertices.begin(), patch.vertices.end());
   std::sort(patch.edges.begin(), patch.edges.end());
   if (!border_bounds_an_embedded_patch(p, std::move(border))) return std::nullopt;
   for (const PointId v : patch.vertices) patch.box += table.approx(v).bbox();
@@ -367,9 +410,14 @@ std::vector<PlanarPatch> proved_groups(const Mesh& mesh, const PointTable& table
     groups[std::size_t(group_of_root[root[f]])].push_back(f);
   }
   std::vector<std::optional<PlanarPatch>> proved(groups.size());
+  // prove_embedded's scratch, one per thread, over every position.
+  const std::size_t positions =
+      position.empty() ? 0 : std::size_t(*std::max_element(position.begin(), position.end())) + 1;
+  tbb::enumerable_thread_specific<std::vector<std::uint32_t>> slots(
+      [&] { return std::vector<std::uint32_t>(positions, CornersByApex::kNoSlot); });
   tbb::parallel_for(std::size_t(0), groups.size(), [&](std::size_t g) {
     const UpwardRounding rounding;
-    proved[g] = prove_embedded(mesh, table, position, std::move(groups[g]));
+    proved[g] = prove_embedded(mesh, table, position, std::move(groups[g]), slots.local());
   });
   std::vector<PlanarPatch> out;
   for (auto& patch : proved)
