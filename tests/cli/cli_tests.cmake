@@ -119,6 +119,10 @@ if(MORPHEX_BUILD_BENCHMARKS)
   add_test(NAME bench.targets_summary COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/bench_targets.sh
     $<TARGET_FILE_DIR:bench_morph> ${PROJECT_SOURCE_DIR} ${PROJECT_BINARY_DIR}/bench-targets)
   set_tests_properties(bench.targets_summary PROPERTIES PASS_REGULAR_EXPRESSION "PASS")
+  # scripts/bench-check-ab runs two builds' bench_check alternately and compares them.
+  add_test(NAME bench.check_ab COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/bench_check_ab.sh
+    $<TARGET_FILE_DIR:bench_check> ${PROJECT_SOURCE_DIR} ${PROJECT_BINARY_DIR}/bench-check-ab)
+  set_tests_properties(bench.check_ab PROPERTIES PASS_REGULAR_EXPRESSION "PASS")
 endif()
 # Paths that are not mesh files say so (not "unknown mesh format ''").
 morphex_cli_test(check_directory 2 "tests/data: is a directory, not a mesh file" check ${data})
