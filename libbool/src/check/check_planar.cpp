@@ -305,8 +305,7 @@ bool border_bounds_an_embedded_patch(const Projection& p,
 class CornersByApex {
  public:
   static constexpr std::uint32_t kNoSlot = 0xffffffffu;
-  CornersByApex(std::vector<std::uint32_t>& slot, const std::vector<Wedge>& corners)
-      : slot_(slot) {
+  CornersByApex(std::vector<std::uint32_t>& slot, const std::vector<Wedge>& corners) : slot_(slot) {
     for (const Wedge& w : corners) {
       std::uint32_t& s = slot_[w.apex];
       if (s == kNoSlot) {
