@@ -23,4 +23,9 @@ PY
 # A build that is not there: exit 2 and its name, before anything runs.
 expect 2 "bench-check-ab: $work/none: no such bench_check" \
   python3 "$ab" "$work/none" "$tools/bench_check" fan-prism:40
+# --json naming an input: refused before anything runs, the input left as it was.
+cp "$src/tests/data/unit_cube.off" "$work/cube.off"
+expect 2 "bench-check-ab: --json $work/cube.off is also an input" \
+  python3 "$ab" --json "$work/cube.off" "$tools/bench_check" "$tools/bench_check" "$work/cube.off"
+cmp -s "$work/cube.off" "$src/tests/data/unit_cube.off" || fail "the input was changed"
 echo PASS
