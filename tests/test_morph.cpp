@@ -86,13 +86,13 @@ TEST(StructuringElement, MeshFromFileKeepsItsCoordinatesAndConvexity) {
 TEST(StructuringElement, BadSpecificationsAreClearErrors) {
   EXPECT_EQ(error_of("sphere:r=1"),
             "unknown structuring element shape 'sphere' (did you mean 'ball'? expected cube, "
-            "box, octahedron, ball, cylinder or mesh)");
+            "box, octahedron, ball, zonoball, cylinder or mesh)");
   EXPECT_EQ(error_of("cub:r=1"),
             "unknown structuring element shape 'cub' (did you mean 'cube'? expected cube, "
-            "box, octahedron, ball, cylinder or mesh)");
+            "box, octahedron, ball, zonoball, cylinder or mesh)");
   EXPECT_EQ(error_of("xyzzy:r=1"),
             "unknown structuring element shape 'xyzzy' (expected cube, box, octahedron, ball, "
-            "cylinder or mesh)");
+            "zonoball, cylinder or mesh)");
   EXPECT_EQ(error_of("ball:radius=1"),
             "ball: radius: unknown parameter (ball takes r, level, ox, oy, oz)");
   EXPECT_EQ(error_of("cube"), "cube: r: missing (required)");
@@ -293,8 +293,9 @@ TEST(Minkowski, HalvedSweepsGiveTheSameSolid) {
     const detail::LabelledSolid input = detail::labelled(erode ? holed : turned);
     std::size_t whole_runs = 0, halved_runs = 0;
     const FT h = FT(1) / 10;
-    const Mesh whole = detail::segment_sweep(input, 0, h, erode, 0, &whole_runs).mesh;
-    const Mesh halved = detail::segment_sweep(input, 0, h, erode, 1e-9, &halved_runs).mesh;
+    const Mesh whole = detail::segment_sweep(input, Vector(h, 0, 0), erode, 0, &whole_runs).mesh;
+    const Mesh halved =
+        detail::segment_sweep(input, Vector(h, 0, 0), erode, 1e-9, &halved_runs).mesh;
     EXPECT_EQ(whole_runs, 1u);
     EXPECT_GT(halved_runs, 4u);
     ASSERT_FALSE(whole.empty());

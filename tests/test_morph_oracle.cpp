@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Minkowski sums and dilations against CGAL's minkowski_sum_3 (Nef polyhedra, exact): identical
-// exact volumes on small convex and non-convex inputs with cube, octahedron and ball SEs.
+// exact volumes on small convex and non-convex inputs with cube, octahedron, ball and zonoball SEs.
 
 #include <gtest/gtest.h>
 
@@ -23,8 +23,10 @@ FT cgal_minkowski_volume(const Mesh& a, const Mesh& b) {
   return peers::nef_minkowski_sum(a, b).volume;
 }
 
-void expect_same_dilation(const Mesh& a, const std::string& name) {
-  for (const char* spec : {"cube:r=1/10", "octahedron:r=1/7", "ball:r=1/8,level=0"}) {
+void expect_same_dilation(const Mesh& a, const std::string& name,
+                          std::vector<const char*> specs = {"cube:r=1/10", "octahedron:r=1/7",
+                                                            "ball:r=1/8,level=0"}) {
+  for (const char* spec : specs) {
     const StructuringElement se = parse_structuring_element(spec);
     const Mesh ours = dilation(check_solid(a), se);
     const MeshReport report = check_mesh(ours);
@@ -49,6 +51,14 @@ Mesh l_shape() {
 
 TEST(MinkowskiOracle, LShape) {
   expect_same_dilation(l_shape(), "L-shape");
+}
+
+// Zonoballs take one sweep per generator (the convolution and its union are not involved): on the
+// L-shape, whose facets are parallel to some generators, and on it turned by a rational rotation.
+TEST(MinkowskiOracle, Zonoball) {
+  expect_same_dilation(l_shape(), "L-shape", {"zonoball:r=1/8,level=0", "zonoball:r=1/3,level=1"});
+  expect_same_dilation(transformed(l_shape(), quaternion_rotation(5, 1, 2, 3)), "turned L-shape",
+                       {"zonoball:r=1/8,level=0"});
 }
 
 TEST(MinkowskiOracle, Torus) {

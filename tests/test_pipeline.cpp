@@ -246,10 +246,11 @@ INSTANTIATE_TEST_SUITE_P(
                     {"pipeline[1].exact: expected true or false, got \"yes\"",
                      "pipeline[2].offset[1]: expected a number, got \"x\"",
                      "pipeline[3].axis: expected one of x, y, z, got \"w\""}},
-        InvalidCase{"bad_shape",
-                    "[" + kRead + R"(, {"type": "dilate", "se": {"shape": "sphere"}}])",
-                    {"pipeline[1].se.shape: unknown structuring element shape 'sphere' (did you "
-                     "mean 'ball'? expected cube, box, octahedron, ball, cylinder or mesh)"}},
+        InvalidCase{
+            "bad_shape",
+            "[" + kRead + R"(, {"type": "dilate", "se": {"shape": "sphere"}}])",
+            {"pipeline[1].se.shape: unknown structuring element shape 'sphere' (did you "
+             "mean 'ball'? expected cube, box, octahedron, ball, zonoball, cylinder or mesh)"}},
         InvalidCase{"tags",
                     "[" + kRead + R"(, {"type": "read", "path": "b.off", "tag": "in"},
                              {"type": "union", "inputs": ["in", "nope"]},

@@ -8,7 +8,8 @@
 //   vol(A u B) + vol(A n B) = vol(A) + vol(B),   vol(A - B) = vol(A) - vol(A n B);
 // the two written as one mesh must give the same solids through repair and winding_solid (its
 // union; {w >= 2}, the intersection; with B reversed, the difference); every 20th case also checks
-// that an opening is inside A and a closing contains it (by a cube, an octahedron or a ball). A
+// that an opening is inside A and a closing contains it (by a cube, an octahedron or a ball), and
+// every 40th, halfway between, the same by a zonoball. A
 // failing case is written to DIR as exact OFF files with a line saying how to replay it; exit
 // code 1.
 #include <chrono>
@@ -186,12 +187,13 @@ int main(int argc, char** argv) {
         failure = std::string("repair of A and B as one mesh failed: ") + e.what();
       }
     }
-    if (failure.empty() && c % 20 == 0) {
+    if (failure.empty() && (c % 20 == 0 || c % 40 == 10)) {
       // Cubes (segment sweeps), octahedra and balls (convolution pieces, their arrangement or
-      // the union tree) in turn.
+      // the union tree) in turn; between them, zonoballs (seven segment sweeps, not along axes).
       static const char* const kElements[3] = {"cube:r=1/8", "octahedron:r=1/8",
                                                "ball:r=1/8,level=0"};
-      const StructuringElement se = parse_structuring_element(kElements[(c / 20) % 3]);
+      const StructuringElement se = parse_structuring_element(
+          c % 20 == 0 ? kElements[(c / 20) % 3] : "zonoball:r=1/8,level=0");
       const Solid opened = opening(a, se), closed = closing(a, se);
       const BooleanResult outside = compute_boolean(opened, a, BooleanOp::Difference);
       const BooleanResult missing = compute_boolean(a, closed, BooleanOp::Difference);

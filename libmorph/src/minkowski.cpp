@@ -275,7 +275,7 @@ Mesh sum_with_component(const Mesh& a, const Mesh& b, bool b_convex, MinkowskiSt
     return hull;
   }
   if (b_convex)
-    if (const auto box = axis_box(b)) return box_morphology(a, *box, false);
+    if (const auto z = zonotope_of(b)) return zonotope_morphology(a, *z, false);
   if (b_convex) {
     const Point c = interior_point(b);
     const Mesh moved = c == Point(CGAL::ORIGIN) ? a : translated(a, c - CGAL::ORIGIN);

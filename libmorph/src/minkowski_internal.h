@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "morphex/minkowski.h"
+#include "morphex/shapes.h"
 
 namespace morphex::detail {
 
@@ -105,13 +106,17 @@ std::optional<Mesh> convolution_union(const Mesh& surface, const Mesh& b, const 
                                       MinkowskiStats* stats,
                                       double max_pairs_per_triangle = kShallowPairs);
 
-// An axis-aligned box: its centre and half sizes.
-struct AxisBox {
+// A zonotope: centre + [-h_1, h_1] + ... + [-h_k, h_k] (a box: three generators along the axes).
+struct Zonotope {
   Point centre;
-  std::array<FT, 3> half;
+  std::vector<Vector> halves;  // h_i; boxes' along x, y, z in that order
 };
-// B as an axis-aligned box when its eight vertices are exactly its bounding box's corners.
-std::optional<AxisBox> axis_box(const Mesh& b);
+// B as a zonotope, proved exactly from its edges and vertices (zonotope.cpp); nullopt for any
+// other mesh, which takes the convolution.
+std::optional<Zonotope> zonotope_of(const Mesh& b);
+// centre + sum [-h_i, h_i] as a closed outward mesh; std::invalid_argument when the generators do
+// not span 3 dimensions.
+Mesh zonotope_mesh(const Point& centre, const std::vector<Vector>& halves);
 // A solid with plane labels (morphex/winding.h): faces with one label lie in one plane. Chained
 // sweeps pass them on, so that the coplanarity each sweep creates is known to the next.
 struct LabelledSolid {
@@ -119,17 +124,18 @@ struct LabelledSolid {
   std::vector<std::uint32_t> plane;
 };
 LabelledSolid labelled(const Mesh& m);  // every face its own label
-// A + [-h e, h e] (or the erosion by it) along the axis e, as one winding_solid (box_sweep.cpp);
-// as two sweeps of h / 2 when its arrangement has more than `max_pairs_per_triangle` candidate
-// pairs per triangle and halving thins them (sheets folded many layers deep; 0: never halved).
-// `arrangements` (when given) counts the winding_solid calls, begun ones included.
+// A + [-h, h] (or the erosion by it) for the segment of half vector h, as one winding_solid
+// (segment_sweep.cpp); as two sweeps of h / 2 when its arrangement has more than
+// `max_pairs_per_triangle` candidate pairs per triangle and halving thins them (sheets folded many
+// layers deep; 0: never halved). `arrangements` (when given) counts the winding_solid calls,
+// begun ones included.
 constexpr double kDeepFoldPairs = 16;
-LabelledSolid segment_sweep(const LabelledSolid& a, int axis, const FT& half_length, bool erode,
+LabelledSolid segment_sweep(const LabelledSolid& a, const Vector& half, bool erode,
                             double max_pairs_per_triangle = kDeepFoldPairs,
                             std::size_t* arrangements = nullptr);
-// A + B or A - B for an axis-aligned box B: the centre, then one sweep per axis.
-LabelledSolid box_morphology(LabelledSolid a, const AxisBox& box, bool erode);
-Mesh box_morphology(const Mesh& a, const AxisBox& box, bool erode);
+// A + B or A - B for a zonotope B: the centre, then one sweep per generator.
+LabelledSolid zonotope_morphology(LabelledSolid a, const Zonotope& z, bool erode);
+Mesh zonotope_morphology(const Mesh& a, const Zonotope& z, bool erode);
 
 // A + B for one connected B whose convexity is known.
 Mesh sum_with_component(const Mesh& a, const Mesh& b, bool b_convex, MinkowskiStats* stats);

@@ -79,7 +79,7 @@ Mesh dilate_valid(const Mesh& a, const std::vector<SePart>& parts, MinkowskiStat
 // the shell dA + (-B) of the facet-hull formula.
 Mesh erode_by_part(const Mesh& a, const SePart& b, MinkowskiStats& stats) {
   if (b.convex)
-    if (const auto box = detail::axis_box(b.mesh)) return detail::box_morphology(a, *box, true);
+    if (const auto z = detail::zonotope_of(b.mesh)) return detail::zonotope_morphology(a, *z, true);
   const Mesh minus_b = reflected(b.mesh);
   if (b.convex) {
     const Point c = detail::interior_point(minus_b);
@@ -110,19 +110,26 @@ Mesh erode_valid(const Mesh& a, const std::vector<SePart>& parts, MinkowskiStats
   return result;
 }
 
-// An opening or closing by one axis-aligned box: its two halves as six sweeps, the plane labels
-// of the first half passed on to the second. Empty optional for any other SE.
-std::optional<Mesh> box_round_trip(const Mesh& a, const std::vector<SePart>& parts, bool open) {
+// An opening or closing by one zonotope (a box among them): its two halves as one sweep per
+// generator each, the plane labels of the first half passed on to the second. Empty optional for
+// any other SE.
+std::optional<Mesh> zonotope_round_trip(const Mesh& a, const std::vector<SePart>& parts,
+                                        bool open) {
   if (parts.size() != 1 || !parts[0].convex) return std::nullopt;
-  const auto box = detail::axis_box(parts[0].mesh);
-  if (!box) return std::nullopt;
-  detail::LabelledSolid s = detail::box_morphology(detail::labelled(a), *box, open);
+  const auto z = detail::zonotope_of(parts[0].mesh);
+  if (!z) return std::nullopt;
+  detail::LabelledSolid s;
+  {
+    const ProgressPhase phase(0, 0.5, open ? "erosion" : "dilation");
+    s = detail::zonotope_morphology(detail::labelled(a), *z, open);
+  }
   if (s.mesh.empty()) return Mesh{};
-  return detail::box_morphology(std::move(s), *box, !open).mesh;
+  const ProgressPhase phase(0.5, 1, open ? "dilation" : "erosion");
+  return detail::zonotope_morphology(std::move(s), *z, !open).mesh;
 }
 
 Mesh open_valid(const Mesh& a, const std::vector<SePart>& parts, MinkowskiStats& s) {
-  if (auto round_trip = box_round_trip(a, parts, true)) return std::move(*round_trip);
+  if (auto round_trip = zonotope_round_trip(a, parts, true)) return std::move(*round_trip);
   Mesh eroded;
   {
     const ProgressPhase phase(0, 0.5, "erosion");
@@ -133,7 +140,7 @@ Mesh open_valid(const Mesh& a, const std::vector<SePart>& parts, MinkowskiStats&
 }
 
 Mesh close_valid(const Mesh& a, const std::vector<SePart>& parts, MinkowskiStats& s) {
-  if (auto round_trip = box_round_trip(a, parts, false)) return std::move(*round_trip);
+  if (auto round_trip = zonotope_round_trip(a, parts, false)) return std::move(*round_trip);
   Mesh dilated;
   {
     const ProgressPhase phase(0, 0.5, "dilation");

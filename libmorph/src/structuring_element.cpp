@@ -10,6 +10,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "minkowski_internal.h"
 #include "morphex/check.h"
 #include "morphex/internal/nearest.h"
 #include "morphex/io.h"
@@ -145,6 +146,40 @@ Mesh make_ball(const FT& r, int level) {
   return convex_hull(points);
 }
 
+// A round zonohedron: a sum of segments with small integer weights, the roundest of its family.
+// Level 0: along the axes (weight 9) and the body diagonals (+-1, +-1, 1) (weight 8), 7 segments,
+// inradius 0.819 of the circumradius (an icosahedron's 0.796). Level 1: along the axes (9), the
+// face diagonals (1, +-1, 0) and their permutations (8) and the body diagonals (5), 13 segments,
+// 0.916 (the level-1 ball's 0.935). It is scaled so that its farthest vertices are on or just
+// outside the sphere of radius r. Being a sum of segments, morphology by it is one sweep per
+// segment (zonotope.cpp), like a box's.
+Mesh make_zonoball(const FT& r, int level) {
+  std::vector<Vector> unit;
+  for (int k = 0; k < 3; ++k)
+    unit.push_back(Vector(k == 0 ? 9 : 0, k == 1 ? 9 : 0, k == 2 ? 9 : 0));
+  if (level >= 1)
+    for (int k = 0; k < 3; ++k)
+      for (const int s : {1, -1}) {
+        int v[3] = {0, 0, 0};
+        v[k] = 8;
+        v[(k + 1) % 3] = 8 * s;
+        unit.push_back(Vector(v[0], v[1], v[2]));
+      }
+  const int body = level >= 1 ? 5 : 8;
+  for (const auto& [x, y] : {std::pair{1, 1}, {1, -1}, {-1, 1}, {-1, -1}})
+    unit.push_back(Vector(body * x, body * y, body));
+  FT far2 = 0;  // the farthest vertex's squared distance
+  for (const Point& p : detail::zonotope_mesh(Point(CGAL::ORIGIN), unit).points)
+    far2 = CGAL::max(far2, (p - CGAL::ORIGIN).squared_length());
+  // The scale t = r q with q (a double) at least 1 / sqrt(far2), so that the farthest vertices
+  // are at distance r sqrt(q^2 far2) >= r.
+  double q = 1 / std::sqrt(CGAL::to_double(far2));
+  while (FT(q) * FT(q) * far2 < 1) q = std::nextafter(q, std::numeric_limits<double>::infinity());
+  const FT t = r * FT(q);
+  for (Vector& v : unit) v = v * t;
+  return detail::zonotope_mesh(Point(CGAL::ORIGIN), unit);
+}
+
 Mesh make_prism(const FT& r, const FT& height, int segments) {
   const FT half = height / 2;
   std::vector<Point> points;
@@ -173,6 +208,13 @@ const std::vector<SeShapeInfo>& structuring_element_shapes() {
        "sphere of radius r (exact convex hull)",
        with_offset({{"r", "number", "", "radius"},
                     {"level", "integer", "1", "subdivisions, 0 to 5 (20 * 4^level faces)"}})},
+      {"zonoball",
+       "round zonohedron, a sum of segments along the axes and the body diagonals (and at level "
+       "1 the face diagonals), farthest vertices on or just outside the sphere of radius r: "
+       "morphology by one sweep per segment",
+       with_offset({{"r", "number", "", "radius (of the farthest vertices)"},
+                    {"level", "integer", "1",
+                     "0: 7 segments, inradius 0.82 r; 1: 13 segments, inradius 0.92 r"}})},
       {"cylinder",
        "cylinder along z: a prism over a regular polygon whose vertices are on or just outside "
        "the circle of radius r",
@@ -185,6 +227,14 @@ const std::vector<SeShapeInfo>& structuring_element_shapes() {
        with_offset({{"path", "file", "", "OFF, OBJ, STL or PLY file"}})},
   };
   return shapes;
+}
+
+std::string structuring_element_shape_list() {
+  const auto& shapes = structuring_element_shapes();
+  std::string list;
+  for (std::size_t i = 0; i < shapes.size(); ++i)
+    list += (i == 0 ? "" : i + 1 == shapes.size() ? " or " : ", ") + shapes[i].shape;
+  return list;
 }
 
 StructuringElement make_structuring_element(const std::string& shape, const SeParameters& params) {
@@ -207,7 +257,7 @@ StructuringElement make_structuring_element(const std::string& shape, const SePa
     throw StructuringElementError("", "shape",
                                   "unknown structuring element shape '" + shape + "' (" +
                                       (hint.empty() ? "" : "did you mean '" + hint + "'? ") +
-                                      "expected cube, box, octahedron, ball, cylinder or mesh)");
+                                      "expected " + structuring_element_shape_list() + ")");
   }
   const ParameterReader read(*info, params);
   StructuringElement se;
@@ -222,6 +272,8 @@ StructuringElement make_structuring_element(const std::string& shape, const SePa
     se.mesh = make_octahedron(read.number("r", true));
   } else if (shape == "ball") {
     se.mesh = make_ball(read.number("r", true), read.integer("level", 0, 5));
+  } else if (shape == "zonoball") {
+    se.mesh = make_zonoball(read.number("r", true), read.integer("level", 0, 1));
   } else if (shape == "cylinder") {
     se.mesh = make_prism(read.number("r", true), read.number("h", true),
                          read.integer("segments", 3, 1024));

@@ -58,8 +58,8 @@ StructuringElement structuring_element(const nlohmann::json& value) {
     throw StructuringElementError("", "",
                                   "expected an object such as {\"shape\": \"ball\", \"r\": 0.05}");
   if (!value.contains("shape") || !value["shape"].is_string())
-    throw StructuringElementError(
-        "", "shape", "missing (a string: cube, box, octahedron, ball, cylinder or mesh)");
+    throw StructuringElementError("", "shape",
+                                  "missing (a string: " + structuring_element_shape_list() + ")");
   SeParameters params;
   for (const auto& [key, v] : value.items()) {
     if (key == "shape") continue;

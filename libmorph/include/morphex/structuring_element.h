@@ -18,7 +18,7 @@
 namespace morphex {
 
 struct StructuringElement {
-  std::string shape;   // cube, box, octahedron, ball, cylinder or mesh
+  std::string shape;   // cube, box, octahedron, ball, zonoball, cylinder or mesh
   std::string spec;    // the text form it was made from, normalised (for reports)
   Mesh mesh;           // closed, outward oriented, exact
   bool convex = true;  // decided exactly (the hull has the same volume)
@@ -63,6 +63,8 @@ struct SeShapeInfo {
   std::vector<SeParameterInfo> parameters;
 };
 const std::vector<SeShapeInfo>& structuring_element_shapes();
+// Their names for messages: "cube, box, ..., cylinder or mesh".
+std::string structuring_element_shape_list();
 
 // -B: every point negated (faces re-oriented so that the mesh stays outward).
 Mesh reflected(const Mesh& mesh);

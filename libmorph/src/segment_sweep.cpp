@@ -1,17 +1,17 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Morphology by axis-aligned boxes as three sweeps along the axes.
+// Dilation and erosion by one segment S = [-h, h] (h a vector, e its direction), as one
+// winding_solid: the step of morphology by a zonotope (a box among them), which is the sum of its
+// centre and its segments, so that A + B = ((A + centre) + S1) + ... + Sk, and the erosion is the
+// erosion by each segment in turn (erosion by a sum is the composition of the erosions;
+// zonotope.cpp).
 //
-// A box is the Minkowski sum of its centre and three segments S = [-h e, h e] along the axes, so
-// A + B = (((A + centre) + Sx) + Sy) + Sz, and the erosion is the erosion by each segment in turn
-// (erosion by a sum is the composition of the erosions). Each step is one winding_solid.
-//
-// Dilation by a segment. Write S = -h e + [0, 2h e]. For a solid A and a direction d,
+// Dilation by a segment. Write S = -h + [0, 2h]. For a solid A and a direction d,
 //   A + [0, d] = A  u  U { f + [0, d] : facets f with n_f . d > 0 }
 // (almost every point x of A + [0, d] outside A has a first point a = x - t d of A along -d
 // inside a facet f that d leaves through, so n_f . d > 0 and x lies in f's prism; both sides are
 // closed and the left one is the closure of its interior). As a chain, the prisms' bottoms cancel
 // the facets of A - h e they stand on, and the walls of neighbouring prisms cancel in pairs: what
-// is left is every front facet (n_f . e > 0) moved by +h e, every other facet by -h e, and over
+// is left is every front facet (n_f . e > 0) moved by +h, every other facet by -h, and over
 // each edge between a moved-up and a moved-down facet, the wall the edge sweeps. {w >= 1} of that
 // chain is A + S.
 // Erosion by a segment: A - S is the complement of A's complement dilated by -S = S. The same
@@ -19,7 +19,7 @@
 // down: {w >= 1} of that chain is A - S.
 //
 // Unlike the reduced convolution's prisms, which overlap wherever the supporting vertex changes,
-// the sheets of a sweep overlap only where the solid folds back along the axis within 2h.
+// the sheets of a sweep overlap only where the solid folds back along e within 2|h|.
 #include <tbb/parallel_for.h>
 
 #include <array>
@@ -34,30 +34,20 @@
 namespace morphex::detail {
 namespace {
 
-// The sign of the `axis` component of the facet's normal, exactly: the orientation of the facet
-// seen along the axis, in the cyclic coordinates (axis + 1, axis + 2).
-CGAL::Sign normal_component_sign(const Point& p, const Point& q, const Point& r, int axis) {
-  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+using ExactVector = Kernel::Exact_kernel::Vector_3;
+
+// The sign of n_f . d for the facet pqr's normal n_f = (q - p) x (r - p): intervals first, then
+// the exact coordinates.
+CGAL::Sign normal_direction_sign(const Point& p, const Point& q, const Point& r, const Vector& d) {
   {
     CGAL::Protect_FPU_rounding<true> rounding;
     const auto& ap = CGAL::approx(p);
-    const auto& aq = CGAL::approx(q);
-    const auto& ar = CGAL::approx(r);
     const CGAL::Uncertain<CGAL::Sign> s =
-        CGAL::orientationC2(ap.cartesian(u), ap.cartesian(v), aq.cartesian(u), aq.cartesian(v),
-                            ar.cartesian(u), ar.cartesian(v));
+        CGAL::sign(CGAL::determinant(CGAL::approx(q) - ap, CGAL::approx(r) - ap, CGAL::approx(d)));
     if (CGAL::is_certain(s)) return CGAL::get_certain(s);
   }
-  const auto &ep = CGAL::exact(p), &eq = CGAL::exact(q), &er = CGAL::exact(r);
-  return CGAL::orientationC2(ep.cartesian(u), ep.cartesian(v), eq.cartesian(u), eq.cartesian(v),
-                             er.cartesian(u), er.cartesian(v));
-}
-
-// p + offset along `axis`, as an evaluated exact point.
-Point shifted(const Kernel::Exact_kernel::Point_3& p, int axis, const Kernel::Exact_kernel::FT& d) {
-  std::array<Kernel::Exact_kernel::FT, 3> c = {p.x(), p.y(), p.z()};
-  c[axis] += d;
-  return point_from_exact({c[0], c[1], c[2]});
+  const auto& ep = CGAL::exact(p);
+  return CGAL::sign(CGAL::determinant(CGAL::exact(q) - ep, CGAL::exact(r) - ep, CGAL::exact(d)));
 }
 
 // The chain of one sweep, with its plane labels and its groups: the facets moved up are a
@@ -70,17 +60,18 @@ struct SweepChain {
   std::vector<std::uint32_t> groups;
 };
 
-SweepChain sweep_chain(const LabelledSolid& in, int axis, const FT& half_length, bool erode) {
+SweepChain sweep_chain(const LabelledSolid& in, const Vector& half, bool erode) {
   const Mesh& a = in.mesh;
   const std::size_t nv = a.points.size(), nf = a.triangles.size();
   // Lazy coordinates are evaluated once here (CGAL's lazy evaluation of a shared point is not safe
   // from several threads).
   for (const Point& p : a.points) CGAL::exact(p);
-  const auto& h = CGAL::exact(half_length);
+  const ExactVector& h = CGAL::exact(half);
+  const ExactVector minus_h = -h;
   Mesh chain;
-  // Vertex v at -h e is 2 v, at +h e is 2 v + 1.
+  // Vertex v at -h is 2 v, at +h is 2 v + 1.
   chain.points = parallel_points(2 * nv, [&](std::size_t i) {
-    return shifted(CGAL::exact(a.points[i / 2]), axis, i % 2 ? h : -h);
+    return point_from_exact(CGAL::exact(a.points[i / 2]) + (i % 2 ? h : minus_h));
   });
   // Which copy each corner takes: a facet with n_f . e > 0 (< 0 for an erosion) moves up, one
   // with the opposite sign down. A facet parallel to e (often a wall of an earlier sweep along
@@ -91,7 +82,7 @@ SweepChain sweep_chain(const LabelledSolid& in, int axis, const FT& half_length,
   tbb::parallel_for(std::size_t(0), nf, [&](std::size_t f) {
     const Triangle& t = a.triangles[f];
     const CGAL::Sign s =
-        normal_component_sign(a.points[t[0]], a.points[t[1]], a.points[t[2]], axis);
+        normal_direction_sign(a.points[t[0]], a.points[t[1]], a.points[t[2]], half);
     side[f] = std::int8_t(erode ? -s : s);  // +1 up, -1 down, 0 parallel
   });
   std::vector<std::uint8_t> around(nv, 0);  // bit 0: an up facet at the vertex, bit 1: a down one
@@ -145,7 +136,7 @@ SweepChain sweep_chain(const LabelledSolid& in, int axis, const FT& half_length,
   return {std::move(chain), std::move(planes), std::move(groups)};
 }
 
-// A sweep whose sheets fold back within 2h many layers deep (a thin part wound along the axis, a
+// A sweep whose sheets fold back within 2|h| many layers deep (a thin part wound along e, a
 // coil) costs far more than its facets: its arrangement holds every crossing of those layers.
 // Since S_h = S_{h/2} + S_{h/2}, the same sum is two half sweeps, and the second sweeps a solid
 // whose folds narrower than h are already filled: on a SHREC 2007 mesh, one sweep of 65 candidate
@@ -158,13 +149,13 @@ constexpr int kMaxHalvings = 6;
 
 // `halvings`: how many more times the sweep may be halved; `parent_pairs`: the candidate pairs of
 // the sweep this one halves (0 for none). Sets `thinned` to whether halving thinned the pairs.
-LabelledSolid sweep_in_steps(const LabelledSolid& in, int axis, const FT& half_length, bool erode,
+LabelledSolid sweep_in_steps(const LabelledSolid& in, const Vector& half, bool erode,
                              double max_pairs, int halvings, std::size_t parent_pairs,
                              bool& thinned, std::size_t* arrangements) {
   thinned = true;
   if (in.mesh.empty()) return {};
   if (arrangements) ++*arrangements;
-  const SweepChain sweep = sweep_chain(in, axis, half_length, erode);
+  const SweepChain sweep = sweep_chain(in, half, erode);
   LabelledSolid out;
   WindingOptions options;
   options.planes = &sweep.planes;
@@ -181,73 +172,20 @@ LabelledSolid sweep_in_steps(const LabelledSolid& in, int axis, const FT& half_l
     out.mesh = winding_solid(sweep.chain, {}, options);
     return out;
   }
-  const FT half = half_length / 2;
-  const LabelledSolid first = sweep_in_steps(in, axis, half, erode, max_pairs, halvings - 1,
+  const Vector quarter = half / 2;
+  const LabelledSolid first = sweep_in_steps(in, quarter, erode, max_pairs, halvings - 1,
                                              stats.candidate_pairs, thinned, arrangements);
-  return sweep_in_steps(first, axis, half, erode, max_pairs, thinned ? halvings - 1 : 0, 0, thinned,
+  return sweep_in_steps(first, quarter, erode, max_pairs, thinned ? halvings - 1 : 0, 0, thinned,
                         arrangements);
 }
 
 }  // namespace
 
-LabelledSolid segment_sweep(const LabelledSolid& in, int axis, const FT& half_length, bool erode,
+LabelledSolid segment_sweep(const LabelledSolid& in, const Vector& half, bool erode,
                             double max_pairs_per_triangle, std::size_t* arrangements) {
   bool thinned = true;
-  return sweep_in_steps(in, axis, half_length, erode, max_pairs_per_triangle,
+  return sweep_in_steps(in, half, erode, max_pairs_per_triangle,
                         max_pairs_per_triangle > 0 ? kMaxHalvings : 0, 0, thinned, arrangements);
-}
-
-}  // namespace morphex::detail
-
-namespace morphex::detail {
-
-std::optional<AxisBox> axis_box(const Mesh& b) {
-  if (b.points.size() != 8 || b.triangles.size() != 12) return std::nullopt;
-  std::array<FT, 3> lo, hi;
-  for (int k = 0; k < 3; ++k) {
-    lo[k] = hi[k] = b.points[0].cartesian(k);
-    for (const Point& p : b.points) {
-      lo[k] = CGAL::min(lo[k], p.cartesian(k));
-      hi[k] = CGAL::max(hi[k], p.cartesian(k));
-    }
-    if (!(lo[k] < hi[k])) return std::nullopt;
-  }
-  // Every vertex a corner, and all eight corners present.
-  unsigned seen = 0;
-  for (const Point& p : b.points) {
-    unsigned corner = 0;
-    for (int k = 0; k < 3; ++k) {
-      if (p.cartesian(k) == hi[k])
-        corner |= 1u << k;
-      else if (p.cartesian(k) != lo[k])
-        return std::nullopt;
-    }
-    seen |= 1u << corner;
-  }
-  if (seen != 0xffu) return std::nullopt;
-  AxisBox box;
-  box.centre = Point((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2);
-  for (int k = 0; k < 3; ++k) box.half[k] = (hi[k] - lo[k]) / 2;
-  return box;
-}
-
-LabelledSolid labelled(const Mesh& m) {
-  LabelledSolid out{m, std::vector<std::uint32_t>(m.triangles.size())};
-  std::iota(out.plane.begin(), out.plane.end(), 0u);
-  return out;
-}
-
-LabelledSolid box_morphology(LabelledSolid a, const AxisBox& box, bool erode) {
-  const Vector offset = box.centre - CGAL::ORIGIN;
-  if (!erode && offset != CGAL::NULL_VECTOR) a.mesh = translated(a.mesh, offset);
-  for (int axis = 0; axis < 3 && !a.mesh.empty(); ++axis)
-    a = segment_sweep(a, axis, box.half[axis], erode);
-  if (erode && offset != CGAL::NULL_VECTOR) a.mesh = translated(a.mesh, -offset);
-  return a;
-}
-
-Mesh box_morphology(const Mesh& a, const AxisBox& box, bool erode) {
-  return box_morphology(labelled(a), box, erode).mesh;
 }
 
 }  // namespace morphex::detail
