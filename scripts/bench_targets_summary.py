@@ -120,6 +120,48 @@ def target1(out):
     print(f"  target 1: {verdict(all_ok and shown)}")
 
 
+# The round zonohedra beside target 1, each against the issue's element it stands in for.
+ZONOBALLS = (("zonoball0", "octahedron"), ("zonoball", "ball"))
+
+
+def by_mesh_op(doc):
+    return {(name_of(r["input"]), r["op"]): r for r in doc["rows"]} if doc else {}
+
+
+def beside_target1(out):
+    """Zonoballs (not a target): ms per facet, and the time of the element they stand in for over
+    theirs on the same meshes and operations."""
+    docs = [(z, e, t1_rows(out, z), t1_rows(out, e)) for z, e in ZONOBALLS]
+    if not any(d for _, _, d, _ in docs):
+        return
+    print("Beside target 1 (not a target): round zonohedra by one sweep per segment, against the "
+          "element each stands in for")
+    for zono, element, doc, peer in docs:
+        if not doc:
+            continue
+        theirs = by_mesh_op(peer)
+        print(f"  {zono} ({doc['rows'][0]['se'] if doc['rows'] else '?'}; {date_of(doc)}), "
+              f"against {element}:")
+        for op in ("dilate", "erode", "open", "close"):
+            rows = [r for r in doc["rows"] if r["op"] == op]
+            if not rows:
+                continue
+            ms = [r["ms_per_facet"] for r in rows]
+            worst = max(rows, key=lambda r: r["ms_per_facet"])
+            ratios = [theirs[(name_of(r["input"]), op)]["ms_per_facet"] / r["ms_per_facet"]
+                      for r in rows if (name_of(r["input"]), op) in theirs]
+            line = (f"    {op:7} {len(rows)} meshes: ms/facet median {statistics.median(ms):.3f}, "
+                    f"max {max(ms):.3f} ({name_of(worst['input'])}), "
+                    f"{sum(m <= 0.1 for m in ms)}/{len(rows)} at most 0.1")
+            if ratios:
+                line += (f"; {element}/{zono} time median {statistics.median(ratios):.2f}x, min "
+                         f"{min(ratios):.2f}x, max {max(ratios):.2f}x")
+            invalid = [name_of(r["input"]) for r in rows if not r.get("valid", False)]
+            if invalid:
+                line += f"; INVALID results: {', '.join(invalid)}"
+            print(line)
+
+
 def check_kinds(out):
     """Input spec -> smooth, CAD, rotated smooth or rotated CAD, as scripts/bench-targets wrote
     them from scripts/bench-meshes.sh (OUT/t2-check-kinds.txt: spec, tab, kind). Inputs it does not
@@ -291,6 +333,24 @@ def markdown(out):
                      for o in ("dilate", "erode", "open", "close")]
             ratios = [ratio_cell(ops.get(o, {})) for o in ("dilate", "erode", "open", "close")]
             print(f"| {mesh} ({facets:,}) | {' | '.join(cells)} | {' / '.join(ratios)} |")
+    for zono, element in ZONOBALLS:
+        doc = t1_rows(out, zono)
+        if not doc:
+            continue
+        theirs = by_mesh_op(t1_rows(out, element))
+        print(f"\n{zono}, {doc['rows'][0]['se']} ({date_of(doc)}), ms per input facet, and "
+              f"{element}'s time over its:\n")
+        print(f"| mesh (facets) | dilate | erode | open | close | {element}/{zono} (d / e / o / c) |")
+        print("|---|---|---|---|---|---|")
+        by_mesh = {}
+        for r in doc["rows"]:
+            by_mesh.setdefault((name_of(r["input"]), r["facets"]), {})[r["op"]] = r
+        for (mesh, facets), ops in by_mesh.items():
+            ops_list = ("dilate", "erode", "open", "close")
+            cells = [f"{ops[o]['ms_per_facet']:.3f}" if o in ops else "-" for o in ops_list]
+            ratios = [f"{theirs[(mesh, o)]['ms_per_facet'] / ops[o]['ms_per_facet']:.1f}"
+                      if o in ops and (mesh, o) in theirs else "-" for o in ops_list]
+            print(f"| {mesh} ({facets:,}) | {' | '.join(cells)} | {' / '.join(ratios)} |")
     # The real pairs' other inputs (57 files) are summarized above, not listed.
     rows = [r for r in check_rows(out) if r[0] != "real pairs' inputs"]
     if rows:
@@ -309,7 +369,7 @@ def main():
         sys.exit("usage: bench_targets_summary.py OUT [--markdown]")
     out = args[0]
     print(f"\n== issue 47's targets, from {out}")
-    for target in (target1, target2, target3, target4):
+    for target in (target1, beside_target1, target2, target3, target4):
         target(out)
     print("Target 5: progress on a terminal for single operations: shown by tests/test_progress.cpp"
           " and the test cli.progress_on_a_terminal (no figure)")

@@ -24,6 +24,12 @@ expect 0 "octahedron \(octahedron:r=1/4;.*dilate  1 meshes: ms/facet median.*clo
   --json "$work/t1-octahedron-chained-2.json" icosphere:1 >/dev/null || fail "bench_morph failed"
 expect 0 "dilate  1 meshes.*open    2 meshes: ms/facet median.*close   1 meshes" \
   python3 "$summary" "$work"
+# Beside target 1, a zonoball's rows against the octahedron's on the same mesh and operations.
+"$tools/bench_morph" --threads 1 --se zonoball:r=1/4,level=0 --ops dilate,erode \
+  --json "$work/t1-zonoball0.json" l-shape >/dev/null || fail "bench_morph failed"
+expect 0 "target 1: MISSED.*Beside target 1.*zonoball0 \(zonoball:r=1/4,level=0;.*against octahedron:.*dilate  1 meshes: ms/facet median [0-9.]+.*octahedron/zonoball0 time median [0-9.]+x.*erode   1 meshes" \
+  python3 "$summary" "$work"
+! echo "$out" | grep -q "zonoball0.*open " || fail "a zonoball opening appeared from nowhere: $out"
 # Target 2's check from bench_check's JSON: a fanned prism counts as CAD, an icosphere as smooth.
 "$tools/bench_check" --threads 1 --no-peer --runs 1 --json "$work/t2-check.json" fan-prism:40 \
   icosphere:2 >/dev/null || fail "bench_check failed"
@@ -60,6 +66,6 @@ expect 2 "--targets: no target '5'" "$src/scripts/bench-targets" --targets 1,5 -
 [ ! -e "$work/refused" ] || fail "bench-targets made its output directory before refusing"
 
 # The rows as Markdown tables for docs/benchmarks.md.
-expect 0 "\| l-shape \([0-9]+\) \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \|.*\| fan-prism:40 \| CAD \|" \
+expect 0 "\| l-shape \([0-9]+\) \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \|.*zonoball0, zonoball:r=1/4,level=0.*octahedron/zonoball0.*\| l-shape \([0-9]+\) \| [0-9.]+ \| [0-9.]+ \| - \| - \| [0-9.]+ / [0-9.]+ / - / - \|.*\| fan-prism:40 \| CAD \|" \
   python3 "$summary" "$work" --markdown
 echo PASS
