@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "minkowski_internal.h"
+#include "morph_test_support.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
 #include "morphex/minkowski.h"
@@ -13,19 +14,10 @@
 
 using namespace morphex;
 
+using morphex::test_support::valid_volume;
+using morphex::test_support::volume_outside;
+
 namespace {
-
-FT valid_volume(const Mesh& mesh, const std::string& what) {
-  const MeshReport report = check_mesh(mesh);
-  EXPECT_TRUE(report.valid_solid()) << what << ": " << describe_problems(report);
-  return report.volume;
-}
-
-// vol(a minus b): zero exactly when a is inside b (up to a null set).
-FT volume_outside(const Mesh& a, const Mesh& b) {
-  const BooleanResult r = compute_boolean(check_solid(a), check_solid(b), BooleanOp::Difference);
-  return valid_volume(r.solid, "difference");
-}
 
 Mesh l_shape() {
   const BooleanResult r =

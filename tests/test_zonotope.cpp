@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "minkowski_internal.h"
+#include "morph_test_support.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
 #include "morphex/convex_hull.h"
@@ -16,18 +17,10 @@
 
 using namespace morphex;
 
+using morphex::test_support::valid_volume;
+using morphex::test_support::volume_outside;
+
 namespace {
-
-FT valid_volume(const Mesh& mesh, const std::string& what) {
-  const MeshReport report = check_mesh(mesh);
-  EXPECT_TRUE(report.valid_solid()) << what << ": " << describe_problems(report);
-  return report.volume;
-}
-
-FT volume_outside(const Mesh& a, const Mesh& b) {
-  return valid_volume(compute_boolean(check_solid(a), check_solid(b), BooleanOp::Difference).solid,
-                      "difference");
-}
 
 // Generators equal up to order and sign.
 bool same_generators(std::vector<Vector> a, std::vector<Vector> b) {
