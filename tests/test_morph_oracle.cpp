@@ -61,6 +61,14 @@ TEST(MinkowskiOracle, Zonoball) {
                        {"zonoball:r=1/8,level=0"});
 }
 
+// Even cylinders take the sweeps, odd ones the convolution pieces: both against minkowski_sum_3.
+TEST(MinkowskiOracle, Cylinder) {
+  expect_same_dilation(l_shape(), "L-shape",
+                       {"cylinder:r=1/8,h=1/3,segments=6", "cylinder:r=1/8,h=1/3,segments=7"});
+  expect_same_dilation(transformed(l_shape(), quaternion_rotation(5, 1, 2, 3)), "turned L-shape",
+                       {"cylinder:r=1/9,h=1/4,segments=8"});
+}
+
 TEST(MinkowskiOracle, Torus) {
   expect_same_dilation(make_torus(8, 4, 1.0, 0.4), "torus");
 }

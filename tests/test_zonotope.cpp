@@ -68,6 +68,26 @@ TEST(Zonotope, RecognisedExactlyFromItsMesh) {
             (std::vector<Vector>{Vector(2, 0, 0), Vector(0, FT(3) / 2, 0), Vector(0, 0, 1)}));
 }
 
+// A cylinder with an even number of segments is a prism over a centrally symmetric polygon: a
+// zonotope of one generator per pair of opposite polygon edges and one along its axis, centred at
+// its reference point. The generators are the polygon's own edges halved and the half height.
+TEST(Zonotope, EvenCylindersAreZonotopes) {
+  for (const int segments : {4, 12, 16, 64}) {
+    SCOPED_TRACE(std::to_string(segments) + " segments");
+    const StructuringElement se = parse_structuring_element(
+        "cylinder:r=1/3,h=1/5,segments=" + std::to_string(segments) + ",ox=1/2");
+    const auto z = detail::zonotope_of(se.mesh);
+    ASSERT_TRUE(z.has_value());
+    EXPECT_EQ(z->halves.size(), std::size_t(segments / 2 + 1));
+    EXPECT_EQ(z->centre, Point(FT(1) / 2, 0, 0));
+    EXPECT_EQ(std::count(z->halves.begin(), z->halves.end(), Vector(0, 0, FT(1) / 10)) +
+                  std::count(z->halves.begin(), z->halves.end(), Vector(0, 0, -FT(1) / 10)),
+              1);
+    EXPECT_EQ(valid_volume(detail::zonotope_mesh(z->centre, z->halves), "rebuilt"),
+              valid_volume(se.mesh, "cylinder"));
+  }
+}
+
 // Polytopes that are not zonotopes, some close to one, take the convolution.
 TEST(Zonotope, OtherPolytopesAreNotRecognised) {
   std::vector<Point> cut_corner;  // a cube with one corner cut off
@@ -87,7 +107,8 @@ TEST(Zonotope, OtherPolytopesAreNotRecognised) {
       {"octahedron", parse_structuring_element("octahedron:r=1").mesh},
       {"ball level 0", parse_structuring_element("ball:r=1,level=0").mesh},
       {"ball level 1", parse_structuring_element("ball:r=1,level=1").mesh},
-      {"cylinder", parse_structuring_element("cylinder:r=1,h=1,segments=12").mesh},
+      {"cylinder, 15 segments", parse_structuring_element("cylinder:r=1,h=1,segments=15").mesh},
+      {"cylinder, 3 segments", parse_structuring_element("cylinder:r=1,h=1,segments=3").mesh},
       {"cut corner", convex_hull(cut_corner)},
       {"triangular prism", convex_hull(prism)},
       {"pushed vertex", convex_hull(pushed.points)}};
@@ -147,6 +168,7 @@ TEST(Zonotope, SweepsGiveTheConvolutionsSolid) {
       {"L-shape", l_shape}};
   const std::vector<std::pair<std::string, Mesh>> elements = {
       {"zonoball", parse_structuring_element("zonoball:r=1/6,level=0").mesh},
+      {"cylinder", parse_structuring_element("cylinder:r=1/6,h=1/4,segments=8,oz=1/16").mesh},
       {"parallelepiped",
        detail::zonotope_mesh(Point(FT(1) / 10, 0, -FT(1) / 20),
                              {Vector(FT(1) / 8, 0, 0), Vector(FT(1) / 16, FT(1) / 7, 0),

@@ -180,12 +180,24 @@ Mesh make_zonoball(const FT& r, int level) {
   return detail::zonotope_mesh(Point(CGAL::ORIGIN), unit);
 }
 
+// With an even number of segments the polygon's second half is the first one negated, exactly:
+// a centrally symmetric polygon is a sum of segments (its opposite edges are equal and parallel),
+// so the prism is a zonotope and morphology by it takes one sweep per segment (zonotope.cpp)
+// instead of convolution pieces. Rounding cos and sin separately for each vertex would break that
+// symmetry by an ulp.
 Mesh make_prism(const FT& r, const FT& height, int segments) {
   const FT half = height / 2;
-  std::vector<Point> points;
-  for (int i = 0; i < segments; ++i) {
+  const bool symmetric = segments % 2 == 0;
+  std::vector<Point> polygon;
+  for (int i = 0; i < (symmetric ? segments / 2 : segments); ++i) {
     const double angle = 6.283185307179586 * i / segments;
-    const Point p = point_at_least({std::cos(angle), std::sin(angle), 0.0}, r);
+    polygon.push_back(point_at_least({std::cos(angle), std::sin(angle), 0.0}, r));
+  }
+  if (symmetric)
+    for (int i = 0; i < segments / 2; ++i)
+      polygon.emplace_back(-polygon[i].x(), -polygon[i].y(), 0);
+  std::vector<Point> points;
+  for (const Point& p : polygon) {
     points.emplace_back(p.x(), p.y(), -half);
     points.emplace_back(p.x(), p.y(), half);
   }
@@ -217,7 +229,8 @@ const std::vector<SeShapeInfo>& structuring_element_shapes() {
                      "0: 7 segments, inradius 0.82 r; 1: 13 segments, inradius 0.92 r"}})},
       {"cylinder",
        "cylinder along z: a prism over a regular polygon whose vertices are on or just outside "
-       "the circle of radius r",
+       "the circle of radius r; with an even number of segments the polygon is exactly centrally "
+       "symmetric, a sum of segments, and morphology by it is one sweep per segment",
        with_offset({{"r", "number", "", "radius"},
                     {"h", "number", "", "height (the cylinder spans z = -h/2 to h/2)"},
                     {"segments", "integer", "16", "polygon sides, 3 to 1024"}})},
