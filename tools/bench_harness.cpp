@@ -109,6 +109,7 @@ CLI::Option* Harness::add_threads(unsigned& threads, const std::string& what) {
 CLI::Option* Harness::add_thread_counts(std::vector<unsigned>& threads, const std::string& what) {
   return app_.add_option("--threads", threads, what)
       ->delimiter(',')
+      ->allow_extra_args(false)  // `--threads 1 mesh.off`: mesh.off is an input
       ->check(positive())
       ->capture_default_str();
 }

@@ -102,8 +102,10 @@ Mesh prepared(const std::string& input, const Options& o) {
 void add_options(bench::Harness& harness, Options& o) {
   CLI::App& app = harness.app();
   app.add_option("--se", o.se_spec, "Structuring element")->capture_default_str();
+  // One comma-separated argument: `--ops open,close mesh.off` leaves mesh.off an input.
   app.add_option("--ops", o.ops, "Operations: dilate, erode, open, close (comma-separated)")
       ->delimiter(',')
+      ->allow_extra_args(false)
       ->capture_default_str();
   app.add_flag("--peer", o.peer, "Run CGAL's minkowski_sum_3 on every dilation");
   app.add_flag("--manifold", o.manifold,

@@ -105,6 +105,15 @@ if(MORPHEX_BUILD_BENCHMARKS)
   add_test(NAME bench.morph_smoke COMMAND bench_morph --se cube:r=1/4 --peer l-shape)
   set_tests_properties(bench.morph_smoke PROPERTIES PASS_REGULAR_EXPRESSION
                        "agree with minkowski_sum_3")
+  # A comma-separated list option takes one argument: the inputs after it stay inputs.
+  add_test(NAME bench.list_options_leave_inputs
+           COMMAND bench_morph --threads 1 --ops dilate,erode l-shape)
+  set_tests_properties(bench.list_options_leave_inputs PROPERTIES PASS_REGULAR_EXPRESSION
+                       "l-shape +erode")
+  add_test(NAME bench.check_threads_leave_inputs
+           COMMAND bench_check --no-peer --runs 1 --threads 1 fan-prism:40)
+  set_tests_properties(bench.check_threads_leave_inputs PROPERTIES PASS_REGULAR_EXPRESSION
+                       "fan-prism:40 ")
   # Manifold's columns when bench_morph was built with it, the note that it was not otherwise.
   add_test(NAME bench.morph_manifold_smoke
            COMMAND bench_morph --se cube:r=1/4 --ops dilate,erode,open --manifold l-shape)
