@@ -50,9 +50,20 @@ class TrianglePairs {
   TrianglePairs(const PointTable& table, const std::vector<PointId>& position)
       : table_(table), position_(position), overlap_(table) {}
 
+  // What a caller knows of a triangle's plane: `sides` over corners that turn as the triangle's
+  // (orientation against it, with its signs), built once for many pairs, and points known to lie
+  // in it (a flat patch's own vertices, proved coplanar). Points in the plane are where the exact
+  // stage is slow: the filter cannot say zero, and off doubles (a rotated part, any Boolean's
+  // result) an orientation is a determinant of long integers.
+  struct KnownPlane {
+    const PointTable::PlaneSides* sides;
+    const std::vector<PointId>* in_plane = nullptr;  // sorted
+  };
+
   // True when the closed triangles meet in anything other than nothing, one common vertex or one
-  // common edge, "common" by position.
-  bool improper(const Triangle& f, const Triangle& g) const {
+  // common edge, "common" by position. `kf`, `kg`: what is known of f's and g's planes, if any.
+  bool improper(const Triangle& f, const Triangle& g, const KnownPlane* kf = nullptr,
+                const KnownPlane* kg = nullptr) const {
     const std::array<PointId, 3> a = ids(f), b = ids(g);
     int shared = 0, sa = -1, sb = -1, sa2 = -1, sb2 = -1;
     for (int i = 0; i < 3; ++i)
@@ -66,12 +77,12 @@ class TrianglePairs {
     if (shared == 2) {
       // A common edge: improper only when the triangles fold onto each other.
       const PointId p = a[sa], q = a[sa2], rf = a[3 - sa - sa2], rg = b[3 - sb - sb2];
-      if (table_.orientation(p, q, rf, rg) != CGAL::ZERO) return false;
+      if (side(a, kf, rg) != CGAL::ZERO) return false;
       const int dropped = table_.dominant_axis(p, q, rf);
       return table_.orientation_2(dropped, p, q, rf) == table_.orientation_2(dropped, p, q, rg);
     }
-    if (shared == 1) return improper_at_vertex(a, sa, b, sb);
-    return triangles_meet(a, b);
+    if (shared == 1) return improper_at_vertex(a, sa, b, sb, kf, kg);
+    return triangles_meet(a, b, kf, kg);
   }
 
  private:
@@ -79,18 +90,25 @@ class TrianglePairs {
     return {position_[t[0]], position_[t[1]], position_[t[2]]};
   }
 
+  // orientation(t[0], t[1], t[2], x), through what is known of t's plane when `k` is given.
+  CGAL::Sign side(const std::array<PointId, 3>& t, const KnownPlane* k, PointId x) const {
+    if (!k) return table_.orientation(t[0], t[1], t[2], x);
+    if (k->in_plane && std::binary_search(k->in_plane->begin(), k->in_plane->end(), x))
+      return CGAL::ZERO;
+    return (*k->sides)(x);
+  }
+
   // Triangles a and b with one common position, a[sa] = b[sb], meet beyond it.
   bool improper_at_vertex(const std::array<PointId, 3>& a, int sa, const std::array<PointId, 3>& b,
-                          int sb) const {
+                          int sb, const KnownPlane* ka, const KnownPlane* kb) const {
     const PointId v = a[sa], a1 = a[(sa + 1) % 3], a2 = a[(sa + 2) % 3], b1 = b[(sb + 1) % 3],
                   b2 = b[(sb + 2) % 3];
-    const CGAL::Sign o1 = table_.orientation(b[0], b[1], b[2], a1),
-                     o2 = table_.orientation(b[0], b[1], b[2], a2);
+    const CGAL::Sign o1 = side(b, kb, a1), o2 = side(b, kb, a2);
     // a meets b's plane at v alone: nothing more of a can be in b.
     if (o1 != CGAL::ZERO && o1 == o2) return false;
     if (o1 == CGAL::ZERO && o2 == CGAL::ZERO) return coplanar_wedges_overlap(v, a1, a2, b1, b2);
     // Anything beyond the common vertex reaches the edge opposite it in one of the triangles.
-    return segment_meets_triangle(a1, a2, b) || segment_meets_triangle(b1, b2, a);
+    return segment_meets_triangle(a1, a2, b, kb) || segment_meets_triangle(b1, b2, a, ka);
   }
 
   // Coplanar triangles (v, a1, a2) and (v, b1, b2), both proper, meet beyond v exactly when their
@@ -121,15 +139,16 @@ class TrianglePairs {
   }
 
   // Closed triangles a and b (no common position) meet.
-  bool triangles_meet(const std::array<PointId, 3>& a, const std::array<PointId, 3>& b) const {
+  bool triangles_meet(const std::array<PointId, 3>& a, const std::array<PointId, 3>& b,
+                      const KnownPlane* ka, const KnownPlane* kb) const {
     // Either triangle beside the other's plane settles it. Near-coplanar pairs (a nearly flat
     // face against a wall that ends on it) often have one way that the filter decides and one
     // that needs exact arithmetic, so both ways are tried by the filter first.
     if (certainly_beside(a, b) || certainly_beside(b, a)) return false;
     std::int8_t sa[3], sb[3];
-    for (int i = 0; i < 3; ++i) sa[i] = std::int8_t(table_.orientation(b[0], b[1], b[2], a[i]));
+    for (int i = 0; i < 3; ++i) sa[i] = std::int8_t(side(b, kb, a[i]));
     if (sa[0] != 0 && sa[0] == sa[1] && sa[1] == sa[2]) return false;
-    for (int i = 0; i < 3; ++i) sb[i] = std::int8_t(table_.orientation(a[0], a[1], a[2], b[i]));
+    for (int i = 0; i < 3; ++i) sb[i] = std::int8_t(side(a, ka, b[i]));
     if (sb[0] != 0 && sb[0] == sb[1] && sb[1] == sb[2]) return false;
     if (sa[0] == 0 && sa[1] == 0 && sa[2] == 0) return coplanar_meet(a, b);
     return overlap_(a, b, sa, sb);
@@ -146,9 +165,9 @@ class TrianglePairs {
   }
 
   // The closed segment ab meets the closed triangle t (a, b not corners of t by position).
-  bool segment_meets_triangle(PointId a, PointId b, const std::array<PointId, 3>& t) const {
-    const CGAL::Sign oa = table_.orientation(t[0], t[1], t[2], a),
-                     ob = table_.orientation(t[0], t[1], t[2], b);
+  bool segment_meets_triangle(PointId a, PointId b, const std::array<PointId, 3>& t,
+                              const KnownPlane* kt) const {
+    const CGAL::Sign oa = side(t, kt, a), ob = side(t, kt, b);
     if (oa != CGAL::ZERO && oa == ob) return false;
     if (oa == CGAL::ZERO && ob == CGAL::ZERO) {
       const int d = table_.dominant_axis(t[0], t[1], t[2]);
@@ -522,7 +541,9 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
     if (candidates.empty()) return;
     const detail::UpwardRounding rounding;
     Found& f = found[tree.self_pair_tasks() + p];
-    auto test_pair = [&](std::uint32_t i, std::uint32_t j) {
+    auto test_pair = [&](std::uint32_t i, std::uint32_t j,
+                         const TrianglePairs::KnownPlane* ki = nullptr,
+                         const TrianglePairs::KnownPlane* kj = nullptr) {
       // As in the traversal: a common vertex whose star is proved embedded settles the pair.
       if (!proved.empty())
         for (const VertexIndex v : mesh.triangles[i])
@@ -530,15 +551,35 @@ void find_self_intersections(const Mesh& mesh, const PointTable& table,
               (v == mesh.triangles[j][0] || v == mesh.triangles[j][1] || v == mesh.triangles[j][2]))
             return;
       if (planes.beside(i, j) || planes.beside(j, i)) return;
-      if (test.improper(mesh.triangles[i], mesh.triangles[j])) f.add(i, j, list);
+      if (test.improper(mesh.triangles[i], mesh.triangles[j], ki, kj)) f.add(i, j, list);
     };
-    if (planar.patches[p].kind == detail::PlanarPatch::Kind::NearlyFlat) {
-      slab_pairs(mesh, table, position, frame, planar.patches[p], candidates, parts, test_pair);
-    } else {
-      const TriangleTree patch(mesh, vertex_boxes, planar.patches[p].triangles);
-      for (const auto& [i, j] :
-           TriangleTree::overlapping_pairs(patch, TriangleTree(mesh, vertex_boxes, candidates)))
-        test_pair(i, j);
+    const detail::PlanarPatch& patch = planar.patches[p];
+    if (patch.kind == detail::PlanarPatch::Kind::NearlyFlat) {
+      slab_pairs(mesh, table, position, frame, patch, candidates, parts,
+                 [&](std::uint32_t i, std::uint32_t j) { test_pair(i, j); });
+      return;
+    }
+    auto pairs = TriangleTree::overlapping_pairs(TriangleTree(mesh, vertex_boxes, patch.triangles),
+                                                 TriangleTree(mesh, vertex_boxes, candidates));
+    if (patch.kind != detail::PlanarPatch::Kind::Flat) {
+      for (const auto& [i, j] : pairs) test_pair(i, j);
+      return;
+    }
+    // A flat patch's triangles all turn as the triangle spanning its plane (they were joined so)
+    // and its vertices lie in that plane: orientation against any of them is the plane's, built
+    // once. A candidate meets several of the patch's triangles: its plane is built once per group.
+    const PointTable::PlaneSides patch_sides(table, patch.plane);
+    const TrianglePairs::KnownPlane in_patch{&patch_sides, &patch.vertices};
+    std::sort(pairs.begin(), pairs.end(),
+              [](const auto& x, const auto& y) { return x.second < y.second; });
+    for (std::size_t k = 0; k < pairs.size();) {
+      const std::uint32_t j = pairs[k].second;
+      const Triangle& g = mesh.triangles[j];
+      const PointTable::PlaneSides candidate_sides(
+          table, {position[g[0]], position[g[1]], position[g[2]]});
+      const TrianglePairs::KnownPlane candidate{&candidate_sides};
+      for (; k < pairs.size() && pairs[k].second == j; ++k)
+        test_pair(pairs[k].first, j, &in_patch, &candidate);
     }
   });
   report(found, r);
