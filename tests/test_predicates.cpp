@@ -377,6 +377,16 @@ TEST(PointTable, PredicatesAndConstructionsAgreeWithCgal) {
     expected_crossings.push_back(*boost::get<Point>(&*x));
   }
   ASSERT_GE(crossings.size(), 100u);
+  // A later operation's table reads a constructed point's homogeneous coordinates without making
+  // its rational ones: in lowest terms, they are those the rational coordinates give (W their
+  // least common denominator). Here from the parents; at the end from the table's exact values.
+  auto expect_homogeneous_as_from_rationals = [&] {
+    for (std::size_t i = 0; i < crossings.size(); ++i)
+      EXPECT_EQ(detail::homogeneous_of(table.point(crossings[i])),
+                detail::homogeneous_of(CGAL::exact(expected_crossings[i])))
+          << i;
+  };
+  expect_homogeneous_as_from_rationals();
   for (std::size_t i = 0; i < crossings.size(); ++i) {
     EXPECT_EQ(table.point(crossings[i]), expected_crossings[i]) << i;
     const auto approx = table.approx(crossings[i]);
@@ -418,6 +428,7 @@ TEST(PointTable, PredicatesAndConstructionsAgreeWithCgal) {
     const detail::Recipe& r = table.recipe(crossings[i]);
     ASSERT_EQ(table.orientation(r.a, r.b, r.c, crossings[i]), CGAL::COPLANAR) << i;
   }
+  expect_homogeneous_as_from_rationals();
 }
 
 // The point table's constructed points: references taken before the array grows past several

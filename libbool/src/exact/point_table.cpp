@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 
 #include "boolean/facet_lines.h"
 #include "exact/filtered.h"
@@ -80,9 +81,24 @@ Interval clamp(const Interval& x, const Interval& bound) {
   return lo <= hi ? Interval(lo, hi) : bound;
 }
 
+// Divides out the common factor of the four coordinates (W stays positive). The result is the
+// form homogeneous_of gives the point's rational coordinates (W the least common denominator),
+// without them: lcm(W / gcd(X_i, W)) = W / gcd(X, Y, Z, W).
+void remove_content(Homogeneous& h) {
+  mpz_class g;
+  mpz_gcd(g.get_mpz_t(), h[3].get_mpz_t(), h[0].get_mpz_t());
+  for (int i = 1; i < 3 && g != 1; ++i) mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), h[i].get_mpz_t());
+  if (g == 1) return;
+  for (mpz_class& x : h) mpz_divexact(x.get_mpz_t(), x.get_mpz_t(), g.get_mpz_t());
+}
+
 // The lazily evaluated output point of a construction: its approximation is the table's; its
-// exact value is computed from the parents (or from homogeneous coordinates already known) on
-// first request, after which the parents are released, as CGAL's own lazy constructions do.
+// homogeneous coordinates are computed from the parents' (or taken from those already known) on
+// first request, after which the parents are released, as CGAL's own lazy constructions do. A
+// later operation's table reads them directly (homogeneous_of): a Boolean's result is the next
+// one's input in a union tree or a morphology, and the round trip through rational coordinates
+// (a gcd per coordinate, then their least common multiple) was a large part of its exact stage.
+// The rational coordinates are made only when something asks for them.
 using LazyPoint = Point::Rep;
 class ConstructedPointRep final : public LazyPoint::Self_rep {
   using Base = LazyPoint::Self_rep;
@@ -94,27 +110,35 @@ class ConstructedPointRep final : public LazyPoint::Self_rep {
     if (known) known_ = std::make_unique<Homogeneous>(*known);
   }
 
+  const Homogeneous& homogeneous() const {
+    std::call_once(homogeneous_once_, [this] {
+      if (known_) {
+        homogeneous_ = *known_;
+      } else {
+        std::array<Homogeneous, 5> parents;
+        for (int i = 0; i < 5; ++i) parents[i] = homogeneous_of(parents_[i]);
+        homogeneous_ = construct_homogeneous(recipe_, parents[0], parents[1], parents[2],
+                                             parents[3], parents[4]);
+      }
+      remove_content(homogeneous_);
+      parents_ = {};
+      known_.reset();
+    });
+    return homogeneous_;
+  }
+
   void update_exact() const override {
-    Homogeneous h;
-    if (known_) {
-      h = *known_;
-    } else {
-      std::array<Homogeneous, 5> parents;
-      for (int i = 0; i < 5; ++i) parents[i] = homogeneous_of(parents_[i]);
-      h = construct_homogeneous(recipe_, parents[0], parents[1], parents[2], parents[3],
-                                parents[4]);
-    }
-    auto* exact = new ExactPoint(cartesian(h));
+    auto* exact = new ExactPoint(cartesian(homogeneous()));
     this->set_at(exact);
     this->set_ptr(exact);
-    parents_ = {};
-    known_.reset();
   }
 
  private:
   Recipe recipe_;
   mutable std::array<Point, 5> parents_;
   mutable std::unique_ptr<Homogeneous> known_;
+  mutable std::once_flag homogeneous_once_;
+  mutable Homogeneous homogeneous_;
 };
 
 template <class Number>
@@ -142,6 +166,10 @@ Homogeneous homogeneous_of(const ExactPoint& p) {
 }
 
 Homogeneous homogeneous_of(const Point& p) {
+  // The handle's representation (public, if meant for CGAL's compact containers).
+  const auto* rep = static_cast<const CGAL::Rep*>(p.rep().for_compact_container());
+  if (const auto* constructed = dynamic_cast<const ConstructedPointRep*>(rep))
+    return constructed->homogeneous();
   if (has_double_coordinates(p)) {
     const auto& a = CGAL::approx(p);
     const double c[3] = {a.x().inf(), a.y().inf(), a.z().inf()};
