@@ -27,7 +27,9 @@ namespace {
 using ExactPoint = Kernel::Exact_kernel::Point_3;
 using ExactVector = Kernel::Exact_kernel::Vector_3;
 
-// Beyond this many generators the proof's hulls and the sweeps cost more than the convolution.
+// A bound on the proof's work (one hull per generator) and on the sweeps. Not a measured
+// crossover: up to 33 generators (a 64-segment cylinder) the sweeps beat the convolution in 22 of
+// 24 measured cases, some erosions excepted (docs/benchmarks.md, "Cylinders by sweeps").
 constexpr std::size_t kMaxGenerators = 64;
 
 bool parallel(const ExactVector& a, const ExactVector& b) {
