@@ -33,6 +33,7 @@
 #include "bench_harness.h"
 #include "morphex/check.h"
 #include "morphex/internal/fixtures.h"
+#include "morphex/internal/huge_pages.h"
 #include "morphex/internal/stopwatch.h"
 #include "morphex/io.h"
 #include "peers.h"
@@ -63,6 +64,7 @@ Mesh input_mesh(const std::string& spec) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  morphex::use_huge_page_malloc(argv);  // first: it may restart the process
   bench::Harness harness(
       "bench_check: the validity check per million facets at several thread counts, beside "
       "CGAL's self-intersection test");

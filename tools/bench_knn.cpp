@@ -20,6 +20,7 @@
 
 #include "bench_harness.h"
 #include "morphex/index.h"
+#include "morphex/internal/huge_pages.h"
 #include "morphex/internal/stopwatch.h"
 #include "morphex/knn.h"
 
@@ -94,6 +95,7 @@ nlohmann::json time_index_query(std::size_t rows, std::size_t dims, std::size_t 
 }  // namespace
 
 int main(int argc, char** argv) {
+  morphex::use_huge_page_malloc(argv);  // first: it may restart the process
   bench::Harness harness("k-nearest-neighbour queries: DescriptorMatrix against the plain loop");
   CLI::App& app = harness.app();
   std::size_t rows = 1000000, dims = 185, k = 10;

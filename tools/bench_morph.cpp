@@ -36,6 +36,7 @@
 #include "manifold_peer.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
+#include "morphex/internal/huge_pages.h"
 #include "morphex/internal/solid_access.h"
 #include "morphex/internal/stopwatch.h"
 #include "morphex/io.h"
@@ -326,6 +327,7 @@ void print_manifold_note() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  morphex::use_huge_page_malloc(argv);  // first: it may restart the process
   bench::Harness harness(
       "bench_morph: morphex morphology against CGAL's minkowski_sum_3 on the same input");
   Options o;

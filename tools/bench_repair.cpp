@@ -21,6 +21,7 @@
 #include "bench_common.h"
 #include "bench_harness.h"
 #include "morphex/check.h"
+#include "morphex/internal/huge_pages.h"
 #include "morphex/internal/stopwatch.h"
 #include "morphex/io.h"
 #include "morphex/repair.h"
@@ -35,6 +36,7 @@ using bench::median_of_runs;
 }  // namespace
 
 int main(int argc, char** argv) {
+  morphex::use_huge_page_malloc(argv);  // first: it may restart the process
   bench::Harness harness("bench_repair: the exact repair against the validity check");
   CLI::App& app = harness.app();
   int runs = 3;

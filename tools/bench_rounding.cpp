@@ -28,6 +28,7 @@
 #include "bench_harness.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
+#include "morphex/internal/huge_pages.h"
 #include "morphex/internal/solid_access.h"
 #include "morphex/io.h"
 #include "morphex/morphology.h"
@@ -229,6 +230,7 @@ std::vector<Row> morphology_rows(const Options& o, const fs::path& dir) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  morphex::use_huge_page_malloc(argv);  // first: it may restart the process
   bench::Harness harness(
       "bench_rounding: the cost and the validity of rounding exact results to floats");
   CLI::App& app = harness.app();

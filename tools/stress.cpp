@@ -24,6 +24,7 @@
 #include "bench_harness.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
+#include "morphex/internal/huge_pages.h"
 #include "morphex/internal/stopwatch.h"
 #include "morphex/io.h"
 #include "morphex/morphology.h"
@@ -123,6 +124,7 @@ std::string problem_with(const Mesh& m) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  morphex::use_huge_page_malloc(argv);  // first: it may restart the process
   bench::Harness harness(
       "stress: randomized exact Booleans and morphology, checked by exact "
       "volume identities");

@@ -97,6 +97,16 @@ add_test(NAME cli.progress_on_a_terminal COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR
 set_tests_properties(cli.progress_on_a_terminal PROPERTIES PASS_REGULAR_EXPRESSION "PASS")
 add_test(NAME cli.sigint_leaves_no_output COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/interrupt.sh
   $<TARGET_FILE:morphex> ${data} ${PROJECT_BINARY_DIR}/cli-interrupt)
+# glibc's malloc with huge pages: the executables restart themselves once for it, keeping their
+# arguments, standard input and the user's own tunables (morphex/internal/huge_pages.h).
+if(MORPHEX_SANITIZE OR MORPHEX_FUZZ OR MORPHEX_SCALABLE_MALLOC)
+  set(morphex_allocator other)
+else()
+  set(morphex_allocator glibc)
+endif()
+add_test(NAME cli.huge_page_malloc COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/huge_pages.sh
+  $<TARGET_FILE:morphex> ${data} ${PROJECT_BINARY_DIR}/cli-huge-pages ${morphex_allocator})
+set_tests_properties(cli.huge_page_malloc PROPERTIES PASS_REGULAR_EXPRESSION "PASS")
 
 # The benchmarks run and agree with their exact peers on a small case (timings are not asserted).
 if(MORPHEX_BUILD_BENCHMARKS)

@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The executables' restart for glibc's huge pages (morphex/internal/huge_pages.h): when, and with
+// which tunables. The restart itself is tested from outside, on the command line
+// (tests/cli/huge_pages.sh).
+#include <gtest/gtest.h>
+
+#include "morphex/internal/huge_pages.h"
+
+namespace morphex {
+namespace {
+
+const char* const kMadvise = "always [madvise] never";
+
+TEST(HugePages, AskedForWhereTheKernelGivesThemOnRequest) {
+  EXPECT_EQ(huge_page_tunables(nullptr, kMadvise), "glibc.malloc.hugetlb=1");
+  EXPECT_EQ(huge_page_tunables("", kMadvise), "glibc.malloc.hugetlb=1");
+  // The kernel's line as read, with or without its newline.
+  EXPECT_EQ(huge_page_tunables(nullptr, "always [madvise] never\n"), "glibc.malloc.hugetlb=1");
+}
+
+TEST(HugePages, OtherTunablesAreKept) {
+  EXPECT_EQ(huge_page_tunables("glibc.malloc.arena_max=4", kMadvise),
+            "glibc.malloc.arena_max=4:glibc.malloc.hugetlb=1");
+  EXPECT_EQ(
+      huge_page_tunables("glibc.malloc.arena_max=4:glibc.malloc.trim_threshold=65536", kMadvise),
+      "glibc.malloc.arena_max=4:glibc.malloc.trim_threshold=65536:glibc.malloc.hugetlb=1");
+}
+
+TEST(HugePages, TheUsersChoiceStands) {
+  EXPECT_EQ(huge_page_tunables("glibc.malloc.hugetlb=0", kMadvise), std::nullopt);
+  EXPECT_EQ(huge_page_tunables("glibc.malloc.arena_max=4:glibc.malloc.hugetlb=2", kMadvise),
+            std::nullopt);
+}
+
+TEST(HugePages, NothingWhereAskingChangesNothing) {
+  // "always": every large enough mapping gets them unasked; "never": none; no THP at all.
+  EXPECT_EQ(huge_page_tunables(nullptr, "[always] madvise never"), std::nullopt);
+  EXPECT_EQ(huge_page_tunables(nullptr, "always madvise [never]"), std::nullopt);
+  EXPECT_EQ(huge_page_tunables(nullptr, ""), std::nullopt);
+  EXPECT_EQ(huge_page_tunables("glibc.malloc.arena_max=4", "[always] madvise never"), std::nullopt);
+}
+
+}  // namespace
+}  // namespace morphex
