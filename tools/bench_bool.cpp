@@ -35,7 +35,6 @@
 #include "bench_harness.h"
 #include "morphex/boolean.h"
 #include "morphex/check.h"
-#include "morphex/internal/huge_pages.h"
 #include "morphex/internal/solid_access.h"
 #include "morphex/internal/stopwatch.h"
 #include "morphex/io.h"
@@ -400,7 +399,6 @@ void print_legend() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  morphex::use_huge_page_malloc(argv);  // first: it may restart the process
   Harness harness(
       "bench_bool: morphex Booleans against CGAL corefinement and Nef polyhedra (or, "
       "--set real, against Manifold on pairs of real meshes)");
