@@ -455,6 +455,19 @@ TEST(ThreeMf, WithoutLib3mfItIsRefusedClearly) {
 }
 
 #ifdef MORPHEX_HAVE_3MF
+// lib3mf is loaded when a 3MF file is first met: a machine without it must be told which library
+// is missing and which package brings it, and a library that is not lib3mf 1.8 must be named.
+TEST(ThreeMf, ALibraryThatCannotBeLoadedIsNamed) {
+  const std::string missing = detail::load_3mf_library("libmorphex-no-such-lib3mf.so.1");
+  EXPECT_CONTAINS(missing, "cannot load libmorphex-no-such-lib3mf.so.1");
+  EXPECT_CONTAINS(missing, "install Debian's lib3mf1");
+  const std::string other = detail::load_3mf_library("libz.so.1");
+  EXPECT_CONTAINS(other, "libz.so.1 has no function lib3mf_");
+  EXPECT_EQ(detail::load_3mf_library(MORPHEX_LIB3MF_SONAME), "");
+  EXPECT_TRUE(detail::have_3mf());
+  EXPECT_EQ(detail::why_no_3mf(), "");
+}
+
 namespace {
 
 // A 3MF file made with lib3mf itself: one mesh object placed twice by build items with different

@@ -66,9 +66,7 @@ MeshFormat format_from_path(const std::string& path) {
   if (ext.size() < 2 || !lookup_format(ext.substr(1), format))
     throw InputError(path, "unknown mesh format '" + ext + "' " + kExpected);
   if (!format_available(format))
-    throw InputError(path,
-                     "3MF is not available: this morphex was built without lib3mf "
-                     "(install lib3mf-dev and reconfigure)");
+    throw InputError(path, "3MF is not available: " + detail::why_no_3mf());
   return format;
 }
 

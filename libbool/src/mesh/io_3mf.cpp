@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// 3MF through Debian's lib3mf 1.8 (its plain C interface, NMR_DLLInterfaces.h). Reading takes the
-// mesh objects of every build item, through components, with each transform and the file's unit
-// applied exactly, in millimetres (3MF's default unit). Written in micrometres (a mesh's unit is
-// the millimetre): lib3mf stores coordinates as floats and writes them with six decimals, which
-// in micrometres is nearly as fine as the float itself (RoundingGrid::ThreeMf,
-// morphex/rounding.h, rounds to exactly what it writes; write_3mf checks that it did).
+// 3MF through Debian's lib3mf 1.8 (its plain C interface, NMR_DLLInterfaces.h, loaded with dlopen
+// when first needed). Reading takes the mesh objects of every build item, through components, with
+// each transform and the file's unit applied exactly, in millimetres (3MF's default unit). Written
+// in micrometres (a mesh's unit is the millimetre): lib3mf stores coordinates as floats and writes
+// them with six decimals, which in micrometres is nearly as fine as the float itself
+// (RoundingGrid::ThreeMf, morphex/rounding.h, rounds to exactly what it writes; write_3mf checks
+// that it did).
 #include "mesh/io_text.h"
 
 #ifdef MORPHEX_HAVE_3MF
+#include <dlfcn.h>
+
 #include <Model/COM/NMR_DLLInterfaces.h>
 #endif
 
@@ -20,6 +23,12 @@ namespace morphex::detail {
 
 bool have_3mf() {
   return false;
+}
+std::string why_no_3mf() {
+  return "this morphex was built without lib3mf (install lib3mf-dev and reconfigure)";
+}
+std::string load_3mf_library(const char*) {
+  return why_no_3mf();
 }
 Mesh read_3mf(const std::string&, const std::string& name) {
   throw InputError(name, "3MF is not available: this morphex was built without lib3mf");
@@ -34,6 +43,65 @@ namespace {
 
 using namespace NMR;
 
+// The functions of lib3mf's C interface used here, looked up once when 3MF is first needed.
+// clang-format off
+#define MORPHEX_LIB3MF_FUNCTIONS(X) \
+  X(builditem_getobjectresource) X(builditem_getobjecttransform) \
+  X(builditemiterator_getcurrent) X(builditemiterator_movenext) \
+  X(component_getobjectresource) X(component_gettransform) \
+  X(componentsobject_getcomponent) X(componentsobject_getcomponentcount) X(createmodel) \
+  X(getlasterror) X(meshobject_gettrianglecount) X(meshobject_gettriangleindices) \
+  X(meshobject_getvertexcount) X(meshobject_getvertices) X(meshobject_setgeometry) \
+  X(model_addbuilditem) X(model_addmeshobject) X(model_addmetadatautf8) \
+  X(model_getbuilditems) X(model_getunit) X(model_queryreader) X(model_querywriter) \
+  X(model_setunit) X(object_gettype) X(object_ismeshobject) X(reader_readfrombuffer) \
+  X(release) X(writer_getstreamsize) X(writer_writetobuffer)
+// clang-format on
+
+// lib3mf is loaded with dlopen when a 3MF file is first read or written, not linked: loading it
+// (with the libzip it brings) took about 7 ms of every command's start, 3MF or not.
+struct Lib3mf {
+#define MORPHEX_LIB3MF_POINTER(f) decltype(&lib3mf_##f) f = nullptr;
+  MORPHEX_LIB3MF_FUNCTIONS(MORPHEX_LIB3MF_POINTER)
+#undef MORPHEX_LIB3MF_POINTER
+  std::string error;  // why it could not be loaded; empty once loaded
+};
+
+// Fills `api` from the library `soname`, or says why it cannot.
+std::string load(Lib3mf& api, const char* soname) {
+  void* library = dlopen(soname, RTLD_NOW | RTLD_LOCAL);  // never closed: used until exit
+  if (!library) {
+    const char* why = dlerror();
+    return std::string("cannot load ") + soname + (why ? std::string(" (") + why + ")" : "") +
+           ": install Debian's lib3mf1 (scripts/setup does)";
+  }
+#define MORPHEX_LIB3MF_LOOKUP(f)                                           \
+  api.f = reinterpret_cast<decltype(api.f)>(dlsym(library, "lib3mf_" #f)); \
+  if (!api.f) return std::string(soname) + " has no function lib3mf_" #f ": not lib3mf 1.8";
+  MORPHEX_LIB3MF_FUNCTIONS(MORPHEX_LIB3MF_LOOKUP)
+#undef MORPHEX_LIB3MF_LOOKUP
+  return {};
+}
+
+// The process's lib3mf, loaded on first use (MORPHEX_LIB3MF_SONAME: the name configure found).
+const Lib3mf& loaded() {
+  static const Lib3mf api = [] {
+    Lib3mf a;
+    a.error = load(a, MORPHEX_LIB3MF_SONAME);
+    return a;
+  }();
+  return api;
+}
+
+// The loaded library: only called after require() (or on a handle it gave).
+const Lib3mf& lib() {
+  return loaded();
+}
+
+void require(const std::string& name) {
+  if (!loaded().error.empty()) throw InputError(name, "3MF is not available: " + why_no_3mf());
+}
+
 // Releases a lib3mf instance at the end of its scope.
 struct Handle {
   PLib3MFBase* p = nullptr;
@@ -41,7 +109,7 @@ struct Handle {
   Handle(const Handle&) = delete;
   Handle& operator=(const Handle&) = delete;
   ~Handle() {
-    if (p) lib3mf_release(p);
+    if (p) lib().release(p);
   }
 };
 
@@ -49,7 +117,7 @@ struct Handle {
 std::string last_error(PLib3MFBase* instance) {
   DWORD code = 0;
   LPCSTR message = nullptr;
-  if (instance && lib3mf_getlasterror(instance, &code, &message) == 0 && message && *message)
+  if (instance && lib().getlasterror(instance, &code, &message) == 0 && message && *message)
     return std::string(message) + " (lib3mf error " + std::to_string(code) + ")";
   return "lib3mf error";
 }
@@ -113,16 +181,16 @@ struct Reader {
 
   void add_mesh_object(PLib3MFModelMeshObject* object, const Affine& a) {
     DWORD nv = 0, nt = 0;
-    call(lib3mf_meshobject_getvertexcount(object, &nv), object, name, "vertex count");
-    call(lib3mf_meshobject_gettrianglecount(object, &nt), object, name, "triangle count");
+    call(lib().meshobject_getvertexcount(object, &nv), object, name, "vertex count");
+    call(lib().meshobject_gettrianglecount(object, &nt), object, name, "triangle count");
     std::vector<MODELMESHVERTEX> vertices(nv);
     std::vector<MODELMESHTRIANGLE> triangles(nt);
     if (nv)
-      call(lib3mf_meshobject_getvertices(object, vertices.data(), nv, nullptr), object, name,
+      call(lib().meshobject_getvertices(object, vertices.data(), nv, nullptr), object, name,
            "vertices");
     if (nt)
-      call(lib3mf_meshobject_gettriangleindices(object, triangles.data(), nt, nullptr), object,
-           name, "triangles");
+      call(lib().meshobject_gettriangleindices(object, triangles.data(), nt, nullptr), object, name,
+           "triangles");
     const VertexIndex base = VertexIndex(mesh.points.size());
     for (const MODELMESHVERTEX& v : vertices) {
       FT c[3];
@@ -152,23 +220,21 @@ struct Reader {
   void add_object(PLib3MFModelObjectResource* object, const Affine& a, int depth) {
     if (depth > 32) throw InputError(name, "components nested deeper than 32 levels");
     DWORD type = 0;
-    call(lib3mf_object_gettype(object, &type), object, name, "object type");
+    call(lib().object_gettype(object, &type), object, name, "object type");
     // Supports and "other" objects are not part of the solid a printer builds.
     if (type == MODELOBJECTTYPE_SUPPORT || type == MODELOBJECTTYPE_OTHER) return;
     BOOL is_mesh = false;
-    call(lib3mf_object_ismeshobject(object, &is_mesh), object, name, "object kind");
+    call(lib().object_ismeshobject(object, &is_mesh), object, name, "object kind");
     if (is_mesh) return add_mesh_object(object, a);
     DWORD count = 0;
-    call(lib3mf_componentsobject_getcomponentcount(object, &count), object, name, "components");
+    call(lib().componentsobject_getcomponentcount(object, &count), object, name, "components");
     for (DWORD c = 0; c < count; ++c) {
       Handle component, part;
-      call(lib3mf_componentsobject_getcomponent(object, c, &component.p), object, name,
-           "component");
-      call(lib3mf_component_getobjectresource(component.p, &part.p), component.p, name,
+      call(lib().componentsobject_getcomponent(object, c, &component.p), object, name, "component");
+      call(lib().component_getobjectresource(component.p, &part.p), component.p, name,
            "component object");
       MODELTRANSFORM t;
-      call(lib3mf_component_gettransform(component.p, &t), component.p, name,
-           "component transform");
+      call(lib().component_gettransform(component.p, &t), component.p, name, "component transform");
       add_object(part.p, compose(a, from_3mf(t)), depth + 1);
     }
   }
@@ -177,29 +243,39 @@ struct Reader {
 }  // namespace
 
 bool have_3mf() {
-  return true;
+  return loaded().error.empty();
+}
+
+std::string why_no_3mf() {
+  return loaded().error;
+}
+
+std::string load_3mf_library(const char* soname) {
+  Lib3mf api;
+  return load(api, soname);
 }
 
 Mesh read_3mf(const std::string& content, const std::string& name) {
+  require(name);
   Handle model, reader, items;
-  call(lib3mf_createmodel(&model.p), nullptr, name, "cannot create a 3MF model");
-  call(lib3mf_model_queryreader(model.p, "3mf", &reader.p), model.p, name, "no 3MF reader");
+  call(lib().createmodel(&model.p), nullptr, name, "cannot create a 3MF model");
+  call(lib().model_queryreader(model.p, "3mf", &reader.p), model.p, name, "no 3MF reader");
   std::vector<BYTE> bytes(content.begin(), content.end());
-  call(lib3mf_reader_readfrombuffer(reader.p, bytes.data(), bytes.size()), reader.p, name,
+  call(lib().reader_readfrombuffer(reader.p, bytes.data(), bytes.size()), reader.p, name,
        "not a readable 3MF file");
   DWORD unit = MODELUNIT_MILLIMETER;
-  call(lib3mf_model_getunit(model.p, &unit), model.p, name, "unit");
+  call(lib().model_getunit(model.p, &unit), model.p, name, "unit");
   const Affine to_mm = identity(millimetres_per(unit));
   Reader out{name, {}};
-  call(lib3mf_model_getbuilditems(model.p, &items.p), model.p, name, "build items");
+  call(lib().model_getbuilditems(model.p, &items.p), model.p, name, "build items");
   BOOL more = false;
   std::size_t count = 0;
-  while (lib3mf_builditemiterator_movenext(items.p, &more) == LIB3MF_OK && more) {
+  while (lib().builditemiterator_movenext(items.p, &more) == LIB3MF_OK && more) {
     Handle item, object;
-    call(lib3mf_builditemiterator_getcurrent(items.p, &item.p), items.p, name, "build item");
-    call(lib3mf_builditem_getobjectresource(item.p, &object.p), item.p, name, "build object");
+    call(lib().builditemiterator_getcurrent(items.p, &item.p), items.p, name, "build item");
+    call(lib().builditem_getobjectresource(item.p, &object.p), item.p, name, "build object");
     MODELTRANSFORM t;
-    call(lib3mf_builditem_getobjecttransform(item.p, &t), item.p, name, "build transform");
+    call(lib().builditem_getobjecttransform(item.p, &t), item.p, name, "build transform");
     out.add_object(object.p, compose(to_mm, from_3mf(t)), 0);
     ++count;
   }
@@ -209,6 +285,7 @@ Mesh read_3mf(const std::string& content, const std::string& name) {
 
 void write_3mf(const DoubleMesh& d, std::ostream& out, const std::string& note,
                const std::string& name) {
+  require(name);
   std::vector<MODELMESHVERTEX> vertices(d.points.size());
   for (std::size_t v = 0; v < d.points.size(); ++v)
     for (int c = 0; c < 3; ++c) vertices[v].m_fPosition[c] = float(d.points[v][c]);
@@ -216,25 +293,25 @@ void write_3mf(const DoubleMesh& d, std::ostream& out, const std::string& note,
   for (std::size_t t = 0; t < d.triangles.size(); ++t)
     for (int k = 0; k < 3; ++k) triangles[t].m_nIndices[k] = DWORD(d.triangles[t][k]);
   Handle model, object, item, writer;
-  call(lib3mf_createmodel(&model.p), nullptr, name, "cannot create a 3MF model");
+  call(lib().createmodel(&model.p), nullptr, name, "cannot create a 3MF model");
   // Micrometres: see emit (io.cpp); the mesh's unit is the millimetre, scaled by 1000 there.
-  call(lib3mf_model_setunit(model.p, MODELUNIT_MICROMETER), model.p, name, "unit");
-  call(lib3mf_model_addmeshobject(model.p, &object.p), model.p, name, "mesh object");
-  call(lib3mf_meshobject_setgeometry(object.p, vertices.data(), DWORD(vertices.size()),
-                                     triangles.data(), DWORD(triangles.size())),
+  call(lib().model_setunit(model.p, MODELUNIT_MICROMETER), model.p, name, "unit");
+  call(lib().model_addmeshobject(model.p, &object.p), model.p, name, "mesh object");
+  call(lib().meshobject_setgeometry(object.p, vertices.data(), DWORD(vertices.size()),
+                                    triangles.data(), DWORD(triangles.size())),
        object.p, name, "cannot store the mesh");
-  call(lib3mf_model_addbuilditem(model.p, object.p, nullptr, &item.p), model.p, name, "build item");
+  call(lib().model_addbuilditem(model.p, object.p, nullptr, &item.p), model.p, name, "build item");
   // 3MF's well-known metadata names; a name of our own would need a declared namespace.
-  call(lib3mf_model_addmetadatautf8(model.p, "Application",
-                                    (std::string("morphex ") + version()).c_str()),
+  call(lib().model_addmetadatautf8(model.p, "Application",
+                                   (std::string("morphex ") + version()).c_str()),
        model.p, name, "metadata");
-  call(lib3mf_model_addmetadatautf8(model.p, "Description", note.c_str()), model.p, name,
+  call(lib().model_addmetadatautf8(model.p, "Description", note.c_str()), model.p, name,
        "metadata");
-  call(lib3mf_model_querywriter(model.p, "3mf", &writer.p), model.p, name, "no 3MF writer");
+  call(lib().model_querywriter(model.p, "3mf", &writer.p), model.p, name, "no 3MF writer");
   ULONG64 size = 0;
-  call(lib3mf_writer_getstreamsize(writer.p, &size), writer.p, name, "cannot write 3MF");
+  call(lib().writer_getstreamsize(writer.p, &size), writer.p, name, "cannot write 3MF");
   std::string bytes(size, '\0');
-  call(lib3mf_writer_writetobuffer(writer.p, reinterpret_cast<BYTE*>(bytes.data()), size), writer.p,
+  call(lib().writer_writetobuffer(writer.p, reinterpret_cast<BYTE*>(bytes.data()), size), writer.p,
        name, "cannot write 3MF");
   // The mesh was rounded to what lib3mf prints (RoundingGrid::ThreeMf): read back, it must be
   // the same mesh, or the grid's model of lib3mf's printing is wrong for this build of it.

@@ -37,8 +37,13 @@ void write_off(const DoubleMesh& mesh, std::ostream& out, const std::string& not
 void write_obj(const DoubleMesh& mesh, std::ostream& out, const std::string& note);
 void write_stl(const DoubleMesh& mesh, std::ostream& out, const std::string& note);
 void write_ply(const DoubleMesh& mesh, std::ostream& out, const std::string& note);
-// 3MF through lib3mf (io_3mf.cpp); without it (MORPHEX_3MF off) they throw InputError.
+// 3MF through lib3mf (io_3mf.cpp), loaded when first needed; without it (MORPHEX_3MF off, or
+// the library cannot be loaded) they throw InputError, saying why_no_3mf().
 bool have_3mf();
+std::string why_no_3mf();
+// Loads lib3mf's functions from `soname` into a table of its own: "" when it can, else why not
+// (a test's hook for the message a user without the library would see).
+std::string load_3mf_library(const char* soname);
 Mesh read_3mf(const std::string& content, const std::string& name);
 // Refuses (LossyOutputError) a mesh that lib3mf's text would change into another one.
 void write_3mf(const DoubleMesh& mesh, std::ostream& out, const std::string& note,
