@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "cli_common.h"
+#include "morphex/internal/modules.h"
 #include "morphex/server.h"
 
 namespace morphex::cli {
@@ -55,6 +56,9 @@ Command add_serve_command(CLI::App& app) {
             try {
               server = std::make_unique<IndexServer>(args->db, options);
               port = server->bind();
+            } catch (const ModuleError& e) {  // an installation without its HTTP module
+              print_error(e.what());
+              return kFailed;
             } catch (const std::runtime_error& e) {  // an address that cannot be bound
               print_error(e.what());
               return kBadInput;

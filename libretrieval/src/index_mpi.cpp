@@ -5,7 +5,6 @@
 // descriptor arrives bit for bit).
 #include "morphex/index_mpi.h"
 
-#include <mpi.h>
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -18,7 +17,9 @@
 #include <thread>
 
 #include "index_internal.h"
+#include "morphex/internal/modules.h"
 #include "morphex/internal/stopwatch.h"
+#include "mpi_transport.h"
 
 namespace morphex {
 namespace {
@@ -31,16 +32,44 @@ constexpr int kTagRequest = 1;
 constexpr int kTagTask = 2;  // rank 0 -> worker: a mesh to describe (JSON)
 constexpr int kTagStop = 3;  // rank 0 -> worker: nothing left
 
-void send_text(const std::string& text, int to, int tag) {
-  MPI_Send(text.data(), int(text.size()), MPI_CHAR, to, tag, MPI_COMM_WORLD);
+// MPI, from the module morphex_mpi.so (mpi_transport.h), loaded by the first MpiSession. Its
+// libraries' symbols are made global: Open MPI's own plugins, which it loads, look for them.
+const detail::MpiTransport& mpi() {
+  static const detail::MpiTransport* transport = [] {
+    const LoadedModule module = open_module(detail::kMpiModule, true);
+    const auto get =
+        reinterpret_cast<detail::GetMpiTransport>(module_symbol(module, detail::kMpiTransport));
+    if (!get)
+      throw ModuleError(
+          detail::kMpiModule,
+          "MPI is not available: " +
+              (module.error.empty() ? std::string("the module has no ") + detail::kMpiTransport
+                                    : module.error));
+    return get();
+  }();
+  return *transport;
 }
 
-std::string receive_text(const MPI_Status& probed) {
-  int count = 0;
-  MPI_Get_count(&probed, MPI_CHAR, &count);
-  std::string text(std::size_t(count), '\0');
-  MPI_Recv(text.data(), count, MPI_CHAR, probed.MPI_SOURCE, probed.MPI_TAG, MPI_COMM_WORLD,
-           MPI_STATUS_IGNORE);
+// A message found by probe(): where it is from, its tag and size.
+struct Probed {
+  int source = 0, tag = 0, size = 0;
+};
+
+// The next message from `from` (-1: any) with `tag` (-1: any): waits when `wait`, else nullopt
+// when none is there yet.
+std::optional<Probed> probe(int from, int tag, bool wait) {
+  Probed p;
+  if (!mpi().probe(from, tag, wait, &p.source, &p.tag, &p.size)) return std::nullopt;
+  return p;
+}
+
+void send_text(const std::string& text, int to, int tag) {
+  mpi().send(text.data(), int(text.size()), to, tag);
+}
+
+std::string receive_text(const Probed& probed) {
+  std::string text(std::size_t(probed.size), '\0');
+  mpi().receive(text.data(), probed.size, probed.source, probed.tag);
   return text;
 }
 
@@ -97,27 +126,15 @@ void pause() {
   std::this_thread::sleep_for(std::chrono::milliseconds(1));
 }
 
-// Waits for every rank without spinning a core (a finished rank must not slow the ones still
-// describing on the same node, as a blocking barrier's busy wait would).
-void quiet_barrier() {
-  MPI_Request request;
-  MPI_Ibarrier(MPI_COMM_WORLD, &request);
-  int done = 0;
-  while (MPI_Test(&request, &done, MPI_STATUS_IGNORE) == MPI_SUCCESS && !done)
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-}
-
 // Every rank but 0: ask, describe, send the row back (which asks again), until told to stop.
 void serve(const IndexPipeline& pipeline) {
   const std::string settings = pipeline.settings();
   send_text("", 0, kTagRequest);
   for (;;) {
-    MPI_Status status;
-    int arrived = 0;
-    while (MPI_Iprobe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status) == MPI_SUCCESS && !arrived)
-      pause();
-    const std::string text = receive_text(status);
-    if (status.MPI_TAG == kTagStop) return;
+    std::optional<Probed> status;
+    while (!(status = probe(0, -1, false))) pause();
+    const std::string text = receive_text(*status);
+    if (status->tag == kTagStop) return;
     const PendingMesh mesh = task_from_json(nlohmann::json::parse(text));
     send_text(row_to_json(describe_safely(pipeline, mesh, settings)).dump(), 0, kTagRequest);
   }
@@ -127,10 +144,9 @@ void serve(const IndexPipeline& pipeline) {
 // send), so that none is left waiting when rank 0 reports the error and the job ends.
 void release(int serving) {
   while (serving > 0) {
-    MPI_Status status;
-    MPI_Probe(MPI_ANY_SOURCE, kTagRequest, MPI_COMM_WORLD, &status);
+    const Probed status = *probe(-1, kTagRequest, true);
     receive_text(status);
-    send_text("", status.MPI_SOURCE, kTagStop);
+    send_text("", status.source, kTagStop);
     --serving;
   }
 }
@@ -155,17 +171,14 @@ void lead(detail::IndexRun& run, const IndexPipeline& pipeline,
       local.reset();
       busy = true;
     }
-    MPI_Status status;
-    int arrived = 0;
-    MPI_Iprobe(MPI_ANY_SOURCE, kTagRequest, MPI_COMM_WORLD, &arrived, &status);
-    if (arrived) {
-      const std::string text = receive_text(status);
+    if (const std::optional<Probed> status = probe(-1, kTagRequest, false)) {
+      const std::string text = receive_text(*status);
       if (!text.empty()) run.commit(row_from_json(nlohmann::json::parse(text), run.settings()));
       if (queue.empty()) {
-        send_text("", status.MPI_SOURCE, kTagStop);
+        send_text("", status->source, kTagStop);
         --serving;
       } else {
-        send_text(task_to_json(*queue.front()).dump(), status.MPI_SOURCE, kTagTask);
+        send_text(task_to_json(*queue.front()).dump(), status->source, kTagTask);
         queue.pop_front();
       }
       busy = true;
@@ -177,19 +190,11 @@ void lead(detail::IndexRun& run, const IndexPipeline& pipeline,
 }  // namespace
 
 MpiSession::MpiSession() {
-  int provided = 0;
-  if (MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS)
-    throw std::runtime_error("MPI_Init_thread failed");
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
-  MPI_Comm_size(MPI_COMM_WORLD, &size_);
-  MPI_Comm node;
-  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &node);
-  MPI_Comm_size(node, &local_size_);
-  MPI_Comm_free(&node);
+  if (!mpi().init(&rank_, &size_, &local_size_)) throw std::runtime_error("MPI_Init_thread failed");
 }
 
 MpiSession::~MpiSession() {
-  MPI_Finalize();
+  mpi().finalize();
 }
 
 IndexSummary index_meshes_mpi(MpiSession& session, const std::string& db_path,
@@ -215,11 +220,11 @@ IndexSummary index_meshes_mpi(MpiSession& session, const std::string& db_path,
       summary = run.finish();
     } catch (...) {  // the index cannot be opened or written: stop every rank, then report
       release(serving);
-      quiet_barrier();
+      mpi().quiet_barrier();
       throw;
     }
   }
-  quiet_barrier();
+  mpi().quiet_barrier();
   summary.seconds = clock.seconds();
   summary.processes = session.size();
   return summary;

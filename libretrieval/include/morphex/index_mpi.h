@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Indexing a collection across processes and machines with MPI (Open MPI or MPICH, started by
 // mpirun, mpiexec or Slurm's srun). Built when MPI is found (CMake option MORPHEX_MPI, library
-// morphex::retrieval_mpi); the command line uses it when it was started by an MPI launcher.
+// morphex::retrieval_mpi); the command line uses it when it was started by an MPI launcher. MPI
+// itself is loaded with the first MpiSession, from the module morphex_mpi.so that the build
+// installs beside the libraries (a program that never starts a session never loads MPI).
 //
 // Rank 0 owns the SQLite index: it plans the run (what is not up to date), hands meshes out one
 // at a time, largest first, to whichever rank asks next (so that one huge mesh does not hold the
@@ -11,7 +13,8 @@
 // readable at the same absolute paths on every node (a shared file system).
 //
 // Errors: MPI failures abort the job (MPI's default error handler); a mesh that cannot be
-// described is recorded as failed, as in a single-process run.
+// described is recorded as failed, as in a single-process run. A session that cannot load the
+// module or start MPI throws std::runtime_error saying why.
 #pragma once
 
 #include <string>

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The HTTP side of `morphex serve` (cpp-httplib, Debian's libcpp-httplib-dev): routes, request
-// checks and error answers. The only file that includes httplib.h, which is heavy. What each route
-// answers is api.cpp's.
-#include <httplib.h>
-
+// The HTTP side of `morphex serve`: routes, request checks and error answers, over the server the
+// module morphex_serve_http.so runs (http_backend.h: cpp-httplib, loaded only by `serve`). What
+// each route answers is api.cpp's.
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -14,7 +14,9 @@
 #include "api.h"
 #include "assets.h"
 #include "morphex/error.h"
+#include "morphex/internal/modules.h"
 #include "morphex/server.h"
+#include "serve/http_backend.h"
 
 #ifndef MORPHEX_THREE_JS_DIR
 #define MORPHEX_THREE_JS_DIR "/usr/share/javascript/three"
@@ -24,7 +26,8 @@ namespace morphex {
 namespace {
 
 namespace fs = std::filesystem;
-using Handled = httplib::Server::HandlerResponse;
+using serve::HttpRequest;
+using serve::HttpResponse;
 
 // The three.js files the page loads (non-module builds that define the global THREE), by route
 // and by path under libjs-three's folder. Only these are served from there.
@@ -38,8 +41,8 @@ std::string error_json(const std::string& message) {
   return nlohmann::json{{"error", message}}.dump();
 }
 
-void send_json(httplib::Response& res, const nlohmann::json& value) {
-  res.set_content(value.dump(), "application/json");
+void send_json(HttpResponse& res, const nlohmann::json& value) {
+  res.set(value.dump(), "application/json");
 }
 
 bool is_loopback(const std::string& host) {
@@ -71,15 +74,15 @@ struct IndexServer::Impl {
   Impl(const std::string& index_path, ServerOptions opts)
       : options(std::move(opts)), api(index_path, options) {}
   void load_three();
-  void add_routes();
-  void add_checks();
+  void add_routes(serve::HttpSetup& setup);
+  void add_checks(serve::HttpSetup& setup);
   // Runs `answer` and sends what it returns, or the refusal it throws as {"error": ...}.
-  void respond(httplib::Response& res, const std::function<void()>& answer);
+  void respond(HttpResponse& res, const std::function<void()>& answer);
 
   ServerOptions options;
   serve::IndexApi api;
-  httplib::Server http;
   std::map<std::string, std::string> three;  // route -> the file's content
+  std::unique_ptr<serve::HttpBackend> http;  // last: its threads call the members above
   int port = -1;
 };
 
@@ -98,166 +101,154 @@ void IndexServer::Impl::load_three() {
   }
 }
 
-void IndexServer::Impl::respond(httplib::Response& res, const std::function<void()>& answer) {
+void IndexServer::Impl::respond(HttpResponse& res, const std::function<void()>& answer) {
   try {
     answer();
   } catch (const serve::RequestError& e) {
+    res = {};
     res.status = e.status();
-    res.set_content(error_json(e.what()), "application/json");
-    if (e.status() == 503) res.set_header("Retry-After", "2");
+    res.set(error_json(e.what()), "application/json");
+    if (e.status() == 503) res.headers.emplace_back("Retry-After", "2");
   } catch (const Error& e) {  // a morphex input error that api.cpp did not classify
+    res = {};
     res.status = 400;
-    res.set_content(error_json(e.what()), "application/json");
+    res.set(error_json(e.what()), "application/json");
   } catch (const std::bad_alloc&) {
+    res = {};
     res.status = 500;
-    res.set_content(error_json("out of memory"), "application/json");
+    res.set(error_json("out of memory"), "application/json");
+  } catch (const std::exception& e) {  // the module catches these too, but knows less
+    res = {};
+    res.status = 500;
+    res.set(error_json(e.what()), "application/json");
   }
 }
 
 // Checks before any route or body is read: the Host of a server on this machine only, the
 // Origin of an upload, a declared length for a body.
-void IndexServer::Impl::add_checks() {
+void IndexServer::Impl::add_checks(serve::HttpSetup& setup) {
   const bool local = is_loopback(options.host);
-  http.set_pre_routing_handler(httplib::Server::HandlerWithResponse(
-      [this, local](const httplib::Request& req, httplib::Response& res) {
-        const auto refuse = [&](int status, const std::string& message) {
-          res.status = status;
-          res.set_content(error_json(message), "application/json");
-          return Handled::Handled;
-        };
-        if (req.method != "GET" && req.method != "HEAD" && req.method != "POST")
-          return refuse(405, req.method + " is not served (GET and POST only)");
-        // A page of another site that resolves its own name to 127.0.0.1 (DNS rebinding) would
-        // send its name as Host: a server for this machine answers only to its own names.
-        const std::string host = req.get_header_value("Host");
-        const std::string suffix = ":" + std::to_string(port);
-        if (local && host != "localhost" + suffix && host != "127.0.0.1" + suffix &&
-            host != "[::1]" + suffix && host != options.host + suffix)
-          return refuse(403, "unexpected Host '" + host + "' for a server on this machine only");
-        if (req.method != "POST") return Handled::Unhandled;
-        // Browsers name the page that sends a POST: only this server's own page may upload.
-        const std::string origin = req.get_header_value("Origin");
-        if (!origin.empty() && origin != "http://" + host)
-          return refuse(403, "uploads are accepted from this server's page only");
-        // httplib bounds a body by its declared length only: a chunked or undelimited one would
-        // be read whole.
-        if (req.has_header("Transfer-Encoding") || !req.has_header("Content-Length"))
-          return refuse(411, "an upload needs a Content-Length (no chunked transfer)");
-        return Handled::Unhandled;
-      }));
-  http.set_error_handler(httplib::Server::HandlerWithResponse(
-      [this](const httplib::Request& req, httplib::Response& res) {
-        if (!res.body.empty()) return Handled::Unhandled;
-        std::string message = default_message(res.status, options);
-        if (res.status == 404) message += ": " + req.path.substr(0, 200);
-        res.set_content(error_json(message), "application/json");
-        return Handled::Handled;
-      }));
-  http.set_exception_handler(
-      [](const httplib::Request&, httplib::Response& res, std::exception_ptr error) {
-        res.status = 500;
-        std::string message = "internal error";
-        try {
-          std::rethrow_exception(error);
-        } catch (const std::exception& e) {
-          message = e.what();
-        } catch (...) {
-        }
-        res.set_content(error_json(message), "application/json");
-      });
+  setup.before = [this, local](const HttpRequest& req, HttpResponse& res) {
+    const auto refuse = [&](int status, const std::string& message) {
+      res.status = status;
+      res.set(error_json(message), "application/json");
+      return true;
+    };
+    if (req.method != "GET" && req.method != "HEAD" && req.method != "POST")
+      return refuse(405, req.method + " is not served (GET and POST only)");
+    // A page of another site that resolves its own name to 127.0.0.1 (DNS rebinding) would
+    // send its name as Host: a server for this machine answers only to its own names.
+    const std::string host = req.header("Host");
+    const std::string suffix = ":" + std::to_string(port);
+    if (local && host != "localhost" + suffix && host != "127.0.0.1" + suffix &&
+        host != "[::1]" + suffix && host != options.host + suffix)
+      return refuse(403, "unexpected Host '" + host + "' for a server on this machine only");
+    if (req.method != "POST") return false;
+    // Browsers name the page that sends a POST: only this server's own page may upload.
+    const std::string origin = req.header("Origin");
+    if (!origin.empty() && origin != "http://" + host)
+      return refuse(403, "uploads are accepted from this server's page only");
+    // httplib bounds a body by its declared length only: a chunked or undelimited one would
+    // be read whole.
+    if (req.has_header("Transfer-Encoding") || !req.has_header("Content-Length"))
+      return refuse(411, "an upload needs a Content-Length (no chunked transfer)");
+    return false;
+  };
+  setup.error_body = [this](int status, const std::string& path) {
+    std::string message = default_message(status, options);
+    if (status == 404) message += ": " + path.substr(0, 200);
+    return error_json(message);
+  };
 }
 
-void IndexServer::Impl::add_routes() {
+void IndexServer::Impl::add_routes(serve::HttpSetup& setup) {
+  const auto get = [&setup](std::string pattern, serve::HttpHandler handler) {
+    setup.routes.push_back({"GET", std::move(pattern), std::move(handler)});
+  };
   for (const serve::WebAsset& asset : serve::web_assets())
-    http.Get(asset.route, [&asset](const httplib::Request&, httplib::Response& res) {
-      res.set_content(reinterpret_cast<const char*>(asset.data), asset.size, asset.type);
-      res.set_header("Cache-Control", "no-cache");
+    get(asset.route, [&asset](const HttpRequest&, HttpResponse& res) {
+      res.set(std::string(reinterpret_cast<const char*>(asset.data), asset.size), asset.type);
+      res.headers.emplace_back("Cache-Control", "no-cache");
     });
   for (const auto& [route, file] : kThreeFiles) {
     const std::string& content = three.at(route);
-    http.Get(route, [&content](const httplib::Request&, httplib::Response& res) {
-      res.set_content(content, "text/javascript; charset=utf-8");
-      res.set_header("Cache-Control", "max-age=3600");
+    get(route, [&content](const HttpRequest&, HttpResponse& res) {
+      res.set(content, "text/javascript; charset=utf-8");
+      res.headers.emplace_back("Cache-Control", "max-age=3600");
     });
   }
-  const auto json_route = [this](const std::string& pattern,
-                                 std::function<nlohmann::json(const httplib::Request&)> answer) {
-    http.Get(pattern, [this, answer](const httplib::Request& req, httplib::Response& res) {
+  const auto json_route = [this, &get](const std::string& pattern,
+                                       std::function<nlohmann::json(const HttpRequest&)> answer) {
+    get(pattern, [this, answer](const HttpRequest& req, HttpResponse& res) {
       respond(res, [&] { send_json(res, answer(req)); });
     });
   };
-  json_route("/api/info", [this](const httplib::Request&) { return api.info(); });
-  json_route("/api/meshes", [this](const httplib::Request&) { return api.meshes(); });
-  json_route("/api/failures", [this](const httplib::Request&) { return api.failures(); });
+  json_route("/api/info", [this](const HttpRequest&) { return api.info(); });
+  json_route("/api/meshes", [this](const HttpRequest&) { return api.meshes(); });
+  json_route("/api/failures", [this](const HttpRequest&) { return api.failures(); });
   // Ids are digits only, so that nothing else in a path (.., %2e, /) reaches a route.
   json_route(R"(/api/mesh/(\d{1,18}))",
-             [this](const httplib::Request& req) { return api.mesh(std::stoll(req.matches[1])); });
-  const auto params = [](const httplib::Request& req) {
+             [this](const HttpRequest& req) { return api.mesh(std::stoll(req.matches[1])); });
+  const auto params = [](const HttpRequest& req) {
     serve::Params out;
     for (const auto& [name, value] : req.params) out.emplace(name, value);  // the first of each
     return out;
   };
-  json_route("/api/query", [this, params](const httplib::Request& req) {
-    return api.query_indexed(params(req));
-  });
-  http.Get(R"(/api/mesh/(\d{1,18})\.glb)",
-           [this](const httplib::Request& req, httplib::Response& res) {
-             respond(res, [&] {
-               res.set_content(api.glb(std::stoll(req.matches[1])), "model/gltf-binary");
-               res.set_header("Cache-Control", "private, max-age=60");
-             });
-           });
-  http.Get(R"(/api/thumb/(\d{1,18})\.png)",
-           [this](const httplib::Request& req, httplib::Response& res) {
-             respond(res, [&] {
-               res.set_content(api.thumbnail(std::stoll(req.matches[1])), "image/png");
-               res.set_header("Cache-Control", "private, max-age=60");
-             });
-           });
-  // An upload: a multipart form with the file in the field "mesh" (the page), or the file as the
-  // body with its name in ?filename= (curl --data-binary).
-  http.Post("/api/query", [this, params](const httplib::Request& req, httplib::Response& res) {
+  json_route("/api/query",
+             [this, params](const HttpRequest& req) { return api.query_indexed(params(req)); });
+  get(R"(/api/mesh/(\d{1,18})\.glb)", [this](const HttpRequest& req, HttpResponse& res) {
     respond(res, [&] {
-      if (req.is_multipart_form_data()) {
-        if (!req.has_file("mesh"))
-          throw serve::RequestError(400, "expected the mesh file in the form field 'mesh'");
-        const httplib::MultipartFormData file = req.get_file_value("mesh");
-        send_json(res, api.query_upload(file.filename, file.content, params(req)));
-      } else {
-        if (!req.has_param("filename"))
-          throw serve::RequestError(400, "expected ?filename=NAME.off (or a multipart form)");
-        send_json(res, api.query_upload(req.get_param_value("filename"), req.body, params(req)));
-      }
+      res.set(api.glb(std::stoll(req.matches[1])), "model/gltf-binary");
+      res.headers.emplace_back("Cache-Control", "private, max-age=60");
     });
   });
+  get(R"(/api/thumb/(\d{1,18})\.png)", [this](const HttpRequest& req, HttpResponse& res) {
+    respond(res, [&] {
+      res.set(api.thumbnail(std::stoll(req.matches[1])), "image/png");
+      res.headers.emplace_back("Cache-Control", "private, max-age=60");
+    });
+  });
+  // An upload: a multipart form with the file in the field "mesh" (the page), or the file as the
+  // body with its name in ?filename= (curl --data-binary).
+  setup.routes.push_back(
+      {"POST", "/api/query", [this, params](const HttpRequest& req, HttpResponse& res) {
+         respond(res, [&] {
+           if (req.multipart) {
+             const auto file = req.files.find("mesh");
+             if (file == req.files.end())
+               throw serve::RequestError(400, "expected the mesh file in the form field 'mesh'");
+             send_json(res,
+                       api.query_upload(file->second.filename, file->second.content, params(req)));
+           } else {
+             const auto name = req.params.lower_bound("filename");  // first
+             if (name == req.params.end() || name->first != "filename")
+               throw serve::RequestError(400, "expected ?filename=NAME.off (or a multipart form)");
+             send_json(res, api.query_upload(name->second, req.body, params(req)));
+           }
+         });
+       }});
 }
 
 IndexServer::IndexServer(const std::string& index_path, ServerOptions options)
     : impl_(std::make_unique<Impl>(index_path, std::move(options))) {
   impl_->load_three();
   Impl& s = *impl_;
-  const int threads = std::max(1, s.options.threads);
-  s.http.new_task_queue = [threads] { return new httplib::ThreadPool(std::size_t(threads)); };
+  serve::HttpSetup setup;
+  setup.threads = std::max(1, s.options.threads);
   // Room for the multipart form around the file; the file itself is checked against the limit.
-  s.http.set_payload_max_length(std::size_t(s.options.max_upload_bytes) + (std::size_t(1) << 20));
-  s.http.set_read_timeout(30);
-  // httplib's default sets SO_REUSEPORT, with which a second server (another index, another
-  // user's program under the same uid) could bind the same port and take half the requests:
-  // SO_REUSEADDR only, so that a restarted server can bind again while old connections linger.
-  s.http.set_socket_options([](socket_t socket) {
-    const int yes = 1;
-    setsockopt(socket, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
-  });
-  s.http.set_default_headers({
+  setup.max_payload = std::size_t(s.options.max_upload_bytes) + (std::size_t(1) << 20);
+  setup.read_timeout_seconds = 30;
+  setup.default_headers = {
       {"X-Content-Type-Options", "nosniff"},
       {"Referrer-Policy", "no-referrer"},
       {"Cache-Control", "no-store"},
       // The page's own files only; thumbnails of uploads come as data: URLs.
       {"Content-Security-Policy",
        "default-src 'self'; img-src 'self' data:; object-src 'none'; frame-ancestors 'none'"},
-  });
-  s.add_checks();
-  s.add_routes();
+  };
+  s.add_checks(setup);
+  s.add_routes(setup);
+  s.http = serve::make_http_backend(setup);
 }
 
 IndexServer::~IndexServer() = default;
@@ -266,11 +257,7 @@ int IndexServer::bind() {
   Impl& s = *impl_;
   errno = 0;
   const std::string where = s.options.host + ":" + std::to_string(s.options.port);
-  if (s.options.port == 0) {
-    s.port = s.http.bind_to_any_port(s.options.host);
-  } else {
-    s.port = s.http.bind_to_port(s.options.host, s.options.port) ? s.options.port : -1;
-  }
+  s.port = s.http->bind(s.options.host, s.options.port);
   if (s.port < 0)
     throw std::runtime_error("cannot listen on " + where +
                              (errno ? std::string(": ") + std::strerror(errno) : std::string()) +
@@ -279,11 +266,11 @@ int IndexServer::bind() {
 }
 
 void IndexServer::run() {
-  impl_->http.listen_after_bind();
+  impl_->http->run();
 }
 
 void IndexServer::stop() {
-  impl_->http.stop();
+  impl_->http->stop();
 }
 
 std::size_t IndexServer::meshes() const {
@@ -295,3 +282,34 @@ std::size_t IndexServer::failed() const {
 }
 
 }  // namespace morphex
+
+namespace morphex::serve {
+
+std::string HttpRequest::header(const std::string& name) const {
+  std::string key = name;
+  std::transform(key.begin(), key.end(), key.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  const auto found = headers.find(key);
+  return found == headers.end() ? std::string() : found->second;
+}
+
+bool HttpRequest::has_header(const std::string& name) const {
+  std::string key = name;
+  std::transform(key.begin(), key.end(), key.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  return headers.count(key) > 0;
+}
+
+std::unique_ptr<HttpBackend> make_http_backend(const HttpSetup& setup) {
+  // Opened once: a second server in the process (tests) finds it loaded.
+  static const LoadedModule module = open_module(kHttpModule, false);
+  const auto make = reinterpret_cast<MakeHttpBackend>(module_symbol(module, kMakeHttpBackend));
+  if (!make)
+    throw ModuleError(kHttpModule, "morphex serve cannot start its HTTP server: " +
+                                       (module.error.empty()
+                                            ? std::string("the module has no ") + kMakeHttpBackend
+                                            : module.error));
+  return std::unique_ptr<HttpBackend>(make(setup));
+}
+
+}  // namespace morphex::serve
