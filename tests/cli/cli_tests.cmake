@@ -108,6 +108,13 @@ add_test(NAME cli.huge_page_malloc COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/
   $<TARGET_FILE:morphex> ${data} ${PROJECT_BINARY_DIR}/cli-huge-pages ${morphex_allocator})
 set_tests_properties(cli.huge_page_malloc PROPERTIES PASS_REGULAR_EXPRESSION "PASS")
 
+# lib3mf, cpp-httplib and Open MPI are loaded only by the commands that need them, from modules
+# found beside the executable or in the installed layout (morphex/internal/modules.h).
+add_test(NAME cli.lazy_libraries COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/lazy_libraries.sh
+  $<TARGET_FILE:morphex> ${data} ${PROJECT_BINARY_DIR}/cli-lazy-libraries ${MORPHEX_MODULE_DIR}
+  ${MORPHEX_3MF} ${MORPHEX_MPI})
+set_tests_properties(cli.lazy_libraries PROPERTIES PASS_REGULAR_EXPRESSION "PASS")
+
 # The benchmarks run and agree with their exact peers on a small case (timings are not asserted).
 if(MORPHEX_BUILD_BENCHMARKS)
   add_test(NAME bench.bool_smoke COMMAND bench_bool --max-level 2 --only "icospheres L2")
