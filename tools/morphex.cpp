@@ -172,14 +172,20 @@ bool report_unknown_words(const CLI::App& app, int argc, char** argv) {
 
 // Whether the command ahead will touch enough fresh memory to pay for restarting with huge pages
 // (morphex/internal/huge_pages.h). The restart costs one more start of this executable, about
-// 20 ms on the 2-core machine (the dynamic loading of its thirty libraries); huge pages save
-// about 10 us per 4 KiB page first touched there, and a command touches some 20 times its input
-// files' size: checking bunny00 (2.6 MB) 0.23 -> 0.13 s, fandisk (0.4 MB) 0.06 -> 0.07 s
-// (scripts/bench-commands). So: input files of 1 MiB or more in all, or work not bounded by
-// the files named: a folder or a pattern of them, pipelines, the index and the server.
+// 7 ms on the 2-core machine since the libraries only some commands need are loaded by those
+// alone; huge pages save about 10 us per 4 KiB page first touched there. Measured by command
+// (always restarting against not, 2026-11-29, docs/benchmarks.md "Process start"): a check or a
+// Boolean touches some 20 times its input files' size and gains from about half a mebibyte of
+// input (cheese, 0.65 MB: 0.078 -> 0.066 s; femur, 0.25 MB: 0.044 -> 0.047), a morphology touches
+// far more per input byte and gains from small inputs on (anchor, 29 kB, dilated by a ball: 0.38
+// -> 0.35 s; the unit cube: 0.024 -> 0.031), a description works on a 300-facet copy and does
+// not gain. So: input files of 512 KiB or more in all, 16 KiB for a morphology, or work not
+// bounded by the files named: a folder or a pattern of them, pipelines, the index and the
+// server.
 bool huge_pages_pay(int argc, char** argv) {
-  constexpr std::uintmax_t kMinimumInput = std::uintmax_t(1) << 20;
-  std::uintmax_t input = 0;
+  constexpr std::uintmax_t kMinimumInput = std::uintmax_t(512) << 10;
+  constexpr std::uintmax_t kMinimumMorphologyInput = std::uintmax_t(16) << 10;
+  std::uintmax_t input = 0, minimum = kMinimumInput;
   bool command_seen = false;
   for (int i = 1; i < argc; ++i) {
     const std::string word = argv[i], before = argv[i - 1];
@@ -188,6 +194,9 @@ bool huge_pages_pay(int argc, char** argv) {
         before != "--threads") {
       command_seen = true;
       if (word == "run" || word == "index" || word == "serve") return true;
+      if (word == "dilate" || word == "erode" || word == "open" || word == "close" ||
+          word == "minkowski")
+        minimum = kMinimumMorphologyInput;
       continue;
     }
     if (word.find_first_of("*?[") != std::string::npos) return true;
@@ -198,7 +207,7 @@ bool huge_pages_pay(int argc, char** argv) {
     if (!std::filesystem::is_regular_file(status)) continue;
     const std::uintmax_t size = std::filesystem::file_size(word, error);
     if (!error) input += size;
-    if (input >= kMinimumInput) return true;
+    if (input >= minimum) return true;
   }
   return false;
 }
