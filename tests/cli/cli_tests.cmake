@@ -59,6 +59,14 @@ set_tests_properties(package.consumer_configure PROPERTIES
 set_tests_properties(package.consumer_build PROPERTIES
   FIXTURES_REQUIRED consumer_configured FIXTURES_SETUP consumer_built)
 set_tests_properties(package.consumer_run PROPERTIES FIXTURES_REQUIRED consumer_built)
+# The modules that `serve` and MPI runs load are installed where the command line looks for them
+# (bin/../MORPHEX_MODULE_DIR, morphex/internal/modules.h; cli.lazy_libraries runs that layout).
+set(installed_modules ${PROJECT_BINARY_DIR}/test-install/${MORPHEX_MODULE_DIR}/morphex_serve_http.so)
+if(MORPHEX_MPI)
+  list(APPEND installed_modules ${PROJECT_BINARY_DIR}/test-install/${MORPHEX_MODULE_DIR}/morphex_mpi.so)
+endif()
+add_test(NAME package.installed_modules COMMAND ls ${installed_modules})
+set_tests_properties(package.installed_modules PROPERTIES FIXTURES_REQUIRED morphex_installed)
 include(cli/cli_bool_tests.cmake)
 include(cli/cli_pipeline_tests.cmake)
 include(cli/cli_retrieval_tests.cmake)
