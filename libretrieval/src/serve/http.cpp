@@ -82,8 +82,8 @@ struct IndexServer::Impl {
   ServerOptions options;
   serve::IndexApi api;
   std::map<std::string, std::string> three;  // route -> the file's content
-  std::unique_ptr<serve::HttpBackend> http;  // last: its threads call the members above
   int port = -1;
+  std::unique_ptr<serve::HttpBackend> http;  // last: its threads call the members above
 };
 
 void IndexServer::Impl::load_three() {
