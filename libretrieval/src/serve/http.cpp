@@ -285,19 +285,22 @@ std::size_t IndexServer::failed() const {
 
 namespace morphex::serve {
 
-std::string HttpRequest::header(const std::string& name) const {
-  std::string key = name;
-  std::transform(key.begin(), key.end(), key.begin(),
+namespace {
+// Header names arrive in lower case (http_backend.cpp): a name asked for is looked up so.
+std::string lower_case(std::string name) {
+  std::transform(name.begin(), name.end(), name.begin(),
                  [](unsigned char c) { return char(std::tolower(c)); });
-  const auto found = headers.find(key);
+  return name;
+}
+}  // namespace
+
+std::string HttpRequest::header(const std::string& name) const {
+  const auto found = headers.find(lower_case(name));
   return found == headers.end() ? std::string() : found->second;
 }
 
 bool HttpRequest::has_header(const std::string& name) const {
-  std::string key = name;
-  std::transform(key.begin(), key.end(), key.begin(),
-                 [](unsigned char c) { return char(std::tolower(c)); });
-  return headers.count(key) > 0;
+  return headers.count(lower_case(name)) > 0;
 }
 
 std::unique_ptr<HttpBackend> make_http_backend(const HttpSetup& setup) {
