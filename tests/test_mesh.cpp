@@ -6,10 +6,12 @@
 
 #include <gmpxx.h>
 
+#include "morphex/boolean.h"
 #include "morphex/internal/parallel_points.h"
 #include "morphex/internal/union_find.h"
 #include "morphex/mesh.h"
 #include "morphex/shapes.h"
+#include "morphex/solid.h"
 
 using namespace morphex;
 
@@ -140,6 +142,70 @@ TEST(Volume, RationalCoordinatesEqualTheDefinition) {
     p = Point(c[0], c[1], c[2]);
   }
   EXPECT_EQ(signed_volume(primes), volume_by_rationals(primes));
+}
+
+// Coordinates over many denominators (a Boolean's or a morphology's result: each new vertex over
+// the determinant of three planes' normals) take the sum whose partial denominators are products
+// of known factors (the power of two, the small odd primes, the distinct rest), reduced once at the
+// end. Denominators that share small primes, larger factors and powers of two, corners over one
+// denominator, integer corners and faces without area must all give the definition exactly.
+TEST(Volume, ManyDenominatorsWithCommonFactorsEqualTheDefinition) {
+  std::mt19937_64 random(47);
+  auto pick = [&](std::size_t n) { return std::size_t(random() % n); };
+  // Large factors from a pool of 500 primes of about 20 bits (their product passes the common
+  // denominator's 4096 bits), used alone, twice over, or two together (rests that share one).
+  std::vector<int> large;
+  for (int n = 1000003; large.size() < 500; n += 2) {
+    bool prime = true;
+    for (int d = 3; d * d <= n && prime; d += 2) prime = n % d != 0;
+    if (prime) large.push_back(n);
+  }
+  const std::vector<int> small = {3, 5, 7, 9, 25, 27, 61, 127};
+  auto denominator = [&] {
+    FT d = FT(1) / FT(1L << pick(40));  // a power of two, as a double's coordinates have
+    for (std::size_t k = pick(4); k > 0; --k) d *= FT(small[pick(small.size())]);
+    for (std::size_t k = pick(3); k > 0; --k) d *= FT(large[pick(large.size())]);
+    return d;
+  };
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    Mesh m = random_double_triangles(seed + 40, 20, 600);
+    for (Point& p : m.points) {
+      switch (pick(4)) {
+        case 0:  // integer coordinates (the denominator 1)
+          p = Point(std::round(CGAL::to_double(p.x()) * 64),
+                    std::round(CGAL::to_double(p.y()) * 64), 7);
+          break;
+        case 1: {  // one denominator for all three
+          const FT d = denominator();
+          p = Point(p.x() / d, p.y() / d, p.z() / d);
+          break;
+        }
+        default:
+          p = Point(p.x() / denominator(), p.y() / denominator(), p.z() / denominator());
+      }
+    }
+    // Faces whose corners are shared with other faces, over one denominator, and without area.
+    const VertexIndex n = VertexIndex(m.points.size());
+    for (VertexIndex i = 0; i + 5 < n; i += 7) m.triangles.push_back({i, i + 3, i + 5});
+    m.triangles.push_back({0, 0, 1});
+    m.triangles.push_back({1, 2, 1});
+    EXPECT_EQ(signed_volume(m), volume_by_rationals(m)) << "seed " << seed;
+    EXPECT_EQ(signed_volume(reversed(m)), -volume_by_rationals(m)) << "seed " << seed;
+  }
+}
+
+// A Boolean's result has a denominator per crossing of two faces: the union and intersection of
+// a sphere with a turned, moved copy pass the common denominator's bound, and their volumes keep
+// the exact identity vol(A u B) + vol(A n B) = vol(A) + vol(B) and equal the definition.
+TEST(Volume, ABooleansResultOverManyDenominatorsIsExact) {
+  const Solid a = check_solid(make_icosphere(2, FT(1)));
+  const Solid b = check_solid(translated(transformed(a, quaternion_rotation(1, 2, 3, 4)),
+                                         Vector(FT(1) / 3, FT(2) / 7, FT(1) / 11)));
+  const Solid joined = compute_boolean(a, b, BooleanOp::Union).solid;
+  const Solid common = compute_boolean(a, b, BooleanOp::Intersection).solid;
+  EXPECT_EQ(signed_volume(joined), volume_by_rationals(joined));
+  EXPECT_EQ(signed_volume(common), volume_by_rationals(common));
+  EXPECT_EQ(signed_volume(joined) + signed_volume(common), signed_volume(a) + signed_volume(b));
 }
 
 // Rational coordinates over their common denominator are summed in fixed-size integers of three

@@ -5,8 +5,9 @@
 // of two. Scaled by the smallest such power present, the coordinates become integers of at most
 // kMaxBits bits, and the sum of determinants is computed exactly in fixed-size integers
 // (wide_integer.h): no allocation and no gcd per face, about a hundred times faster than the sum
-// of rationals. Meshes with constructed (rational) coordinates, or with exponents too far apart,
-// take the rational sum.
+// of rationals. Rational coordinates over a few denominators (a rotated mesh) are summed over
+// their common denominator; over many (a Boolean's or a morphology's result) by
+// volume_factored.cpp.
 #include <gmpxx.h>
 #include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
@@ -30,32 +31,14 @@ namespace {
 using Exact = std::decay_t<decltype(CGAL::exact(std::declval<FT>()))>;
 
 // Pairwise, so that operands stay of similar size; each level's additions run in parallel.
-// Rationals or integers.
-template <class Number>
-Number sum_balanced(std::vector<Number>& terms) {
-  if (terms.empty()) return Number(0);
+mpz_class sum_balanced(std::vector<mpz_class>& terms) {
+  if (terms.empty()) return 0;
   while (terms.size() > 1) {
     const std::size_t half = (terms.size() + 1) / 2, pairs = terms.size() - half;
     tbb::parallel_for(std::size_t(0), pairs, [&](std::size_t i) { terms[i] += terms[i + half]; });
     terms.resize(half);
   }
   return terms[0];
-}
-
-Exact rational_volume_times_6(const Mesh& mesh) {
-  std::vector<Exact> terms(mesh.triangles.size());
-  tbb::parallel_for(std::size_t(0), terms.size(), [&](std::size_t i) {
-    const Triangle& t = mesh.triangles[i];
-    const auto& a = CGAL::exact(mesh.points[t[0]]);
-    const auto& b = CGAL::exact(mesh.points[t[1]]);
-    const auto& c = CGAL::exact(mesh.points[t[2]]);
-    // a . (b x c)
-    const Exact cx = b.y() * c.z() - b.z() * c.y();
-    const Exact cy = b.z() * c.x() - b.x() * c.z();
-    const Exact cz = b.x() * c.y() - b.y() * c.x();
-    terms[i] = a.x() * cx + a.y() * cy + a.z() * cz;
-  });
-  return sum_balanced(terms);
 }
 
 // The widths of one exact sum: coordinates below 2^Bits in magnitude, 2x2 minors below
@@ -171,7 +154,7 @@ Exact integer_volume_times_6(const Mesh& mesh, int lowest) {
   return Exact(volume);
 }
 
-// Past this many bits of common denominator, the sum of rationals.
+// Past this many bits of common denominator, the factored sum (volume_factored.cpp).
 constexpr std::size_t kMaxDenominatorBits = 4096;
 
 // Coordinate i over the common denominator: its numerator times quotient[quotient_of[i]], the
@@ -232,11 +215,10 @@ mpz_class sum_of_determinants(const Mesh& mesh, const OverCommon& o) {
   return sum_of_determinants<W>(mesh, points);
 }
 
-// Rational coordinates (a rotated mesh, a Boolean's output) mostly share their denominators: over
-// their least common multiple D they are integers, and the sum of determinants is a sum of
-// integers (fixed-size when they fit, else GMP's; no gcd per face) divided by D^3 once. Nullopt
-// when D grows past kMaxDenominatorBits (denominators with nothing in common), for the sum of
-// rationals.
+// Rational coordinates of a rotated mesh mostly share their denominators: over their least common
+// multiple D they are integers, and the sum of determinants is a sum of integers (fixed-size when
+// they fit, else GMP's; no gcd per face) divided by D^3 once. Nullopt when D grows past
+// kMaxDenominatorBits (a denominator per constructed vertex), for the factored sum.
 std::optional<Exact> common_denominator_volume_times_6(const Mesh& mesh) {
   static_assert(std::is_same_v<Exact, mpq_class>, "Epeck's exact number type is GMP's");
   const std::optional<OverCommon> o = over_common_denominator(mesh);
@@ -287,7 +269,7 @@ std::optional<Exact> integer_volume_times_6(const Mesh& mesh) {
 FT signed_volume(const Mesh& mesh) {
   std::optional<Exact> six = integer_volume_times_6(mesh);
   if (!six) six = common_denominator_volume_times_6(mesh);
-  if (!six) six = rational_volume_times_6(mesh);
+  if (!six) six = detail::factored_volume_times_6(mesh);
   return FT(*six / Exact(6));
 }
 

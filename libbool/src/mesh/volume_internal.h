@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The volume's sign for callers that already hold the mesh's coordinates as doubles.
+// The volume's sign for callers that already hold the mesh's coordinates as doubles, and the
+// exact volume's sum for meshes over many denominators.
 #pragma once
+
+#include <gmpxx.h>
 
 #include <array>
 #include <vector>
@@ -15,5 +18,9 @@ namespace morphex::detail {
 // rational mesh (a rotated input, a Boolean's output) decided without its intervals.
 CGAL::Sign signed_volume_sign(const Mesh& mesh, const std::vector<std::array<double, 3>>& doubles,
                               double error);
+
+// Six times the exact signed volume, for meshes whose vertices lie over many different
+// denominators (volume_factored.cpp): the sum of rationals without a gcd per addition.
+mpq_class factored_volume_times_6(const Mesh& mesh);
 
 }  // namespace morphex::detail
