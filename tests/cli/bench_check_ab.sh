@@ -20,6 +20,15 @@ assert all(r["old_seconds"] == min(r["old_rounds"]) > 0 for r in rows), rows
 assert all(abs(r["new_over_old"] - r["new_seconds"] / r["old_seconds"]) < 1e-12 for r in rows)
 PY
 [ ! -e "$work/ab.json.partial" ] || fail "a partial JSON file was left behind"
+# --whole: the whole check (validity and the exact volume), said so in the JSON.
+expect 0 "icosphere:1 +80 .*median new/old [0-9.]+ over 1 inputs" \
+  python3 "$ab" --whole --rounds 1 --runs 1 --json "$work/whole.json" "$tools/bench_check" \
+  "$tools/bench_check" icosphere:1
+python3 - "$work/ab.json" "$work/whole.json" <<'PY' || fail "the JSON files do not say what they timed"
+import json, sys
+assert json.load(open(sys.argv[1]))["measure"] == "validity"
+assert json.load(open(sys.argv[2]))["measure"] == "whole check"
+PY
 # A build that is not there: exit 2 and its name, before anything runs.
 expect 2 "bench-check-ab: $work/none: no such bench_check" \
   python3 "$ab" "$work/none" "$tools/bench_check" fan-prism:40
