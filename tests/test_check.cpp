@@ -430,6 +430,40 @@ TEST(Check, VolumeSignFromDoublesWithinAnErrorIsTheExactOne) {
   EXPECT_EQ(detail::signed_volume_sign(reversed(cube), xyz, error), CGAL::NEGATIVE);
 }
 
+// The check's volume of a closed, consistently oriented mesh (a cycle) takes three products per
+// face (the divergence theorem along x) instead of a determinant's nine: exactly the determinants'
+// sum on cycles of every path (doubles at both integer widths, a rotation's common denominator,
+// large coordinates that cancel), and the determinants themselves where the faces are no cycle.
+TEST(Check, ACyclesVolumeIsTheSumOfDeterminants) {
+  Mesh spread = make_icosphere(2, FT(1));  // doubles 130 bits apart: the wider integers
+  spread.points[0] = Point(std::ldexp(1.0, -130), spread.points[0].y(), spread.points[0].z());
+  const std::vector<std::pair<const char*, Mesh>> cycles = {
+      {"cube", make_cube(FT(1))},
+      {"icosphere", make_icosphere(3, FT(1))},
+      {"torus", make_torus(24, 12, 1.0, 0.25)},
+      {"spread", spread},
+      {"far away", translated(make_torus(16, 8, 1.0, 0.25), Vector(1e12, -3e9, 7))},
+      {"turned", transformed(make_torus(16, 8, 1.0, 0.25), quaternion_rotation(1, 2, 3, 5))},
+      {"turned far", transformed(translated(make_icosphere(2, FT(1)), Vector(1e6, 0.5, -3)),
+                                 quaternion_rotation(7, 1, 4, 2))},
+      {"reversed", reversed(make_icosphere(2, FT(1)))}};
+  for (const auto& [name, mesh] : cycles) {
+    const MeshReport r = check_mesh(mesh);
+    ASSERT_TRUE(r.closed() && r.consistently_oriented) << name;
+    EXPECT_EQ(detail::signed_volume_of_cycle(mesh), signed_volume(mesh)) << name;
+    EXPECT_EQ(r.volume, signed_volume(mesh)) << name;
+  }
+  // An open box (a cube without its top) is no cycle: there the two sums differ, and the check
+  // reports the determinants'.
+  Mesh open = make_cube(FT(1), Point(3, 5, 7));
+  open.triangles.pop_back();
+  open.triangles.pop_back();
+  const MeshReport r = check_mesh(open);
+  ASSERT_FALSE(r.closed());
+  EXPECT_NE(detail::signed_volume_of_cycle(open), signed_volume(open));
+  EXPECT_EQ(r.volume, signed_volume(open));
+}
+
 // Under a rational rotation the coordinates are no longer doubles, and the check's filters run
 // on doubles known within an error (the planes' side test, the stars' proofs, the coplanar
 // search, the outward test): every verdict is the one on the unrotated mesh, and CGAL's.

@@ -635,7 +635,9 @@ MeshReport run_check(const Mesh& mesh, const CheckOptions& options,
   const std::vector<std::uint32_t> component_of =
       number_components(components, mesh.num_triangles(), r);
   steps.next(0.5, "volume");
-  if (options.volume) r.volume = signed_volume(mesh);
+  // Every edge used once each way: the faces form a cycle, whose volume takes fewer products.
+  const bool cycle = r.closed() && r.non_manifold_edges == 0 && r.consistently_oriented;
+  if (options.volume) r.volume = cycle ? detail::signed_volume_of_cycle(mesh) : signed_volume(mesh);
   r.genus = total_genus(mesh, component_of, r);
   steps.next(0.95, "self-intersections");
   if (options.self_intersections && mesh.num_triangles() > 1)
