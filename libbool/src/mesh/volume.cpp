@@ -17,6 +17,7 @@
 #include <array>
 #include <climits>
 #include <cmath>
+#include <cstring>
 #include <optional>
 #include <type_traits>
 #include <vector>
@@ -63,6 +64,27 @@ using WideWidths = Widths<160, 3, 6, 9>;
 // times the doubles' powers of two) need more.
 using WiderWidths = Widths<250, 4, 8, 13>;
 
+// A finite nonzero double as odd * 2^exponent, read from its bits (frexp and ldexp took a fifth
+// of a volume's time).
+struct OddTimesPower {
+  std::int64_t odd;
+  int exponent;
+};
+OddTimesPower odd_times_power(double x) {
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, &x, sizeof bits);
+  const int field = int((bits >> 52) & 0x7ff);
+  std::uint64_t mantissa = bits & ((std::uint64_t(1) << 52) - 1);
+  int exponent = -1074;  // a subnormal's
+  if (field != 0) {
+    mantissa |= std::uint64_t(1) << 52;
+    exponent = field - 1075;
+  }
+  const int zeros = __builtin_ctzll(mantissa);
+  const auto odd = static_cast<std::int64_t>(mantissa >> zeros);
+  return {bits >> 63 ? -odd : odd, exponent + zeros};
+}
+
 // The spread of the mesh's double coordinates: exponents of the lowest set bit and of the bound
 // above the largest magnitude; nullopt when some coordinate is not a double.
 struct Spread {
@@ -75,12 +97,10 @@ std::optional<Spread> double_spread(const Mesh& mesh) {
     const auto& a = CGAL::approx(p);
     for (const double x : {a.x().inf(), a.y().inf(), a.z().inf()}) {
       if (x == 0) continue;
-      int top = 0;
-      const double fraction =
-          std::frexp(x, &top);  // |x| = |fraction| 2^top, |fraction| in [0.5, 1)
-      const auto mantissa = static_cast<std::uint64_t>(std::ldexp(std::fabs(fraction), 53));
-      s.lowest = std::min(s.lowest, top - 53 + __builtin_ctzll(mantissa));
-      s.highest = std::max(s.highest, top);
+      const OddTimesPower parts = odd_times_power(x);
+      const std::uint64_t magnitude = std::uint64_t(parts.odd < 0 ? -parts.odd : parts.odd);
+      s.lowest = std::min(s.lowest, parts.exponent);
+      s.highest = std::max(s.highest, parts.exponent + 64 - __builtin_clzll(magnitude));
     }
   }
   return s;
@@ -90,13 +110,9 @@ std::optional<Spread> double_spread(const Mesh& mesh) {
 template <class Coordinate>
 Coordinate scaled_integer(double x, int lowest) {
   if (x == 0) return {};
-  int top = 0;
-  const double fraction = std::frexp(std::fabs(x), &top);
-  const auto mantissa = static_cast<std::uint64_t>(std::ldexp(fraction, 53));  // exact
-  const int zeros = __builtin_ctzll(mantissa);
-  const auto odd = static_cast<std::int64_t>(mantissa >> zeros);
-  // x = odd 2^(top - 53 + zeros), and lowest is the least such exponent: the shift is >= 0.
-  return Coordinate::of(x < 0 ? -odd : odd).shifted_left(top - 53 + zeros - lowest);
+  const OddTimesPower parts = odd_times_power(x);
+  // lowest is the least exponent of any coordinate: the shift is >= 0.
+  return Coordinate::of(parts.odd).shifted_left(parts.exponent - lowest);
 }
 
 // Flattened: its nine products inlined and unrolled (a call each was most of an exact volume's
