@@ -77,11 +77,15 @@ struct WideInt {
     return r;
   }
 
-  // z, which must be below 2^(64 N - 1) in magnitude.
+  // z, which must be below 2^(64 N - 1) in magnitude. Limb by limb (mpz_export's generality cost
+  // most of a rotated mesh's volume).
   static WideInt of_mpz(const mpz_class& z) {
+    static_assert(sizeof(mp_limb_t) == sizeof(std::uint64_t) && GMP_NAIL_BITS == 0,
+                  "GMP's limbs are 64-bit words");
     WideInt w;
-    std::size_t count = 0;
-    mpz_export(w.limb, &count, -1, sizeof(std::uint64_t), 0, 0, z.get_mpz_t());  // |z|
+    const std::size_t size = mpz_size(z.get_mpz_t());
+    for (std::size_t i = 0; i < size && i < std::size_t(N); ++i)
+      w.limb[i] = mpz_getlimbn(z.get_mpz_t(), mp_size_t(i));  // of |z|
     return sgn(z) < 0 ? -w : w;
   }
 

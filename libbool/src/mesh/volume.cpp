@@ -245,13 +245,14 @@ std::optional<OverCommon> over_common_denominator(const Mesh& mesh) {
 template <class W>
 mpz_class sum_of_determinants(const Mesh& mesh, const OverCommon& o, bool cycle) {
   using Coordinate = typename W::Coordinate;
+  std::vector<Coordinate> quotient(o.quotient.size());  // few: converted once each
+  for (std::size_t q = 0; q < quotient.size(); ++q) quotient[q] = Coordinate::of_mpz(o.quotient[q]);
   std::vector<std::array<Coordinate, 3>> points(mesh.points.size());
   tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t v) {
     for (int k = 0; k < 3; ++k) {
       const std::size_t i = 3 * v + k;
-      points[v][k] =
-          detail::multiply<Coordinate::kLimbs>(Coordinate::of_mpz(o.coordinate[i]->get_num()),
-                                               Coordinate::of_mpz(o.quotient[o.quotient_of[i]]));
+      points[v][k] = detail::multiply<Coordinate::kLimbs>(
+          Coordinate::of_mpz(o.coordinate[i]->get_num()), quotient[o.quotient_of[i]]);
     }
   });
   return sum_of_determinants<W>(mesh, points, cycle);
