@@ -20,6 +20,7 @@
 #include <cstring>
 #include <optional>
 #include <type_traits>
+#include <unordered_map>
 #include <vector>
 
 #include "exact/wide_integer.h"
@@ -200,8 +201,7 @@ Exact integer_volume_times_6(const Mesh& mesh, int lowest, bool cycle) {
 constexpr std::size_t kMaxDenominatorBits = 4096;
 
 // Coordinate i over the common denominator: its numerator times quotient[quotient_of[i]], the
-// common denominator over its own. Consecutive coordinates mostly share their denominator, so
-// the quotients are few.
+// common denominator over its own, one per distinct denominator.
 struct OverCommon {
   std::vector<const mpq_class*> coordinate;
   mpz_class common = 1;
@@ -224,18 +224,32 @@ std::optional<OverCommon> over_common_denominator(const Mesh& mesh) {
       if (mpz_sizeinbase(o.common.get_mpz_t(), 2) > kMaxDenominatorBits) return std::nullopt;
     }
   }
+  // A rotated mesh's coordinates take turns among a hundred denominators or so (the rotation's
+  // times powers of two): each distinct one gets its quotient once, found by a hash of its limbs.
   o.quotient_of.resize(3 * n);
-  const mpz_class* last = nullptr;  // the denominator of the last quotient
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> by_hash;
+  std::vector<const mpz_class*> denominator_of;  // by quotient
+  std::vector<std::size_t> quotient_bits;
   for (std::size_t i = 0; i < 3 * n; ++i) {
     const mpz_class& den = o.coordinate[i]->get_den();
-    if (last == nullptr || *last != den) {
+    std::uint64_t hash = mpz_size(den.get_mpz_t());
+    for (std::size_t l = 0; l < mpz_size(den.get_mpz_t()); ++l)
+      hash = (hash ^ mpz_getlimbn(den.get_mpz_t(), mp_size_t(l))) * 0x100000001b3ull;
+    std::vector<std::uint32_t>& same_hash = by_hash[hash];
+    const auto known = std::find_if(same_hash.begin(), same_hash.end(),
+                                    [&](std::uint32_t q) { return *denominator_of[q] == den; });
+    if (known != same_hash.end()) {
+      o.quotient_of[i] = *known;
+    } else {
+      o.quotient_of[i] = std::uint32_t(o.quotient.size());
+      same_hash.push_back(o.quotient_of[i]);
+      denominator_of.push_back(&den);
       o.quotient.emplace_back();
       mpz_divexact(o.quotient.back().get_mpz_t(), o.common.get_mpz_t(), den.get_mpz_t());
-      last = &den;
+      quotient_bits.push_back(mpz_sizeinbase(o.quotient.back().get_mpz_t(), 2));
     }
-    o.quotient_of[i] = std::uint32_t(o.quotient.size() - 1);
     o.bits = std::max(o.bits, mpz_sizeinbase(o.coordinate[i]->get_num_mpz_t(), 2) +
-                                  mpz_sizeinbase(o.quotient.back().get_mpz_t(), 2));
+                                  quotient_bits[o.quotient_of[i]]);
   }
   return o;
 }
