@@ -225,29 +225,29 @@ std::optional<OverCommon> over_common_denominator(const Mesh& mesh) {
     }
   }
   // A rotated mesh's coordinates take turns among a hundred denominators or so (the rotation's
-  // times powers of two): each distinct one gets its quotient once, found by a hash of its limbs.
+  // times powers of two): each distinct one gets its quotient once, found by value.
+  struct LimbHash {
+    std::size_t operator()(const mpz_class* z) const {
+      std::size_t hash = mpz_size(z->get_mpz_t());
+      for (std::size_t l = 0; l < mpz_size(z->get_mpz_t()); ++l)
+        hash = (hash ^ mpz_getlimbn(z->get_mpz_t(), mp_size_t(l))) * 0x100000001b3ull;
+      return hash;
+    }
+  };
+  auto equal = [](const mpz_class* a, const mpz_class* b) { return *a == *b; };
+  std::unordered_map<const mpz_class*, std::uint32_t, LimbHash, decltype(equal)> quotient_index(
+      64, LimbHash(), equal);
   o.quotient_of.resize(3 * n);
-  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> by_hash;
-  std::vector<const mpz_class*> denominator_of;  // by quotient
   std::vector<std::size_t> quotient_bits;
   for (std::size_t i = 0; i < 3 * n; ++i) {
     const mpz_class& den = o.coordinate[i]->get_den();
-    std::uint64_t hash = mpz_size(den.get_mpz_t());
-    for (std::size_t l = 0; l < mpz_size(den.get_mpz_t()); ++l)
-      hash = (hash ^ mpz_getlimbn(den.get_mpz_t(), mp_size_t(l))) * 0x100000001b3ull;
-    std::vector<std::uint32_t>& same_hash = by_hash[hash];
-    const auto known = std::find_if(same_hash.begin(), same_hash.end(),
-                                    [&](std::uint32_t q) { return *denominator_of[q] == den; });
-    if (known != same_hash.end()) {
-      o.quotient_of[i] = *known;
-    } else {
-      o.quotient_of[i] = std::uint32_t(o.quotient.size());
-      same_hash.push_back(o.quotient_of[i]);
-      denominator_of.push_back(&den);
+    const auto [at, added] = quotient_index.try_emplace(&den, std::uint32_t(o.quotient.size()));
+    if (added) {
       o.quotient.emplace_back();
       mpz_divexact(o.quotient.back().get_mpz_t(), o.common.get_mpz_t(), den.get_mpz_t());
       quotient_bits.push_back(mpz_sizeinbase(o.quotient.back().get_mpz_t(), 2));
     }
+    o.quotient_of[i] = at->second;
     o.bits = std::max(o.bits, mpz_sizeinbase(o.coordinate[i]->get_num_mpz_t(), 2) +
                                   quotient_bits[o.quotient_of[i]]);
   }
