@@ -247,6 +247,30 @@ PointTable::PointTable(const Mesh& a, const Mesh& b, bool same_mesh)
     input_xyz_ = {};
     doubles_[0] = doubles_[1] = false;
   }
+  if (!doubles_[0] || !doubles_[1]) grid_state_ = std::make_unique<GridState>();
+}
+
+namespace {
+bool is_constructed_point(const Point& p) {
+  const auto* rep = static_cast<const CGAL::Rep*>(p.rep().for_compact_container());
+  return dynamic_cast<const ConstructedPointRep*>(rep) != nullptr;
+}
+}  // namespace
+
+const InputGrid* PointTable::input_grid() const {
+  if (!grid_state_) return nullptr;
+  GridState& state = *grid_state_;
+  if (const InputGrid* ready = state.ready.load(std::memory_order_acquire)) return ready;
+  // Building costs about as much as a few dozen exact questions per thousand inputs; a rotated
+  // smooth mesh asks a handful in all, a rotated CAD part thousands.
+  const std::uint64_t enough = 32 + num_inputs_ / 64;
+  if (state.questions.fetch_add(1, std::memory_order_relaxed) + 1 != enough) return nullptr;
+  const ExactStage nearest;
+  std::vector<const Point*> points(num_inputs_);
+  for (PointId i = 0; i < num_inputs_; ++i) points[i] = &input(i);
+  state.grid = InputGrid::build(points, &is_constructed_point);
+  state.ready.store(state.grid.get(), std::memory_order_release);
+  return state.grid.get();
 }
 
 PointTable::~PointTable() {
@@ -386,6 +410,9 @@ CGAL::Sign PointTable::orientation_exact(PointId p, PointId q, PointId r, PointI
     const CGAL::Protect_FPU_rounding<true> nearest(CGAL_FE_TONEAREST);
     if (const auto o = exact_orientation_of_doubles(xp, xq, xr, xs)) return CGAL::Sign(*o);
   }
+  if (all_inputs({p, q, r, s}))
+    if (const InputGrid* grid = input_grid())
+      return CGAL::Sign(InputGrid::orientation((*grid)[p], (*grid)[q], (*grid)[r], (*grid)[s]));
   // det [p 1; q 1; r 1; s 1] = -det(q - p, r - p, s - p), and the W factors are positive.
   const Homogeneous* rows[4] = {&exact(p), &exact(q), &exact(r), &exact(s)};
   if (const auto sign = fixed_sign_of_det4(rows)) return CGAL::Sign(-*sign);
@@ -404,6 +431,9 @@ CGAL::Sign PointTable::PlaneSides::exact(PointId s) const {
   // Doubles: orientation_exact decides in doubles first, without the integers.
   if (t.is_double(a) && t.is_double(b) && t.is_double(c) && t.is_double(s))
     return t.orientation_exact(a, b, c, s);
+  if (!grid_plane_ && t.all_inputs({a, b, c}))
+    if ((grid_ = t.input_grid())) grid_plane_.emplace((*grid_)[a], (*grid_)[b], (*grid_)[c]);
+  if (grid_plane_ && t.is_input(s)) return CGAL::Sign(grid_plane_->side((*grid_)[s]));
   if (!tried_) {
     tried_ = true;
     const Homogeneous* rows[3] = {&t.exact(a), &t.exact(b), &t.exact(c)};
@@ -446,6 +476,9 @@ CGAL::Sign PointTable::orientation_2(int dropped, PointId p, PointId q, PointId 
   // exact stage below costs once the coordinates exist. Coarse facets cut into nearly collinear
   // but not collinear rows ask this by the hundred thousand, so asking the recipes every time
   // would pay twice on each of them.
+  if (all_inputs({p, q, r}))
+    if (const InputGrid* grid = input_grid())
+      return CGAL::Sign(InputGrid::orientation_2(u, v, (*grid)[p], (*grid)[q], (*grid)[r]));
   if (lines && !has_exact(p) && !has_exact(q) && !has_exact(r) && lines->collinear(p, q, r))
     return CGAL::ZERO;
   const Homogeneous &hp = exact(p), &hq = exact(q), &hr = exact(r);
@@ -490,6 +523,9 @@ CGAL::Comparison_result PointTable::compare(int axis, PointId p, PointId q) cons
   // Points whose coordinate is an input point's by their recipes compare as those inputs do.
   const PointId sp = coordinate_source(axis, p), sq = coordinate_source(axis, q);
   if ((sp != p || sq != q) && is_input(sp) && is_input(sq)) return compare(axis, sp, sq);
+  if (all_inputs({p, q}))
+    if (const InputGrid* grid = input_grid())
+      return CGAL::Comparison_result(InputGrid::compare(axis, (*grid)[p], (*grid)[q]));
   const Homogeneous &hp = exact(p), &hq = exact(q);
   return CGAL::Comparison_result(sgn(hp[axis] * hq[3] - hq[axis] * hp[3]));
 }

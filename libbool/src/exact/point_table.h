@@ -22,10 +22,13 @@
 #include <atomic>
 #include <cstdint>
 #include <deque>
+#include <initializer_list>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "exact/fixed_integer.h"
+#include "exact/input_grid.h"
 #include "exact/stable_vector.h"
 #include "morphex/mesh.h"
 
@@ -210,6 +213,8 @@ class PointTable {
     mutable bool tried_ = false;  // form_ computed (or too large for the buffers)
     mutable std::optional<FixedPlaneForm> form_;
     mutable std::optional<std::array<mpz_class, 4>> equation_;  // when form_ declines
+    mutable const InputGrid* grid_ = nullptr;  // with grid_plane_: the inputs on the grid
+    mutable std::optional<InputGrid::Plane> grid_plane_;
   };
   // The interval normal (q - p) x (r - p) (the caller rounds upward), and the interval sign of
   // normal . (s - p): orientation(p, q, r, s) when `normal` is the normal of p, q, r.
@@ -246,6 +251,21 @@ class PointTable {
 
  private:
   Homogeneous compute_exact(PointId id) const;
+  // The inputs on one integer grid (input_grid.h) when the exact stage has asked about rational
+  // inputs often enough to pay for building it (null before that, and when they do not fit one).
+  // The thread that asks the question that reaches the count builds it; the others go on without
+  // it meanwhile, so nobody waits.
+  const InputGrid* input_grid() const;
+  struct GridState {
+    std::atomic<std::uint32_t> questions{0};
+    std::atomic<const InputGrid*> ready{nullptr};
+    std::unique_ptr<InputGrid> grid;
+  };
+  bool all_inputs(std::initializer_list<PointId> ids) const {
+    for (const PointId id : ids)
+      if (id >= num_inputs_) return false;
+    return true;
+  }
   CGAL::Sign along_line_exact(const std::array<PointId, 3>& a, const std::array<PointId, 3>& b,
                               PointId p, PointId q) const;
   std::atomic<Homogeneous*>& exact_slot(PointId id) const {
@@ -274,6 +294,8 @@ class PointTable {
   // each lazy point to its representation.
   std::vector<ApproxPoint> input_approx_;
   mutable StableVector<std::atomic<Homogeneous*>> constructed_exact_;
+  // Null when every input is a double (their own exact stage needs no grid).
+  std::unique_ptr<GridState> grid_state_;
 };
 
 // Exact identity among many points: for each of `ids`, the smallest id of `ids` at its exact
