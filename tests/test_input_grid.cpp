@@ -7,6 +7,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -116,6 +117,56 @@ TEST(InputGrid, PredicatesAgreeWithCgalOnRotatedPointsAndDoubles) {
   EXPECT_EQ(cases, 20000);
 }
 
+// Integer coordinates up to the grid's bound, so that differences, minors and determinants come
+// near the widths their types hold (an overflow would wrap and change a sign): random points of
+// either sign, and points q + r - p exactly coplanar with p, q, r.
+TEST(InputGrid, CoordinatesNearTheBoundAgreeWithCgal) {
+  gmp_randclass random(gmp_randinit_default);
+  random.seed(12);
+  const mpz_class bound = mpz_class(1) << InputGrid::kBits;
+  auto coordinate = [&](int bits) {
+    mpz_class x = random.get_z_bits(bits);
+    if (random.get_z_bits(1) == 1) x = -x;
+    return x;
+  };
+  std::vector<Point> points;
+  for (int i = 0; i < 200; ++i) {
+    if (i % 8 == 3) {  // q + r - p of the previous three, each below 2^123
+      const auto& p = points[i - 3];
+      const auto& q = points[i - 2];
+      const auto& r = points[i - 1];
+      points.push_back(q + (r - p));
+      continue;
+    }
+    const int bits = i % 8 < 4 ? 123 : InputGrid::kBits;
+    points.emplace_back(FT(coordinate(bits)), FT(coordinate(bits)), FT(coordinate(bits)));
+  }
+  for (const Point& p : points)
+    for (int k = 0; k < 3; ++k) ASSERT_LT(abs(CGAL::exact(p.cartesian(k))), mpq_class(bound));
+  const auto grid = InputGrid::build(addresses(points), &never_constructed);
+  ASSERT_NE(grid, nullptr);
+  int zeros = 0;
+  auto agree = [&](std::size_t a, std::size_t b, std::size_t c, std::size_t d) {
+    const auto expected = CGAL::orientation(points[a], points[b], points[c], points[d]);
+    ASSERT_EQ(InputGrid::orientation((*grid)[a], (*grid)[b], (*grid)[c], (*grid)[d]), int(expected))
+        << a << " " << b << " " << c << " " << d;
+    ASSERT_EQ(InputGrid::Plane((*grid)[a], (*grid)[b], (*grid)[c]).side((*grid)[d]), int(expected));
+    ASSERT_EQ(InputGrid::compare(0, (*grid)[a], (*grid)[d]),
+              int(CGAL::compare(points[a].x(), points[d].x())));
+    zeros += expected == CGAL::COPLANAR;
+  };
+  std::mt19937 pick(13);
+  for (std::size_t group = 0; group + 3 < points.size(); group += 8) {
+    std::array<std::size_t, 4> order = {group, group + 1, group + 2, group + 3};
+    do agree(order[0], order[1], order[2], order[3]);  // all 24 orders of a coplanar four
+    while (std::next_permutation(order.begin(), order.end()));
+  }
+  for (int k = 0; k < 3000; ++k)
+    agree(pick() % points.size(), pick() % points.size(), pick() % points.size(),
+          pick() % points.size());
+  EXPECT_GE(zeros, 25 * 24);
+}
+
 TEST(InputGrid, RefusesWhatItCannotHold) {
   // Denominators whose lcm passes the bound: distinct primes near 2^40.
   std::vector<Point> primes;
@@ -128,10 +179,13 @@ TEST(InputGrid, RefusesWhatItCannotHold) {
   // Two such denominators fit (80 bits).
   primes.resize(2);
   EXPECT_NE(InputGrid::build(addresses(primes), &never_constructed), nullptr);
-  // Doubles 2^-120 apart beside 2^20: integers of 140 bits over the common denominator.
-  const std::vector<Point> spread = {Point(std::ldexp(1.0, -100), 0, 0), Point(1 << 20, 1, 2)};
+  // Doubles 2^-90 beside 2^35: the integer 2^125 over the common denominator 2^90 passes the
+  // grid's bound; beside 2^34 it fits.
+  const std::vector<Point> spread = {Point(std::ldexp(1.0, -90), 0, 0),
+                                     Point(std::ldexp(1.0, 35), 1, 2)};
   EXPECT_EQ(InputGrid::build(addresses(spread), &never_constructed), nullptr);
-  const std::vector<Point> close = {Point(std::ldexp(1.0, -60), 0, 0), Point(1 << 20, 1, 2)};
+  const std::vector<Point> close = {Point(std::ldexp(1.0, -90), 0, 0),
+                                    Point(-std::ldexp(1.0, 34), 1, 2)};
   EXPECT_NE(InputGrid::build(addresses(close), &never_constructed), nullptr);
   // A point that an earlier operation constructed keeps its own exact stage.
   const std::vector<Point> rational = {Point(FT(1) / 3, FT(2), FT(0))};

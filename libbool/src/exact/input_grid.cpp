@@ -10,7 +10,8 @@ namespace {
 
 using Coordinate = InputGrid::Coordinate;
 using GridPoint = InputGrid::GridPoint;
-using Difference = FixedInteger<InputGrid::kLimbs + 1>;
+// A numerator or a quotient while the grid is built (sign and magnitude, GMP's limbs).
+using Limbs = FixedInteger<2>;
 
 // A finite nonzero double as odd * 2^exponent, read from its bits.
 struct OddTimesPower {
@@ -53,29 +54,32 @@ constexpr std::size_t kMaxDenominators = 4096;
 // One coordinate before the common denominator is known: its numerator, and the key of its
 // denominator (a rational's, by index into the distinct ones; a double's, by its exponent).
 struct Pending {
-  Coordinate numerator;
+  Limbs numerator;
   std::int32_t exponent = 0;      // a double's
   std::uint32_t denominator = 0;  // a rational's, + 1 (0: a double)
 };
 
-// a - b.
-Difference minus(const Coordinate& a, const Coordinate& b) {
-  Difference d;
-  accumulate(d, a, 1);
-  accumulate(d, b, -1);  // capacities fit: two limbs each, a third for the carry
-  return d;
+// The sign of a two's complement integer.
+template <int N>
+int sign(const WideInt<N>& x) {
+  if (x.negative()) return -1;
+  for (int i = 0; i < N; ++i)
+    if (x.limb[i] != 0) return 1;
+  return 0;
 }
 
-// a * d - b * c.
-FixedInteger<2 * InputGrid::kLimbs + 3> cross_minor(const Difference& a, const Difference& b,
-                                                    const Difference& c, const Difference& d) {
-  FixedInteger<2 * InputGrid::kLimbs + 2> ad, bc;
-  FixedInteger<2 * InputGrid::kLimbs + 3> out;
-  multiply(ad, a, d);
-  multiply(bc, b, c);
-  accumulate(out, ad, 1);
-  accumulate(out, bc, -1);
+// a d - b c, below 2^253 in magnitude for differences below 2^126.
+WideInt<4> cross_minor(const Coordinate& a, const Coordinate& b, const Coordinate& c,
+                       const Coordinate& d) {
+  WideInt<4> out = multiply<4>(a, d);
+  out -= multiply<4>(b, c);
   return out;
+}
+
+Coordinate minus(const Coordinate& a, const Coordinate& b) {
+  Coordinate d = a;
+  d -= b;  // below 2^126: no wrap
+  return d;
 }
 
 }  // namespace
@@ -94,7 +98,7 @@ std::unique_ptr<InputGrid> InputGrid::build(const std::vector<const Point*>& poi
         const double x = a.cartesian(k).inf();
         if (x == 0) continue;
         const OddTimesPower parts = odd_times_power(x);
-        Coordinate& n = pending[3 * i + k].numerator;
+        Limbs& n = pending[3 * i + k].numerator;
         n.limb[0] = parts.odd;
         n.size = 1;
         n.sign = parts.negative ? -1 : 1;
@@ -131,14 +135,14 @@ std::unique_ptr<InputGrid> InputGrid::build(const std::vector<const Point*>& poi
   // Each coordinate is its numerator times the common denominator over its own: one quotient
   // per distinct denominator, and per distinct exponent of a double (common * 2^exponent, an
   // integer since 2^-lowest divides common).
-  std::vector<Coordinate> by_denominator(denominators.size());
+  std::vector<Limbs> by_denominator(denominators.size());
   for (std::size_t d = 0; d < denominators.size(); ++d) {
     mpz_class q;
     mpz_divexact(q.get_mpz_t(), common.get_mpz_t(), denominators[d]->get_mpz_t());
     by_denominator[d].assign(q);  // below 2^kMaxDenominatorBits: fits
   }
-  std::unordered_map<int, Coordinate> by_exponent;
-  auto double_quotient = [&](int exponent) -> const Coordinate* {
+  std::unordered_map<int, Limbs> by_exponent;
+  auto double_quotient = [&](int exponent) -> const Limbs* {
     const auto found = by_exponent.find(exponent);
     if (found != by_exponent.end()) return &found->second;
     mpz_class q = common;
@@ -146,7 +150,7 @@ std::unique_ptr<InputGrid> InputGrid::build(const std::vector<const Point*>& poi
       mpz_tdiv_q_2exp(q.get_mpz_t(), q.get_mpz_t(), mp_bitcnt_t(-exponent));
     else
       mpz_mul_2exp(q.get_mpz_t(), q.get_mpz_t(), mp_bitcnt_t(exponent));
-    Coordinate c;
+    Limbs c;
     if (!c.assign(q)) return nullptr;
     return &by_exponent.emplace(exponent, c).first->second;
   };
@@ -155,48 +159,47 @@ std::unique_ptr<InputGrid> InputGrid::build(const std::vector<const Point*>& poi
   for (std::size_t i = 0; i < pending.size(); ++i) {
     const Pending& c = pending[i];
     Coordinate& out = grid->points_[i / 3][i % 3];
-    if (c.numerator.sign == 0) continue;  // zero: size 0, sign 0
-    const Coordinate* quotient =
+    if (c.numerator.sign == 0) continue;  // zero
+    const Limbs* quotient =
         c.denominator != 0 ? &by_denominator[c.denominator - 1] : double_quotient(c.exponent);
-    FixedInteger<2 * kLimbs> product;
-    if (!quotient || !multiply(product, c.numerator, *quotient) || product.size > kLimbs)
+    FixedInteger<4> product;
+    if (!quotient || !multiply(product, c.numerator, *quotient) || product.size > 2 ||
+        (product.size == 2 && product.limb[1] >> (kBits - 64) != 0))
       return nullptr;
-    std::memcpy(out.limb, product.limb, sizeof(mp_limb_t) * std::size_t(product.size));
-    out.size = product.size;
-    out.sign = product.sign;
+    Coordinate magnitude;
+    for (int l = 0; l < product.size; ++l) magnitude.limb[l] = product.limb[l];
+    out = magnitude.negated_if(product.sign < 0);
   }
   return grid;
 }
 
 int InputGrid::orientation(const GridPoint& p, const GridPoint& q, const GridPoint& r,
                            const GridPoint& s) {
-  Difference d[3][3];
+  Coordinate d[3][3];
   const GridPoint* rows[3] = {&q, &r, &s};
   for (int i = 0; i < 3; ++i)
     for (int k = 0; k < 3; ++k) d[i][k] = minus((*rows[i])[k], p[k]);
-  // Along the first row: d00 (d11 d22 - d12 d21) - d01 (d10 d22 - d12 d20) + d02 (...).
-  FixedInteger<3 * kLimbs + 6> det;
+  // Along the first row, cofactors in cyclic order: sum over k of d0k (d1a d2b - d1b d2a).
+  WideInt<6> det;
   for (int k = 0; k < 3; ++k) {
-    const int a = (k + 1) % 3, b = (k + 2) % 3;  // cyclic: the cofactor's sign is built in
-    FixedInteger<3 * kLimbs + 5> term;
-    multiply(term, d[0][k], cross_minor(d[1][a], d[1][b], d[2][a], d[2][b]));
-    accumulate(det, term, 1);
+    const int a = (k + 1) % 3, b = (k + 2) % 3;
+    det += multiply<6>(d[0][k], cross_minor(d[1][a], d[1][b], d[2][a], d[2][b]));
   }
-  return det.sign;
+  return sign(det);
 }
 
 int InputGrid::orientation_2(int u, int v, const GridPoint& p, const GridPoint& q,
                              const GridPoint& r) {
-  return cross_minor(minus(q[u], p[u]), minus(q[v], p[v]), minus(r[u], p[u]), minus(r[v], p[v]))
-      .sign;
+  return sign(
+      cross_minor(minus(q[u], p[u]), minus(q[v], p[v]), minus(r[u], p[u]), minus(r[v], p[v])));
 }
 
 int InputGrid::compare(int axis, const GridPoint& p, const GridPoint& q) {
-  return minus(p[axis], q[axis]).sign;
+  return sign(minus(p[axis], q[axis]));
 }
 
 InputGrid::Plane::Plane(const GridPoint& a, const GridPoint& b, const GridPoint& c) : a_(&a) {
-  Difference e[3], f[3];
+  Coordinate e[3], f[3];
   for (int k = 0; k < 3; ++k) {
     e[k] = minus(b[k], a[k]);
     f[k] = minus(c[k], a[k]);
@@ -208,13 +211,9 @@ InputGrid::Plane::Plane(const GridPoint& a, const GridPoint& b, const GridPoint&
 }
 
 int InputGrid::Plane::side(const GridPoint& s) const {
-  FixedInteger<3 * kLimbs + 6> sum;
-  for (int k = 0; k < 3; ++k) {
-    FixedInteger<3 * kLimbs + 5> term;
-    multiply(term, normal_[k], minus(s[k], (*a_)[k]));
-    accumulate(sum, term, 1);
-  }
-  return sum.sign;
+  WideInt<6> sum;
+  for (int k = 0; k < 3; ++k) sum += multiply<6>(minus(s[k], (*a_)[k]), normal_[k]);
+  return sign(sum);
 }
 
 }  // namespace morphex::detail

@@ -18,19 +18,22 @@
 #include <vector>
 
 #include "exact/fixed_integer.h"
+#include "exact/wide_integer.h"
 #include "morphex/mesh.h"
 
 namespace morphex::detail {
 
 class InputGrid {
  public:
-  static constexpr int kLimbs = 2;  // grid coordinates below 2^128 in magnitude
-  using Coordinate = FixedInteger<kLimbs>;
+  // Grid coordinates below 2^kBits in magnitude, so that in two's complement their differences
+  // fit two limbs, 2x2 minors of differences four and 3x3 determinants six (wide_integer.h).
+  static constexpr int kBits = 125;
+  using Coordinate = WideInt<2>;
   using GridPoint = std::array<Coordinate, 3>;
 
   // The grid of `points` (each a double point, or a rational point that is not the lazy
   // construction of an earlier operation, which `constructed` tells), or null when the common
-  // denominator passes kMaxDenominatorBits, a coordinate passes kLimbs limbs on it, or a point is
+  // denominator passes kMaxDenominatorBits, a coordinate passes kBits bits on it, or a point is
   // constructed. Sequential (it may run under a lock held by a parallel task).
   static std::unique_ptr<InputGrid> build(const std::vector<const Point*>& points,
                                           bool (*constructed)(const Point&));
@@ -54,7 +57,7 @@ class InputGrid {
 
    private:
     const GridPoint* a_;
-    std::array<FixedInteger<2 * kLimbs + 3>, 3> normal_;
+    std::array<WideInt<4>, 3> normal_;
   };
 
   static constexpr std::size_t kMaxDenominatorBits = 100;
