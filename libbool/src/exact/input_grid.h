@@ -60,7 +60,7 @@ class InputGrid {
     std::array<WideInt<4>, 3> normal_;
   };
 
-  static constexpr std::size_t kMaxDenominatorBits = 100;
+  static constexpr std::size_t kMaxDenominatorBits = kBits - 1;
 
  private:
   std::vector<GridPoint> points_;
