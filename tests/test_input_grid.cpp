@@ -64,9 +64,10 @@ std::vector<Point> rotated_cloud(unsigned seed) {
   return out;
 }
 
-std::vector<const Point*> addresses(const std::vector<Point>& points) {
-  std::vector<const Point*> out;
-  for (const Point& p : points) out.push_back(&p);
+// The grid's inputs: the points, each taken through its own representation.
+std::vector<InputGrid::Input> addresses(const std::vector<Point>& points) {
+  std::vector<InputGrid::Input> out;
+  for (const Point& p : points) out.push_back({&p, nullptr});
   return out;
 }
 
@@ -77,6 +78,20 @@ TEST(InputGrid, PredicatesAgreeWithCgalOnRotatedPointsAndDoubles) {
   const auto grid = InputGrid::build(addresses(points), &never_constructed);
   ASSERT_NE(grid, nullptr);
   const std::size_t n = points.size();
+  // The same grid when the caller hands over the doubles it knows.
+  std::vector<std::array<double, 3>> xyz(n);
+  std::vector<InputGrid::Input> given = addresses(points);
+  for (std::size_t i = 0; i < n; ++i)
+    if (has_double_coordinates(points[i])) {
+      xyz[i] = {CGAL::to_double(points[i].x()), CGAL::to_double(points[i].y()),
+                CGAL::to_double(points[i].z())};
+      given[i].doubles = &xyz[i];
+    }
+  const auto same = InputGrid::build(given, &never_constructed);
+  ASSERT_NE(same, nullptr);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k)
+      for (int l = 0; l < 2; ++l) ASSERT_EQ((*same)[i][k].limb[l], (*grid)[i][k].limb[l]) << i;
   std::mt19937 random(6);
   // Quadruples within one class (i mod 4, and the same parity: turned or not) are often
   // degenerate; any others rarely.
@@ -195,44 +210,54 @@ TEST(InputGrid, RefusesWhatItCannotHold) {
 
 // The table's exact stage before the grid exists, while it is being built, and after: every
 // answer the same as CGAL's. The cloud is asked far more often than the count that builds the
-// grid, from parallel tasks.
+// grid, from parallel tasks: as one mesh, and as two (its doubles against its rational points,
+// with questions across the two, where the table keeps its homogeneous stage).
 TEST(PointTable, RationalInputsAgreeWithCgalBeforeAndAfterTheirGrid) {
-  Mesh cloud;
-  cloud.points = rotated_cloud(8);
-  cloud.triangles.push_back({0, 1, 2});
-  const detail::PointTable table(cloud, cloud, true);
-  const std::size_t n = cloud.points.size();
+  const std::vector<Point> pts = rotated_cloud(8);
+  const std::size_t n = pts.size();
+  Mesh cloud, doubles, rationals;  // rotated_cloud turns the even points only
+  cloud.points = pts;
+  for (std::size_t i = 0; i < n; ++i) (i % 2 == 0 ? rationals : doubles).points.push_back(pts[i]);
+  for (Mesh* m : {&cloud, &doubles, &rationals}) m->triangles.push_back({0, 1, 2});
   std::vector<std::array<std::size_t, 4>> questions;
   std::mt19937 random(9);
   for (int k = 0; k < 6000; ++k) {
     const std::size_t p = random() % n;
-    // Another point of p's class (its index mod 8): often a degenerate configuration.
-    auto like = [&] { return (random() % (n / 8)) * 8 + p % 8; };
+    // Mostly another point of p's class (its index mod 8): often a degenerate configuration.
+    auto like = [&] { return k % 4 == 0 ? random() % n : (random() % (n / 8)) * 8 + p % 8; };
     questions.push_back({p, like(), like(), like()});
   }
-  std::vector<int> wrong(questions.size(), 0);
-  tbb::parallel_for(std::size_t(0), questions.size(), [&](std::size_t k) {
-    const auto [p, q, r, s] = questions[k];
-    const auto& pts = cloud.points;
-    const detail::PointId ip = detail::PointId(p), iq = detail::PointId(q), ir = detail::PointId(r),
-                          is = detail::PointId(s);
-    if (table.orientation(ip, iq, ir, is) != CGAL::orientation(pts[p], pts[q], pts[r], pts[s]))
-      wrong[k] |= 1;
-    if (ip != iq && iq != ir && ip != ir) {
-      const detail::PointTable::PlaneSides sides(table, {ip, iq, ir});
-      if (sides(is) != CGAL::orientation(pts[p], pts[q], pts[r], pts[s])) wrong[k] |= 2;
-    }
-    if (table.compare(k % 3, ip, iq) !=
-        CGAL::compare(pts[p].cartesian(int(k % 3)), pts[q].cartesian(int(k % 3))))
-      wrong[k] |= 4;
-    const int u = k % 3 == 0 ? 1 : 0, v = k % 3 == 2 ? 1 : 2;
-    const auto projected =
-        CGAL::orientation(Kernel::Point_2(pts[p].cartesian(u), pts[p].cartesian(v)),
-                          Kernel::Point_2(pts[q].cartesian(u), pts[q].cartesian(v)),
-                          Kernel::Point_2(pts[r].cartesian(u), pts[r].cartesian(v)));
-    if (table.orientation_2(int(k % 3), ip, iq, ir) != projected) wrong[k] |= 8;
-  });
-  for (std::size_t k = 0; k < questions.size(); ++k)
-    ASSERT_EQ(wrong[k], 0) << "question " << k << " (1 orientation, 2 plane sides, 4 compare, "
-                           << "8 projected orientation)";
+  for (const bool two_meshes : {false, true}) {
+    const detail::PointTable table = two_meshes ? detail::PointTable(doubles, rationals)
+                                                : detail::PointTable(cloud, cloud, true);
+    auto id = [&](std::size_t i) {
+      return two_meshes ? table.vertex(i % 2 == 0 ? 1 : 0, std::uint32_t(i / 2))
+                        : detail::PointId(i);
+    };
+    std::vector<int> wrong(questions.size(), 0);
+    tbb::parallel_for(std::size_t(0), questions.size(), [&](std::size_t k) {
+      const auto [p, q, r, s] = questions[k];
+      const detail::PointId ip = id(p), iq = id(q), ir = id(r), is = id(s);
+      if (table.orientation(ip, iq, ir, is) != CGAL::orientation(pts[p], pts[q], pts[r], pts[s]))
+        wrong[k] |= 1;
+      if (ip != iq && iq != ir && ip != ir) {
+        const detail::PointTable::PlaneSides sides(table, {ip, iq, ir});
+        if (sides(is) != CGAL::orientation(pts[p], pts[q], pts[r], pts[s])) wrong[k] |= 2;
+      }
+      const int axis = int(k % 3);
+      if (table.compare(axis, ip, iq) !=
+          CGAL::compare(pts[p].cartesian(axis), pts[q].cartesian(axis)))
+        wrong[k] |= 4;
+      const int u = axis == 0 ? 1 : 0, v = axis == 2 ? 1 : 2;
+      const auto projected =
+          CGAL::orientation(Kernel::Point_2(pts[p].cartesian(u), pts[p].cartesian(v)),
+                            Kernel::Point_2(pts[q].cartesian(u), pts[q].cartesian(v)),
+                            Kernel::Point_2(pts[r].cartesian(u), pts[r].cartesian(v)));
+      if (table.orientation_2(axis, ip, iq, ir) != projected) wrong[k] |= 8;
+    });
+    for (std::size_t k = 0; k < questions.size(); ++k)
+      ASSERT_EQ(wrong[k], 0) << (two_meshes ? "two meshes" : "one mesh") << ", question " << k
+                             << " (1 orientation, 2 plane sides, 4 compare, 8 projected "
+                             << "orientation)";
+  }
 }

@@ -10,6 +10,7 @@ namespace {
 
 using Coordinate = InputGrid::Coordinate;
 using GridPoint = InputGrid::GridPoint;
+using Xyz = std::array<double, 3>;
 // A numerator or a quotient while the grid is built (sign and magnitude, GMP's limbs).
 using Limbs = FixedInteger<2>;
 
@@ -84,40 +85,44 @@ Coordinate minus(const Coordinate& a, const Coordinate& b) {
 
 }  // namespace
 
-std::unique_ptr<InputGrid> InputGrid::build(const std::vector<const Point*>& points,
+std::unique_ptr<InputGrid> InputGrid::build(const std::vector<Input>& inputs,
                                             bool (*constructed)(const Point&)) {
-  std::vector<Pending> pending(3 * points.size());
+  std::vector<Pending> pending(3 * inputs.size());
   std::unordered_map<const mpz_class*, std::uint32_t, LimbHash, ValueEqual> index;
   std::vector<const mpz_class*> denominators;
   int lowest = 0;  // the lowest exponent of a double's odd part, if negative
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const Point& p = *points[i];
+  auto add_double = [&](Pending& c, double x) {
+    if (x == 0) return;
+    const OddTimesPower parts = odd_times_power(x);
+    c.numerator.limb[0] = parts.odd;
+    c.numerator.size = 1;
+    c.numerator.sign = parts.negative ? -1 : 1;
+    c.exponent = parts.exponent;
+    lowest = std::min(lowest, parts.exponent);
+  };
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    Pending* c = &pending[3 * i];
+    if (const Xyz* xyz = inputs[i].doubles) {
+      for (int k = 0; k < 3; ++k) add_double(c[k], (*xyz)[k]);
+      continue;
+    }
+    const Point& p = *inputs[i].point;
     if (has_double_coordinates(p)) {
       const auto& a = CGAL::approx(p);
-      for (int k = 0; k < 3; ++k) {
-        const double x = a.cartesian(k).inf();
-        if (x == 0) continue;
-        const OddTimesPower parts = odd_times_power(x);
-        Limbs& n = pending[3 * i + k].numerator;
-        n.limb[0] = parts.odd;
-        n.size = 1;
-        n.sign = parts.negative ? -1 : 1;
-        pending[3 * i + k].exponent = parts.exponent;
-        lowest = std::min(lowest, parts.exponent);
-      }
+      for (int k = 0; k < 3; ++k) add_double(c[k], a.cartesian(k).inf());
       continue;
     }
     if (constructed(p)) return nullptr;
     const auto& e = CGAL::exact(p);
     for (int k = 0; k < 3; ++k) {
-      const mpq_class& c = e.cartesian(k);
-      if (!pending[3 * i + k].numerator.assign(c.get_num())) return nullptr;
-      const auto [at, added] = index.try_emplace(&c.get_den(), std::uint32_t(denominators.size()));
+      const mpq_class& x = e.cartesian(k);
+      if (!c[k].numerator.assign(x.get_num())) return nullptr;
+      const auto [at, added] = index.try_emplace(&x.get_den(), std::uint32_t(denominators.size()));
       if (added) {
-        denominators.push_back(&c.get_den());
+        denominators.push_back(&x.get_den());
         if (denominators.size() > kMaxDenominators) return nullptr;
       }
-      pending[3 * i + k].denominator = at->second + 1;
+      c[k].denominator = at->second + 1;
     }
   }
   // The common denominator: the distinct denominators' lcm, times the doubles' power of two.
@@ -133,35 +138,33 @@ std::unique_ptr<InputGrid> InputGrid::build(const std::vector<const Point*>& poi
     if (mpz_sizeinbase(common.get_mpz_t(), 2) > kMaxDenominatorBits) return nullptr;
   }
   // Each coordinate is its numerator times the common denominator over its own: one quotient
-  // per distinct denominator, and per distinct exponent of a double (common * 2^exponent, an
-  // integer since 2^-lowest divides common).
+  // per distinct denominator, and one per exponent of a double, common 2^exponent (an integer:
+  // 2^-lowest divides common). A double's odd part is at least 1, so exponents past lowest +
+  // kBits give integers past the bound.
   std::vector<Limbs> by_denominator(denominators.size());
   for (std::size_t d = 0; d < denominators.size(); ++d) {
     mpz_class q;
     mpz_divexact(q.get_mpz_t(), common.get_mpz_t(), denominators[d]->get_mpz_t());
     by_denominator[d].assign(q);  // below 2^kMaxDenominatorBits: fits
   }
-  std::unordered_map<int, Limbs> by_exponent;
-  auto double_quotient = [&](int exponent) -> const Limbs* {
-    const auto found = by_exponent.find(exponent);
-    if (found != by_exponent.end()) return &found->second;
-    mpz_class q = common;
-    if (exponent < 0)
-      mpz_tdiv_q_2exp(q.get_mpz_t(), q.get_mpz_t(), mp_bitcnt_t(-exponent));
-    else
-      mpz_mul_2exp(q.get_mpz_t(), q.get_mpz_t(), mp_bitcnt_t(exponent));
-    Limbs c;
-    if (!c.assign(q)) return nullptr;
-    return &by_exponent.emplace(exponent, c).first->second;
-  };
+  std::vector<Limbs> by_exponent;  // by exponent - lowest
+  mpz_class q = common;
+  mpz_tdiv_q_2exp(q.get_mpz_t(), q.get_mpz_t(), mp_bitcnt_t(-lowest));
+  for (int shift = 0; shift < kBits; ++shift, q *= 2) {
+    Limbs quotient;
+    if (!quotient.assign(q)) break;
+    by_exponent.push_back(quotient);
+  }
   auto grid = std::make_unique<InputGrid>();
-  grid->points_.resize(points.size());
+  grid->points_.resize(inputs.size());
   for (std::size_t i = 0; i < pending.size(); ++i) {
     const Pending& c = pending[i];
     Coordinate& out = grid->points_[i / 3][i % 3];
     if (c.numerator.sign == 0) continue;  // zero
-    const Limbs* quotient =
-        c.denominator != 0 ? &by_denominator[c.denominator - 1] : double_quotient(c.exponent);
+    const std::size_t shift = std::size_t(c.exponent - lowest);
+    const Limbs* quotient = c.denominator != 0           ? &by_denominator[c.denominator - 1]
+                            : shift < by_exponent.size() ? &by_exponent[shift]
+                                                         : nullptr;
     FixedInteger<4> product;
     if (!quotient || !multiply(product, c.numerator, *quotient) || product.size > 2 ||
         (product.size == 2 && product.limb[1] >> (kBits - 64) != 0))

@@ -31,11 +31,17 @@ class InputGrid {
   using Coordinate = WideInt<2>;
   using GridPoint = std::array<Coordinate, 3>;
 
-  // The grid of `points` (each a double point, or a rational point that is not the lazy
+  // An input: its point, and its coordinates when the caller knows them to be doubles (null
+  // otherwise).
+  struct Input {
+    const Point* point;
+    const std::array<double, 3>* doubles;
+  };
+  // The grid of `inputs` (each a double point, or a rational point that is not the lazy
   // construction of an earlier operation, which `constructed` tells), or null when the common
   // denominator passes kMaxDenominatorBits, a coordinate passes kBits bits on it, or a point is
   // constructed. Sequential (it may run under a lock held by a parallel task).
-  static std::unique_ptr<InputGrid> build(const std::vector<const Point*>& points,
+  static std::unique_ptr<InputGrid> build(const std::vector<Input>& inputs,
                                           bool (*constructed)(const Point&));
 
   const GridPoint& operator[](std::size_t i) const { return points_[i]; }

@@ -247,7 +247,10 @@ PointTable::PointTable(const Mesh& a, const Mesh& b, bool same_mesh)
     input_xyz_ = {};
     doubles_[0] = doubles_[1] = false;
   }
-  if (!doubles_[0] || !doubles_[1]) grid_state_ = std::make_unique<GridState>();
+  // A mesh against itself (the input check): its exact questions about rational inputs come by
+  // the thousand on a rotated CAD part. A Boolean's two meshes ask far fewer per input (0.2-0.4
+  // on rotated CAD pairs), where building the grid cost more than it saved (docs/benchmarks.md).
+  if (same_mesh && !doubles_[0]) grid_state_ = std::make_unique<GridState>();
 }
 
 namespace {
@@ -261,14 +264,15 @@ const InputGrid* PointTable::input_grid() const {
   if (!grid_state_) return nullptr;
   GridState& state = *grid_state_;
   if (const InputGrid* ready = state.ready.load(std::memory_order_acquire)) return ready;
-  // Building costs about as much as a few dozen exact questions per thousand inputs; a rotated
-  // smooth mesh asks a handful in all, a rotated CAD part thousands.
-  const std::uint64_t enough = 32 + num_inputs_ / 64;
+  // Building takes 60-90 ns per input; a rotated CAD part's check asks 1-3 questions per input,
+  // a rotated smooth mesh's none.
+  const std::uint64_t enough = 32 + num_inputs_ / 8;
   if (state.questions.fetch_add(1, std::memory_order_relaxed) + 1 != enough) return nullptr;
   const ExactStage nearest;
-  std::vector<const Point*> points(num_inputs_);
-  for (PointId i = 0; i < num_inputs_; ++i) points[i] = &input(i);
-  state.grid = InputGrid::build(points, &is_constructed_point);
+  std::vector<InputGrid::Input> inputs(num_inputs_);
+  for (PointId i = 0; i < num_inputs_; ++i)
+    inputs[i] = {&input(i), is_double(i) ? &input_xyz_[i] : nullptr};
+  state.grid = InputGrid::build(inputs, &is_constructed_point);
   state.ready.store(state.grid.get(), std::memory_order_release);
   return state.grid.get();
 }
