@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "exact/input_grid.h"
 
+#include "exact/number_parts.h"
+
 #include <cstring>
 #include <unordered_map>
 
@@ -13,40 +15,6 @@ using GridPoint = InputGrid::GridPoint;
 using Xyz = std::array<double, 3>;
 // A numerator or a quotient while the grid is built (sign and magnitude, GMP's limbs).
 using Limbs = FixedInteger<2>;
-
-// A finite nonzero double as odd * 2^exponent, read from its bits.
-struct OddTimesPower {
-  std::uint64_t odd;
-  bool negative;
-  int exponent;
-};
-OddTimesPower odd_times_power(double x) {
-  std::uint64_t bits = 0;
-  std::memcpy(&bits, &x, sizeof bits);
-  const int field = int((bits >> 52) & 0x7ff);
-  std::uint64_t mantissa = bits & ((std::uint64_t(1) << 52) - 1);
-  int exponent = -1074;  // a subnormal's
-  if (field != 0) {
-    mantissa |= std::uint64_t(1) << 52;
-    exponent = field - 1075;
-  }
-  const int zeros = __builtin_ctzll(mantissa);
-  return {mantissa >> zeros, (bits >> 63) != 0, exponent + zeros};
-}
-
-// Denominators by value (a hash of their limbs): a rotated mesh's coordinates take turns among
-// a hundred or so.
-struct LimbHash {
-  std::size_t operator()(const mpz_class* z) const {
-    std::size_t hash = mpz_size(z->get_mpz_t());
-    for (std::size_t l = 0; l < mpz_size(z->get_mpz_t()); ++l)
-      hash = (hash ^ mpz_getlimbn(z->get_mpz_t(), mp_size_t(l))) * 0x100000001b3ull;
-    return hash;
-  }
-};
-struct ValueEqual {
-  bool operator()(const mpz_class* a, const mpz_class* b) const { return *a == *b; }
-};
 
 // Past this many distinct denominators the mesh is not a rotated one (each vertex of a Boolean's
 // result has its own), and the grid's lcm would pass its bound anyway.
@@ -88,15 +56,15 @@ Coordinate minus(const Coordinate& a, const Coordinate& b) {
 std::unique_ptr<InputGrid> InputGrid::build(const std::vector<Input>& inputs,
                                             bool (*constructed)(const Point&)) {
   std::vector<Pending> pending(3 * inputs.size());
-  std::unordered_map<const mpz_class*, std::uint32_t, LimbHash, ValueEqual> index;
+  std::unordered_map<const mpz_class*, std::uint32_t, MpzValueHash, MpzValueEqual> index;
   std::vector<const mpz_class*> denominators;
   int lowest = 0;  // the lowest exponent of a double's odd part, if negative
   auto add_double = [&](Pending& c, double x) {
     if (x == 0) return;
     const OddTimesPower parts = odd_times_power(x);
-    c.numerator.limb[0] = parts.odd;
+    c.numerator.limb[0] = std::uint64_t(parts.odd < 0 ? -parts.odd : parts.odd);
     c.numerator.size = 1;
-    c.numerator.sign = parts.negative ? -1 : 1;
+    c.numerator.sign = parts.odd < 0 ? -1 : 1;
     c.exponent = parts.exponent;
     lowest = std::min(lowest, parts.exponent);
   };

@@ -23,12 +23,16 @@
 #include <unordered_map>
 #include <vector>
 
+#include "exact/number_parts.h"
 #include "exact/wide_integer.h"
 #include "mesh/volume_internal.h"
 #include "morphex/mesh.h"
 
 namespace morphex {
 namespace {
+
+using detail::odd_times_power;
+using detail::OddTimesPower;
 
 using Exact = std::decay_t<decltype(CGAL::exact(std::declval<FT>()))>;
 
@@ -64,27 +68,6 @@ using WideWidths = Widths<160, 3, 6, 9>;
 // Rational coordinates over their common denominator (a rotated mesh: the rotation's denominator
 // times the doubles' powers of two) need more.
 using WiderWidths = Widths<250, 4, 8, 13>;
-
-// A finite nonzero double as odd * 2^exponent, read from its bits (frexp and ldexp took a fifth
-// of a volume's time).
-struct OddTimesPower {
-  std::int64_t odd;
-  int exponent;
-};
-OddTimesPower odd_times_power(double x) {
-  std::uint64_t bits = 0;
-  std::memcpy(&bits, &x, sizeof bits);
-  const int field = int((bits >> 52) & 0x7ff);
-  std::uint64_t mantissa = bits & ((std::uint64_t(1) << 52) - 1);
-  int exponent = -1074;  // a subnormal's
-  if (field != 0) {
-    mantissa |= std::uint64_t(1) << 52;
-    exponent = field - 1075;
-  }
-  const int zeros = __builtin_ctzll(mantissa);
-  const auto odd = static_cast<std::int64_t>(mantissa >> zeros);
-  return {bits >> 63 ? -odd : odd, exponent + zeros};
-}
 
 // The spread of the mesh's double coordinates: exponents of the lowest set bit and of the bound
 // above the largest magnitude; nullopt when some coordinate is not a double.
@@ -226,17 +209,8 @@ std::optional<OverCommon> over_common_denominator(const Mesh& mesh) {
   }
   // A rotated mesh's coordinates take turns among a hundred denominators or so (the rotation's
   // times powers of two): each distinct one gets its quotient once, found by value.
-  struct LimbHash {
-    std::size_t operator()(const mpz_class* z) const {
-      std::size_t hash = mpz_size(z->get_mpz_t());
-      for (std::size_t l = 0; l < mpz_size(z->get_mpz_t()); ++l)
-        hash = (hash ^ mpz_getlimbn(z->get_mpz_t(), mp_size_t(l))) * 0x100000001b3ull;
-      return hash;
-    }
-  };
-  auto equal = [](const mpz_class* a, const mpz_class* b) { return *a == *b; };
-  std::unordered_map<const mpz_class*, std::uint32_t, LimbHash, decltype(equal)> quotient_index(
-      64, LimbHash(), equal);
+  std::unordered_map<const mpz_class*, std::uint32_t, detail::MpzValueHash, detail::MpzValueEqual>
+      quotient_index(64);
   o.quotient_of.resize(3 * n);
   std::vector<std::size_t> quotient_bits;
   for (std::size_t i = 0; i < 3 * n; ++i) {
