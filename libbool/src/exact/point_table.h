@@ -294,7 +294,8 @@ class PointTable {
   // each lazy point to its representation.
   std::vector<ApproxPoint> input_approx_;
   mutable StableVector<std::atomic<Homogeneous*>> constructed_exact_;
-  // Null when every input is a double (their own exact stage needs no grid).
+  // Only for one rational mesh against itself (the check): doubles have their own exact stage,
+  // and a Boolean's two meshes ask too few questions to pay for a grid.
   std::unique_ptr<GridState> grid_state_;
 };
 
