@@ -3,9 +3,11 @@
 // habits, gzip-compressed files, and the limits that keep a compressed file from exhausting memory.
 #include <gtest/gtest.h>
 
+#include <gmpxx.h>
 #include <sys/stat.h>
 #include <zlib.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -200,4 +202,89 @@ TEST(AtomicWrite, DevicesAreWrittenInPlace) {
   EXPECT_EQ(after.st_ino, before.st_ino);
   std::ifstream in("/dev/null");
   EXPECT_EQ(in.peek(), std::char_traits<char>::eof());  // still the device: reads nothing
+}
+
+namespace {
+
+// The exact value a coordinate literal stands for, by other means than the readers': GMP for
+// integers and fractions, the C library's strtod for decimals (the nearest double).
+FT expected_value(const std::string& literal) {
+  const std::string text = literal[0] == '+' ? literal.substr(1) : literal;
+  if (text.find_first_of(".eE") == std::string::npos) {
+    mpq_class q(text, 10);
+    q.canonicalize();
+    return FT(Kernel::Exact_kernel::FT(q));
+  }
+  return FT(std::strtod(text.c_str(), nullptr));
+}
+
+}  // namespace
+
+// Plain decimals and short integers are read straight to doubles (the fast path of large files);
+// everything else exactly. Every form, alone on a line or beside the others, must give the value
+// it stands for in OFF, OBJ and ASCII PLY alike.
+TEST(NumberForms, EveryLiteralReadsAsTheValueItStandsFor) {
+  const std::vector<std::string> literals = {"0.1",
+                                             "+0.5",
+                                             "-2.5e-3",
+                                             "1E2",
+                                             "7",
+                                             "+7",
+                                             "-0",
+                                             "0",
+                                             "-0.0",
+                                             "123456789012345",
+                                             "-123456789012345",
+                                             "1234567890123456",
+                                             "12345678901234567",
+                                             "-98765432109876543210",
+                                             "6/16",
+                                             "-1/3",
+                                             "+2/4",
+                                             "1e308",
+                                             "4.9e-324",
+                                             "2.2250738585072014e-308",
+                                             ".5",
+                                             "5.",
+                                             "1e-5",
+                                             "0.30000000000000004",
+                                             "9007199254740993",
+                                             "9007199254740993.0"};
+  std::vector<std::array<std::string, 3>> rows;
+  for (std::size_t i = 0; i < literals.size(); ++i)  // each literal in each place
+    rows.push_back(
+        {literals[i], literals[(i + 7) % literals.size()], literals[(i + 13) % literals.size()]});
+  std::string off = "OFF\n" + std::to_string(rows.size() + 3) + " 1 0\n", obj,
+              ply = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(rows.size() + 3) +
+                    "\nproperty double x\nproperty double y\nproperty double z\n"
+                    "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  for (const auto& row : rows) {
+    const std::string line = row[0] + "\t" + row[1] + "  " + row[2];
+    off += line + " # a comment\n";
+    obj += "v " + line + "\n";
+    ply += line + "\n";
+  }
+  // A triangle of three more vertices, so that each file is a mesh.
+  const std::string corners = "10 0 0\n0 10 0\n0 0 10\n";
+  const std::string face = std::to_string(rows.size()) + " " + std::to_string(rows.size() + 1) +
+                           " " + std::to_string(rows.size() + 2);
+  off += corners + "3 " + face + "\n";
+  for (const char* c : {"v 10 0 0\n", "v 0 10 0\n", "v 0 0 10\n"}) obj += c;
+  obj += "f " + std::to_string(rows.size() + 1) + " " + std::to_string(rows.size() + 2) + " " +
+         std::to_string(rows.size() + 3) + "\n";
+  ply += corners + "3 " + face + "\n";
+  const std::pair<MeshFormat, std::string> files[] = {
+      {MeshFormat::Off, off}, {MeshFormat::Obj, obj}, {MeshFormat::Ply, ply}};
+  for (const auto& [format, content] : files) {
+    const Mesh mesh = read_mesh_from_string(content, format, "forms");
+    ASSERT_EQ(mesh.num_vertices(), rows.size() + 3);
+    for (std::size_t v = 0; v < rows.size(); ++v)
+      for (int k = 0; k < 3; ++k) {
+        const FT expected = expected_value(rows[v][std::size_t(k)]);
+        // PLY stores doubles: a rational literal there is its nearest double.
+        const FT want = format == MeshFormat::Ply ? FT(CGAL::to_double(expected)) : expected;
+        EXPECT_EQ(mesh.points[v].cartesian(k), want)
+            << "literal " << rows[v][std::size_t(k)] << " in format " << int(format);
+      }
+  }
 }

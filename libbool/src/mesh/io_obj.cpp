@@ -19,9 +19,8 @@ Mesh read_obj(const std::string& content, const std::string& name) {
     if (kind == "v") {
       if (line.tokens.size() < 4)
         throw InputError(name, "vertex with fewer than 3 coordinates" + at_line(line.number));
-      mesh.points.emplace_back(number(line.tokens[1], name, line.number),
-                               number(line.tokens[2], name, line.number),
-                               number(line.tokens[3], name, line.number));
+      mesh.points.push_back(
+          point_of(line.tokens[1], line.tokens[2], line.tokens[3], name, line.number));
     } else if (kind == "f") {
       polygon.clear();
       for (std::size_t k = 1; k < line.tokens.size(); ++k) {

@@ -87,9 +87,8 @@ Mesh read_off(const std::string& content, const std::string& name) {
     if (line.tokens.size() < 3)
       throw InputError(name, "vertex " + std::to_string(v) + " has fewer than 3 coordinates" +
                                  at_line(line.number));
-    mesh.points.emplace_back(number(line.tokens[0], name, line.number),
-                             number(line.tokens[1], name, line.number),
-                             number(line.tokens[2], name, line.number));
+    mesh.points.push_back(
+        point_of(line.tokens[0], line.tokens[1], line.tokens[2], name, line.number));
   }
   mesh.triangles.reserve(nf);
   std::vector<VertexIndex> polygon;

@@ -162,7 +162,9 @@ Mesh read_ply(const std::string& content, const std::string& name) {
       token = 0;
       line_number = line.number;
     }
-    return CGAL::to_double(number(line.tokens[token++], name, line_number));
+    const std::string_view value = line.tokens[token++];
+    if (const std::optional<double> d = double_literal(value)) return *d;
+    return CGAL::to_double(number(value, name, line_number));
   };
   for (const PlyElement& e : elements) {
     const bool is_vertex = e.name == "vertex", is_face = e.name == "face";

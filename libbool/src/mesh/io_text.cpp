@@ -11,19 +11,24 @@ namespace morphex::detail {
 
 namespace {
 
+// ' ', and '\t', '\n', '\v', '\f', '\r' (9 to 13): two comparisons per byte.
 bool is_space(char c) {
-  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f' || c == '\n';
+  return c == ' ' || static_cast<unsigned char>(c - '\t') < 5;
 }
 
+// On pointers, one token per pass of the inner loops: most of a large mesh file's reading time
+// is spent here, a byte at a time.
 void split_into(std::string_view text, std::vector<std::string_view>& out) {
   out.clear();
-  std::size_t i = 0;
-  while (i < text.size()) {
-    while (i < text.size() && is_space(text[i])) ++i;
-    std::size_t j = i;
-    while (j < text.size() && !is_space(text[j])) ++j;
-    if (j > i) out.push_back(text.substr(i, j - i));
-    i = j;
+  const char* p = text.data();
+  const char* const end = p + text.size();
+  for (;;) {
+    while (p != end && is_space(*p)) ++p;
+    if (p == end) return;
+    const char* q = p + 1;
+    while (q != end && !is_space(*q)) ++q;
+    out.emplace_back(p, std::size_t(q - p));
+    p = q;
   }
 }
 
@@ -83,12 +88,21 @@ FT number(std::string_view token, const std::string& name, std::size_t line) {
   }
 }
 
+Point point_of(std::string_view x, std::string_view y, std::string_view z, const std::string& name,
+               std::size_t line) {
+  const std::optional<double> dx = double_literal(x), dy = double_literal(y),
+                              dz = double_literal(z);
+  if (dx && dy && dz) return Point(*dx, *dy, *dz);
+  return Point(number(x, name, line), number(y, name, line), number(z, name, line));
+}
+
 double finite_coordinate(double d, const std::string& name, const std::string& where) {
   if (!std::isfinite(d)) throw InputError(name, "non-finite coordinate " + where);
   return d;
 }
 
 double double_number(std::string_view token, const std::string& name, std::size_t line) {
+  if (const std::optional<double> d = double_literal(token)) return *d;
   const double d = CGAL::to_double(number(token, name, line));
   if (!std::isfinite(d))
     throw InputError(name, "non-finite coordinate " + shown(token) + at_line(line));

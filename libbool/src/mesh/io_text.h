@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstring>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -93,6 +94,15 @@ std::string shown(std::string_view token);
 // A coordinate: integers and fractions exactly, decimals as the nearest double. InputError
 // naming the file and the line when malformed.
 FT number(std::string_view token, const std::string& name, std::size_t line);
+// The value of the literals parse_exact_number reads as a double (decimals, and integers short
+// enough to be one exactly); nullopt for the others (fractions, long integers, malformed or
+// non-finite text), which parse_exact_number then reads or refuses (mesh.cpp).
+std::optional<double> double_literal(std::string_view text);
+// The point of three coordinate tokens: made from the doubles at once when all three are double
+// literals (one lazy object holding them, where three exact numbers and a point made of them are
+// four allocations; reading a large mesh spent more time there than in parsing).
+Point point_of(std::string_view x, std::string_view y, std::string_view z, const std::string& name,
+               std::size_t line);
 // The same as a double (formats that store doubles), refusing non-finite values.
 double double_number(std::string_view token, const std::string& name, std::size_t line);
 // A binary format's coordinate: InputError naming the file and `where` when it is not finite.

@@ -7,8 +7,11 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <sstream>
 #include <type_traits>
+
+#include "mesh/io_text.h"
 
 namespace morphex {
 
@@ -64,7 +67,35 @@ std::string to_rational_string(const FT& value) {
   return text;
 }
 
+namespace detail {
+
+// Short integers (at most 15 digits) are doubles exactly, and decimals mean the nearest one: no
+// rational arithmetic for the commonest coordinates.
+std::optional<double> double_literal(std::string_view text) {
+  const std::string_view digits = !text.empty() && text[0] == '+' ? text.substr(1) : text;
+  const char* const end = digits.data() + digits.size();
+  if (digits.find_first_of(".eEnNiI") == std::string_view::npos) {
+    // Longer integers and fractions are exact rationals (parse_exact_number).
+    if (digits.empty() || digits.size() > 15 || digits.find('/') != std::string_view::npos)
+      return std::nullopt;
+    long long value = 0;
+    const auto r = std::from_chars(digits.data(), end, value);
+    if (r.ec != std::errc() || r.ptr != end) return std::nullopt;
+    return double(value);
+  }
+  double d = 0;
+  const auto r = std::from_chars(digits.data(), end, d);
+  if (r.ec != std::errc() || r.ptr != end || !std::isfinite(d)) return std::nullopt;
+  return d;
+}
+
+}  // namespace detail
+
 FT parse_exact_number(std::string_view text) {
+  // Integers and fractions are exact; decimal literals mean the nearest double, as in any mesh
+  // file written by floating-point software. Most are read by the fast path; what is left here
+  // is long integers, fractions, forms from_chars does not take, and malformed text.
+  if (const std::optional<double> d = detail::double_literal(text)) return FT(*d);
   if (text.empty()) throw InputError("", "empty number");
   const std::string_view digits = text[0] == '+' ? text.substr(1) : text;  // GMP rejects '+'
   auto malformed = [&] {
@@ -73,15 +104,7 @@ FT parse_exact_number(std::string_view text) {
       if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
     return InputError("", "malformed number '" + shown + (text.size() > 40 ? "...'" : "'"));
   };
-  // Integers and fractions are exact; decimal literals mean the nearest double, as in any mesh
-  // file written by floating-point software.
   if (digits.find_first_of(".eEnNiI") == std::string_view::npos) {
-    // Short integers are doubles exactly: no rational arithmetic for the commonest coordinates.
-    if (!digits.empty() && digits.size() <= 15 && digits.find('/') == std::string_view::npos) {
-      long long value = 0;
-      const auto r = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-      if (r.ec == std::errc() && r.ptr == digits.data() + digits.size()) return FT(double(value));
-    }
     mpq_class q;
     const std::string copy(digits);
     if (copy.empty() || copy[0] == '+' || q.set_str(copy, 10) != 0 || q.get_den() == 0)
