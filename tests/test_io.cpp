@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Mesh files: round trips in every format, polygon triangulation, and one test per kind of bad
 // input, each checking that the error names the file, the problem and where.
+#include <gmpxx.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -368,6 +369,39 @@ TEST(Streams, WritingToAStreamGivesTheSameBytesAsAFile) {
   EXPECT_EQ(out.str(), file);
   EXPECT_EQ(signed_volume(read_mesh_from_string(out.str(), MeshFormat::Off, "<stdin>")),
             FT(10) / 231);
+}
+
+// Exact OFF writes points of doubles from their doubles and the others from their exact points:
+// each coordinate must be the text GMP gives its exact value, and read back as that value.
+TEST(Streams, ExactOffWritesEveryPointAsItsExactValue) {
+  Mesh m;
+  m.points = {Point(0.1, -2.5, 1e-300), Point(FT(1) / 3, FT(2) / 7 + FT(0.1), FT(-5)),
+              CGAL::midpoint(Point(0.1, 0.2, 0.3), Point(FT(1) / 3, FT(1) / 5, FT(7))),
+              Point(1e300, -0x1p-70, 12345678.0)};
+  m.triangles = {{0, 1, 2}, {1, 2, 3}};
+  WriteOptions options;
+  options.exact = true;
+  std::ostringstream out;
+  write_mesh(m, out, MeshFormat::Off, options);
+  std::istringstream lines(out.str());
+  std::string line;
+  std::getline(lines, line);  // OFF
+  std::getline(lines, line);  // the provenance comment
+  std::getline(lines, line);  // counts
+  for (const Point& p : m.points) {
+    std::getline(lines, line);
+    std::istringstream tokens(line);
+    for (int k = 0; k < 3; ++k) {
+      std::string token;
+      tokens >> token;
+      mpq_class expected = CGAL::exact(p.cartesian(k));
+      expected.canonicalize();
+      EXPECT_EQ(token, expected.get_str());
+    }
+  }
+  const Mesh back = read_mesh_from_string(out.str(), MeshFormat::Off, "<stdin>");
+  ASSERT_EQ(back.points.size(), m.points.size());
+  for (std::size_t v = 0; v < m.points.size(); ++v) EXPECT_EQ(back.points[v], m.points[v]);
 }
 
 // A result whose features are thinner than the format's spacing collapses when written: a unit

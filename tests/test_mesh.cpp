@@ -22,6 +22,46 @@ TEST(Rational, PrintsLowestTerms) {
   EXPECT_EQ(to_rational_string(FT(0.1)), "3602879701896397/36028797018963968");
 }
 
+// Doubles are written from their bits (machine integers where they fit), other numbers by GMP:
+// both must print what GMP prints for the exact value, and read back as it.
+TEST(Rational, PrintsEveryDoubleAsGmpDoes) {
+  std::mt19937_64 random(7);
+  std::vector<double> values = {0.0,
+                                -0.0,
+                                1.0,
+                                -1.0,
+                                0.5,
+                                3.0,
+                                1024.0,
+                                2047.0,
+                                1e15,
+                                0.1,
+                                -0.75,
+                                1e-300,
+                                4.9e-324,
+                                1e308,
+                                -2.5e-3,
+                                9007199254740992.0,
+                                9007199254740991.0,
+                                0x1p-63,
+                                0x1p-64,
+                                0x1p62};
+  for (int i = 0; i < 2000; ++i) {
+    const double mantissa = std::ldexp(double(random() >> 11), -53) * (i % 2 ? -1 : 1);
+    values.push_back(std::ldexp(mantissa, int(random() % 2098) - 1074));
+  }
+  for (const double d : values) {
+    const std::string text = to_rational_string(FT(d));
+    EXPECT_EQ(text, mpq_class(d).get_str()) << d;
+    EXPECT_EQ(parse_exact_number(text), FT(d)) << text;
+  }
+  const FT third = FT(1) / 3 + FT(0.1);  // a lazy number that is no double
+  mpq_class expected = mpq_class(1, 3) + mpq_class(0.1);
+  expected.canonicalize();
+  EXPECT_EQ(to_rational_string(third), expected.get_str());
+  EXPECT_EQ(to_rational_string(-third * 6), mpq_class(-expected * 6).get_str());
+}
+
 TEST(Rational, ParsesRationalsAndDecimals) {
   EXPECT_EQ(parse_exact_number("6/16"), FT(3) / FT(8));
   EXPECT_EQ(parse_exact_number("-7"), FT(-7));

@@ -148,9 +148,17 @@ void write_off_text(const Points& points, const std::vector<Triangle>& triangles
 }  // namespace
 
 void write_off_exact(const Mesh& m, std::ostream& out, const std::string& note) {
+  // A point of doubles is written from its doubles; another from its exact coordinates, read
+  // from the exact point itself: each p.cartesian(k) would be a lazy number of its own, to be
+  // evaluated once more (a lock and a system call each, in CGAL's thread-safe evaluation).
   write_off_text(m.points, m.triangles, out, note, [](std::string& text, const Point& p) {
+    const auto& approx = CGAL::approx(p);
+    const bool doubles = approx.x().is_point() && approx.y().is_point() && approx.z().is_point();
     for (int k = 0; k < 3; ++k) {
-      text += to_rational_string(p.cartesian(k));
+      if (doubles)
+        append_rational(text, approx.cartesian(k).inf());
+      else
+        append_rational(text, CGAL::exact(p).cartesian(k));
       text += k < 2 ? ' ' : '\n';
     }
   });

@@ -4,6 +4,7 @@
 // plain files need, and the wording of located errors.
 #pragma once
 
+#include <gmpxx.h>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -117,6 +118,10 @@ void add_polygon(Mesh& mesh, const std::vector<VertexIndex>& polygon, const std:
 
 // Appends the shortest decimal that reads back as exactly `value`.
 void append_double(std::string& out, double value);
+// Appends an exact number as exact OFF writes it: "num/den" in lowest terms, "num" for integers
+// (mesh.cpp, beside to_rational_string, which they make).
+void append_rational(std::string& out, const mpq_class& value);
+void append_rational(std::string& out, double value);
 
 // A hash of coordinate triples for maps keyed by position. +0 and -0 hash alike, as == treats
 // them as one value (a hash that told them apart would keep one position twice).

@@ -6,7 +6,9 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <optional>
 #include <sstream>
 #include <type_traits>
@@ -58,12 +60,57 @@ void make_exact(Mesh& mesh) {
   }
 }
 
+namespace detail {
+
+void append_rational(std::string& out, const mpq_class& q) {
+  static_assert(std::is_same_v<ExactFT, mpq_class>, "the exact numbers are GMP's (CGAL_USE_GMPXX)");
+  // GMP prints lowest terms (CGAL keeps them canonical) without "/1", and allocates nothing:
+  // room for both numbers, their sign and the slash, then cut to what it wrote.
+  const std::size_t at = out.size();
+  out.resize(at + mpz_sizeinbase(q.get_num_mpz_t(), 10) + mpz_sizeinbase(q.get_den_mpz_t(), 10) +
+             3);
+  mpq_get_str(out.data() + at, 10, q.get_mpq_t());
+  out.resize(at + std::strlen(out.data() + at));
+}
+
+void append_rational(std::string& out, double d) {
+  // d = m 2^e with m odd: "m" or "m/2^-e", on machine integers when they hold them (every
+  // coordinate of a mesh file but the tiny and the huge), else by GMP.
+  int e = 0;
+  const double f = std::frexp(d, &e);  // d = f 2^e, 0.5 <= |f| < 1
+  auto m = static_cast<std::int64_t>(std::ldexp(f, 53));
+  e -= 53;
+  if (m == 0) {
+    out += '0';
+    return;
+  }
+  const int zeros = __builtin_ctzll(static_cast<std::uint64_t>(m < 0 ? -m : m));
+  m /= std::int64_t(1) << zeros;
+  e += zeros;
+  auto append_integer = [&](auto value) {
+    char buffer[24];
+    out.append(buffer, std::to_chars(buffer, buffer + sizeof buffer, value).ptr);
+  };
+  if (e >= 0 && e <= 10) {
+    append_integer(m * (std::int64_t(1) << e));  // |m| < 2^53
+  } else if (e < 0 && e >= -63) {
+    append_integer(m);
+    out += '/';
+    append_integer(std::uint64_t(1) << -e);
+  } else {
+    append_rational(out, mpq_class(d));
+  }
+}
+
+}  // namespace detail
+
 std::string to_rational_string(const FT& value) {
-  // The exact type keeps lowest terms; normalise "n/1" in case a backend prints it.
-  std::ostringstream out;
-  out << CGAL::exact(value);
-  std::string text = out.str();
-  if (text.size() > 2 && text.compare(text.size() - 2, 2, "/1") == 0) text.resize(text.size() - 2);
+  std::string text;
+  const auto& approx = CGAL::approx(value);
+  if (approx.is_point())  // a double: no exact number to evaluate
+    detail::append_rational(text, approx.inf());
+  else
+    detail::append_rational(text, CGAL::exact(value));
   return text;
 }
 
