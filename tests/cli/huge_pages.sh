@@ -68,7 +68,8 @@ environment_while_reading() {
 marker=":MORPHEX_RESTARTED_FOR_HUGE_PAGES=1:"
 env_now=$(environment_while_reading unset "$big") || { echo "$env_now"; exit 1; }
 if [ $restarts = yes ]; then
-  [[ "$env_now" == *":GLIBC_TUNABLES=glibc.malloc.hugetlb=1:"* ]] || fail "not restarted: $(shown "$env_now")"
+  [[ "$env_now" == *":GLIBC_TUNABLES=glibc.malloc.hugetlb=1:glibc.malloc.mmap_threshold=33554432:glibc.malloc.top_pad=16777216:"* ]] ||
+    fail "not restarted: $(shown "$env_now")"
   [[ "$env_now" == *"$marker"* ]] || fail "no restart marker: $(shown "$env_now")"
 else
   [[ "$env_now" != *GLIBC_TUNABLES* && "$env_now" != *"$marker"* ]] || fail "restarted: $(shown "$env_now")"
@@ -77,7 +78,7 @@ fi
 # Other tunables are kept, ours appended.
 env_now=$(environment_while_reading glibc.malloc.arena_max=4 "$big") || { echo "$env_now"; exit 1; }
 if [ $restarts = yes ]; then
-  [[ "$env_now" == *":GLIBC_TUNABLES=glibc.malloc.arena_max=4:glibc.malloc.hugetlb=1:"* ]] ||
+  [[ "$env_now" == *":GLIBC_TUNABLES=glibc.malloc.arena_max=4:glibc.malloc.hugetlb=1:glibc.malloc.mmap_threshold=33554432:"* ]] ||
     fail "tunables not kept: $(shown "$env_now")"
 else
   [[ "$env_now" == *":GLIBC_TUNABLES=glibc.malloc.arena_max=4:"* && "$env_now" != *hugetlb* ]] ||
