@@ -20,7 +20,9 @@ namespace morphex {
 // when unset) and the kernel's mode (the line of /sys/kernel/mm/transparent_hugepage/enabled,
 // e.g. "always [madvise] never"); nullopt when the process should stay as it is: the mode is not
 // "madvise" ("always" gives malloc huge pages unasked, "never" none), or the tunables already say
-// what glibc.malloc.hugetlb is. Other tunables are kept.
+// what glibc.malloc.hugetlb is. Other tunables are kept; glibc.malloc.mmap_threshold and
+// glibc.malloc.top_pad are added unless named, so that large blocks come from the huge-paged heap
+// (huge_pages.cpp says why and by how much).
 std::optional<std::string> huge_page_tunables(const char* current, const std::string& thp_mode);
 
 namespace detail {
