@@ -152,11 +152,10 @@ void write_off_exact(const Mesh& m, std::ostream& out, const std::string& note) 
   // from the exact point itself: each p.cartesian(k) would be a lazy number of its own, to be
   // evaluated once more (a lock and a system call each, in CGAL's thread-safe evaluation).
   write_off_text(m.points, m.triangles, out, note, [](std::string& text, const Point& p) {
-    const auto& approx = CGAL::approx(p);
-    const bool doubles = approx.x().is_point() && approx.y().is_point() && approx.z().is_point();
+    const bool doubles = has_double_coordinates(p);
     for (int k = 0; k < 3; ++k) {
       if (doubles)
-        append_rational(text, approx.cartesian(k).inf());
+        append_rational(text, CGAL::approx(p).cartesian(k).inf());
       else
         append_rational(text, CGAL::exact(p).cartesian(k));
       text += k < 2 ? ' ' : '\n';

@@ -13,6 +13,7 @@
 #include <sstream>
 #include <type_traits>
 
+#include "exact/number_parts.h"
 #include "mesh/io_text.h"
 
 namespace morphex {
@@ -74,19 +75,13 @@ void append_rational(std::string& out, const mpq_class& q) {
 }
 
 void append_rational(std::string& out, double d) {
-  // d = m 2^e with m odd: "m" or "m/2^-e", on machine integers when they hold them (every
-  // coordinate of a mesh file but the tiny and the huge), else by GMP.
-  int e = 0;
-  const double f = std::frexp(d, &e);  // d = f 2^e, 0.5 <= |f| < 1
-  auto m = static_cast<std::int64_t>(std::ldexp(f, 53));
-  e -= 53;
-  if (m == 0) {
+  // d = odd 2^e: "odd" or "odd/2^-e", on machine integers when they hold them (every coordinate
+  // of a mesh file but the tiny and the huge), else by GMP.
+  if (d == 0) {
     out += '0';
     return;
   }
-  const int zeros = __builtin_ctzll(static_cast<std::uint64_t>(m < 0 ? -m : m));
-  m /= std::int64_t(1) << zeros;
-  e += zeros;
+  const auto [m, e] = odd_times_power(d);
   auto append_integer = [&](auto value) {
     char buffer[24];
     out.append(buffer, std::to_chars(buffer, buffer + sizeof buffer, value).ptr);
